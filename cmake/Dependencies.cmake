@@ -1,0 +1,44 @@
+# Every external library the toolchain uses, found once here. A missing one
+# stops the configure step with the Debian package that provides it.
+
+macro(dem_require found what package)
+  if(NOT ${found})
+    message(FATAL_ERROR
+      "${what} not found. Install it with:\n"
+      "  apt-get install ${package}\n"
+      "(or run tools/deps, which installs everything the build needs)")
+  endif()
+endmacro()
+
+find_package(OpenMP COMPONENTS C CXX)
+dem_require(OpenMP_C_FOUND "OpenMP (C)" "gcc")
+
+find_package(HDF5 COMPONENTS C)
+dem_require(HDF5_FOUND "HDF5 C library" "libhdf5-dev")
+add_library(dem_hdf5 INTERFACE)
+target_include_directories(dem_hdf5 SYSTEM INTERFACE ${HDF5_INCLUDE_DIRS})
+target_link_libraries(dem_hdf5 INTERFACE ${HDF5_C_LIBRARIES})
+target_compile_definitions(dem_hdf5 INTERFACE ${HDF5_DEFINITIONS})
+
+find_package(cJSON QUIET)
+find_path(CJSON_HEADER cjson/cJSON.h)
+dem_require(CJSON_HEADER "cJSON" "libcjson-dev")
+add_library(dem_cjson INTERFACE)
+target_link_libraries(dem_cjson INTERFACE cjson)
+
+find_path(GMSH_INCLUDE_DIR gmshc.h)
+find_library(GMSH_LIBRARY gmsh)
+dem_require(GMSH_INCLUDE_DIR "gmsh C API header gmshc.h" "libgmsh-dev")
+dem_require(GMSH_LIBRARY "gmsh library" "libgmsh-dev")
+add_library(dem_gmsh INTERFACE)
+target_include_directories(dem_gmsh SYSTEM INTERFACE ${GMSH_INCLUDE_DIR})
+target_link_libraries(dem_gmsh INTERFACE ${GMSH_LIBRARY})
+
+set(CGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE TRUE)
+find_package(CGAL QUIET)
+dem_require(CGAL_FOUND "CGAL" "libcgal-dev")
+
+find_package(VTK 9 QUIET COMPONENTS CommonCore CommonDataModel IOXML)
+dem_require(VTK_FOUND "VTK 9" "libvtk9-dev")
+
+find_library(MATH_LIBRARY m)

@@ -1,0 +1,95 @@
+#include <errno.h>
+#include <fcntl.h>
+#include <libgen.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "lib/afile.h"
+#include "lib/err.h"
+
+/* Pending temporaries, kept in static storage so the signal handler can use
+ * them without allocating. */
+enum { MAX_PENDING = 16, NAME_MAX_LEN = 4096 };
+static char pending[MAX_PENDING][NAME_MAX_LEN];
+static volatile sig_atomic_t pending_used[MAX_PENDING];
+
+static void remove_pending(void)
+{
+	for (int k = 0; k < MAX_PENDING; k++)
+		if (pending_used[k]) {
+			unlink(pending[k]);
+			pending_used[k] = 0;
+		}
+}
+
+static void on_signal(int sig)
+{
+	remove_pending();
+	signal(sig, SIG_DFL);
+	raise(sig);
+}
+
+void afile_install_signal_cleanup(void)
+{
+	static int installed;
+	if (installed)
+		return;
+	installed = 1;
+	atexit(remove_pending);
+	signal(SIGINT, on_signal);
+	signal(SIGTERM, on_signal);
+	signal(SIGHUP, on_signal);
+}
+
+int afile_begin(const char *final, char *tmp, size_t n)
+{
+	int len = snprintf(tmp, n, "%s.tmp", final);
+	if (len < 0 || (size_t)len >= n || (size_t)len >= NAME_MAX_LEN)
+		return err_set("%s: output file name too long", final);
+	for (int k = 0; k < MAX_PENDING; k++)
+		if (!pending_used[k]) {
+			memcpy(pending[k], tmp, (size_t)len + 1);
+			pending_used[k] = 1;
+			return 0;
+		}
+	return err_set("%s: too many output files open at once", final);
+}
+
+static void unregister(const char *tmp)
+{
+	for (int k = 0; k < MAX_PENDING; k++)
+		if (pending_used[k] && strcmp(pending[k], tmp) == 0)
+			pending_used[k] = 0;
+}
+
+static int fsync_path(const char *path, int flags)
+{
+	int fd = open(path, flags);
+	if (fd < 0)
+		return -1;
+	int rc = fsync(fd);
+	close(fd);
+	return rc;
+}
+
+int afile_commit(const char *tmp, const char *final)
+{
+	if (fsync_path(tmp, O_RDONLY) != 0)
+		return err_set("%s: cannot sync: %s", tmp, strerror(errno));
+	if (rename(tmp, final) != 0)
+		return err_set("%s: cannot rename to %s: %s", tmp, final, strerror(errno));
+	unregister(tmp);
+	char dir[NAME_MAX_LEN];
+	snprintf(dir, sizeof dir, "%s", final);
+	fsync_path(dirname(dir), O_RDONLY | O_DIRECTORY);
+	return 0;
+}
+
+void afile_discard(const char *tmp)
+{
+	unlink(tmp);
+	unregister(tmp);
+}

@@ -1,0 +1,23 @@
+/* Atomic output files: a program writes "<name>.tmp", and only when the file
+ * is complete does afile_commit() fsync it and rename it to its final name.
+ * A crashed or interrupted program therefore never leaves a file that looks
+ * finished. Temporary names are registered so that SIGINT/SIGTERM and a
+ * fatal() exit remove them. */
+#ifndef DEM_AFILE_H
+#define DEM_AFILE_H
+
+#include <stddef.h>
+
+/* Fill tmp (of size n) with the temporary name for final and register it
+ * for removal at exit or on a signal. Returns 0, or -1 if the name is too
+ * long. */
+int afile_begin(const char *final, char *tmp, size_t n);
+/* fsync tmp, rename it to final and fsync the directory; unregisters tmp. */
+int afile_commit(const char *tmp, const char *final);
+/* Remove tmp and unregister it. */
+void afile_discard(const char *tmp);
+/* Install the SIGINT/SIGTERM/SIGHUP handlers that remove pending temporaries
+ * and then die of the same signal. Programs call this once at start. */
+void afile_install_signal_cleanup(void);
+
+#endif

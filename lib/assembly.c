@@ -1,0 +1,201 @@
+#include <stdlib.h>
+#include <string.h>
+
+#include "lib/assembly.h"
+#include "lib/err.h"
+#include "lib/h5.h"
+
+static int write_geometry(hid_t file, const dem_geometry *g)
+{
+	hid_t h = h5_group(file, "geometry");
+	if (h < 0)
+		return -1;
+	int rc = h5_attr_str(h, "shape", g->shape) || h5_attr_str(h, "source", g->source) ||
+	         h5_attr_f64v(h, "center", g->center, 3) || h5_attr_f64v(h, "axis", g->axis, 3) ||
+	         h5_attr_f64(h, "diameter", g->diameter) || h5_attr_f64(h, "height", g->height) ||
+	         h5_attr_f64v(h, "size", g->size, 3) || h5_attr_f64v(h, "bbox_min", g->bbox_min, 3) ||
+	         h5_attr_f64v(h, "bbox_max", g->bbox_max, 3) ||
+	         h5_attr_f64(h, "volume", g->volume) || h5_attr_f64(h, "area", g->area) ||
+	         h5_write(h, "vertices", H5T_NATIVE_DOUBLE, g->vert, g->nvert, 3, "m") ||
+	         h5_write(h, "triangles", H5T_NATIVE_INT32, g->tri, g->ntri, 3, NULL);
+	H5Gclose(h);
+	return rc ? -1 : 0;
+}
+
+static int read_string_attr(hid_t h, const char *name, char *out, size_t n)
+{
+	char *s = h5_read_attr_str(h, name);
+	if (!s)
+		return -1;
+	snprintf(out, n, "%s", s);
+	free(s);
+	return 0;
+}
+
+static int read_geometry(hid_t file, dem_geometry *g)
+{
+	hid_t h = h5_open_group(file, "geometry");
+	if (h < 0)
+		return -1;
+	int rc = read_string_attr(h, "shape", g->shape, sizeof g->shape) ||
+	         read_string_attr(h, "source", g->source, sizeof g->source) ||
+	         h5_read_attr_f64v(h, "center", g->center, 3) ||
+	         h5_read_attr_f64v(h, "axis", g->axis, 3) ||
+	         h5_read_attr_f64(h, "diameter", &g->diameter) ||
+	         h5_read_attr_f64(h, "height", &g->height) ||
+	         h5_read_attr_f64v(h, "size", g->size, 3) ||
+	         h5_read_attr_f64v(h, "bbox_min", g->bbox_min, 3) ||
+	         h5_read_attr_f64v(h, "bbox_max", g->bbox_max, 3) ||
+	         h5_read_attr_f64(h, "volume", &g->volume) || h5_read_attr_f64(h, "area", &g->area) ||
+	         h5_read(h, "vertices", H5T_NATIVE_DOUBLE, (void **)&g->vert, &g->nvert, 3) ||
+	         h5_read(h, "triangles", H5T_NATIVE_INT32, (void **)&g->tri, &g->ntri, 3);
+	H5Gclose(h);
+	if (rc)
+		return -1;
+	for (size_t k = 0; k < 3 * g->ntri; k++)
+		if (g->tri[k] < 0 || (size_t)g->tri[k] >= g->nvert)
+			return err_set("%s: dataset '/geometry/triangles': vertex index %d out of range "
+			               "[0, %zu)",
+			               h5_name(file), g->tri[k], g->nvert);
+	return 0;
+}
+
+/* The report's scalars, in file order, with their attribute names. */
+#define REPORT_SCALARS(X)                                                                     \
+	X(solid_fraction)                                                                          \
+	X(solid_fraction_core)                                                                     \
+	X(wall_deficit)                                                                            \
+	X(mean_radius)                                                                             \
+	X(beta)                                                                                    \
+	X(coordination)                                                                            \
+	X(alpha)                                                                                   \
+	X(fabric_anisotropy)                                                                       \
+	X(overlap_max)                                                                             \
+	X(overlap_mean)                                                                            \
+	X(time)
+
+static int write_report(hid_t file, const dem_report *r)
+{
+	hid_t h = h5_group(file, "report");
+	if (h < 0)
+		return -1;
+	int rc = 0;
+#define WRITE_SCALAR(name) rc = rc || h5_attr_f64(h, #name, r->name);
+	REPORT_SCALARS(WRITE_SCALAR)
+#undef WRITE_SCALAR
+	rc = rc || h5_write(h, "profile_w", H5T_NATIVE_DOUBLE, r->profile_w, r->nprofile, 0, "m") ||
+	     h5_write(h, "profile_phi", H5T_NATIVE_DOUBLE, r->profile_phi, r->nprofile, 0, NULL) ||
+	     h5_write(h, "psd_size", H5T_NATIVE_DOUBLE, r->psd_size, r->npsd, 0, "m") ||
+	     h5_write(h, "psd_target_number", H5T_NATIVE_DOUBLE, r->psd_target_number, r->npsd, 0,
+	              NULL) ||
+	     h5_write(h, "psd_target_volume", H5T_NATIVE_DOUBLE, r->psd_target_volume, r->npsd, 0,
+	              NULL) ||
+	     h5_write(h, "psd_number", H5T_NATIVE_DOUBLE, r->psd_number, r->npsd, 0, NULL) ||
+	     h5_write(h, "psd_volume", H5T_NATIVE_DOUBLE, r->psd_volume, r->npsd, 0, NULL);
+	H5Gclose(h);
+	return rc ? -1 : 0;
+}
+
+static int read_report(hid_t file, dem_report *r)
+{
+	hid_t h = h5_open_group(file, "report");
+	if (h < 0)
+		return -1;
+	int rc = 0;
+#define READ_SCALAR(name) rc = rc || h5_read_attr_f64(h, #name, &r->name);
+	REPORT_SCALARS(READ_SCALAR)
+#undef READ_SCALAR
+	rc = rc || h5_read(h, "profile_w", H5T_NATIVE_DOUBLE, (void **)&r->profile_w, &r->nprofile, 0) ||
+	     h5_read_n(h, "profile_phi", H5T_NATIVE_DOUBLE, (void **)&r->profile_phi, r->nprofile, 0) ||
+	     h5_read(h, "psd_size", H5T_NATIVE_DOUBLE, (void **)&r->psd_size, &r->npsd, 0) ||
+	     h5_read_n(h, "psd_target_number", H5T_NATIVE_DOUBLE, (void **)&r->psd_target_number,
+	               r->npsd, 0) ||
+	     h5_read_n(h, "psd_target_volume", H5T_NATIVE_DOUBLE, (void **)&r->psd_target_volume,
+	               r->npsd, 0) ||
+	     h5_read_n(h, "psd_number", H5T_NATIVE_DOUBLE, (void **)&r->psd_number, r->npsd, 0) ||
+	     h5_read_n(h, "psd_volume", H5T_NATIVE_DOUBLE, (void **)&r->psd_volume, r->npsd, 0);
+	H5Gclose(h);
+	return rc ? -1 : 0;
+}
+
+int assembly_write_groups(hid_t file, const dem_assembly *a)
+{
+	hid_t p = h5_group(file, "particles");
+	if (p < 0)
+		return -1;
+	int rc = prov_write(p, NULL, &a->prov) ||
+	         h5_write(p, "x", H5T_NATIVE_DOUBLE, a->x, a->n, 3, "m") ||
+	         h5_write(p, "r", H5T_NATIVE_DOUBLE, a->r, a->n, 0, "m") ||
+	         h5_write(p, "material", H5T_NATIVE_INT32, a->material, a->n, 0, NULL);
+	H5Gclose(p);
+	if (rc || write_geometry(file, &a->geom) || write_report(file, &a->report))
+		return -1;
+	return 0;
+}
+
+int assembly_read_groups(hid_t file, dem_assembly *a)
+{
+	hid_t p = h5_open_group(file, "particles");
+	if (p < 0)
+		return -1;
+	int rc = prov_read(p, &a->prov) ||
+	         h5_read(p, "x", H5T_NATIVE_DOUBLE, (void **)&a->x, &a->n, 3) ||
+	         h5_read_n(p, "r", H5T_NATIVE_DOUBLE, (void **)&a->r, a->n, 0) ||
+	         h5_read_n(p, "material", H5T_NATIVE_INT32, (void **)&a->material, a->n, 0);
+	H5Gclose(p);
+	if (rc || read_geometry(file, &a->geom) || read_report(file, &a->report))
+		return -1;
+	for (size_t i = 0; i < a->n; i++)
+		if (!(a->r[i] > 0))
+			return err_set("%s: dataset '/particles/r': value %g at row %zu: expected a "
+			               "positive radius (m)",
+			               h5_name(file), a->r[i], i);
+	return 0;
+}
+
+int assembly_write(const char *path, const dem_assembly *a)
+{
+	char tmp[4096];
+	hid_t f = h5_create(path, tmp, sizeof tmp);
+	if (f < 0)
+		return -1;
+	if (prov_write(f, ASSEMBLY_FORMAT, &a->prov) || assembly_write_groups(f, a)) {
+		h5_discard(f, tmp);
+		return -1;
+	}
+	return h5_commit(f, tmp, path);
+}
+
+int assembly_read(const char *path, dem_assembly *a)
+{
+	memset(a, 0, sizeof *a);
+	hid_t f = h5_open(path, ASSEMBLY_FORMAT, 0);
+	if (f < 0)
+		return -1;
+	int rc = assembly_read_groups(f, a);
+	H5Fclose(f);
+	if (rc) {
+		assembly_free(a);
+		return -1;
+	}
+	return 0;
+}
+
+void assembly_free(dem_assembly *a)
+{
+	prov_free(&a->prov);
+	free(a->x);
+	free(a->r);
+	free(a->material);
+	free(a->geom.vert);
+	free(a->geom.tri);
+	dem_report *r = &a->report;
+	free(r->profile_w);
+	free(r->profile_phi);
+	free(r->psd_size);
+	free(r->psd_target_number);
+	free(r->psd_target_volume);
+	free(r->psd_number);
+	free(r->psd_volume);
+	memset(a, 0, sizeof *a);
+}

@@ -1,0 +1,84 @@
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lib/err.h"
+
+static _Thread_local char message[2048];
+static const char *program = "dem";
+
+int err_set(const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(message, sizeof message, fmt, ap);
+	va_end(ap);
+	return -1;
+}
+
+int err_wrap(const char *fmt, ...)
+{
+	char old[sizeof message];
+	memcpy(old, message, sizeof old);
+	va_list ap;
+	va_start(ap, fmt);
+	int len = vsnprintf(message, sizeof message, fmt, ap);
+	va_end(ap);
+	if (len >= 0 && (size_t)len < sizeof message)
+		snprintf(message + len, sizeof message - (size_t)len, ": %.*s",
+		         (int)(sizeof message - (size_t)len), old);
+	return -1;
+}
+
+const char *err_msg(void) { return message; }
+
+void err_clear(void) { message[0] = '\0'; }
+
+void err_program(const char *argv0)
+{
+	const char *slash = strrchr(argv0, '/');
+	program = slash ? slash + 1 : argv0;
+}
+
+const char *err_program_name(void) { return program; }
+
+_Noreturn void fatal(const char *fmt, ...)
+{
+	fflush(stdout);
+	if (fmt) {
+		va_list ap;
+		va_start(ap, fmt);
+		vsnprintf(message, sizeof message, fmt, ap);
+		va_end(ap);
+	}
+	fprintf(stderr, "%s: %s\n", program, message[0] ? message : "unknown error");
+	exit(1);
+}
+
+void warn(const char *fmt, ...)
+{
+	char text[2048];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(text, sizeof text, fmt, ap);
+	va_end(ap);
+	fprintf(stderr, "%s: warning: %s\n", program, text);
+}
+
+static void *check(void *p, size_t n)
+{
+	if (!p && n)
+		fatal("out of memory (allocating %zu bytes)", n);
+	return p;
+}
+
+void *xmalloc(size_t n) { return check(malloc(n ? n : 1), n); }
+
+void *xcalloc(size_t count, size_t size)
+{
+	return check(calloc(count ? count : 1, size ? size : 1), count * size);
+}
+
+void *xrealloc(void *p, size_t n) { return check(realloc(p, n ? n : 1), n); }
+
+char *xstrdup(const char *s) { return check(strdup(s), strlen(s) + 1); }

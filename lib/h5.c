@@ -1,0 +1,374 @@
+#include <stdlib.h>
+#include <string.h>
+
+#include "lib/afile.h"
+#include "lib/err.h"
+#include "lib/h5.h"
+
+/* The format versions this build reads (and writes). */
+#define FORMAT_VERSION 1
+
+void h5_quiet(void) { H5Eset_auto2(H5E_DEFAULT, NULL, NULL); }
+
+const char *h5_name(hid_t obj)
+{
+	static _Thread_local char name[1024];
+	if (H5Fget_name(obj, name, sizeof name) < 0)
+		strcpy(name, "(hdf5)");
+	return name;
+}
+
+static const char *obj_path(hid_t obj)
+{
+	static _Thread_local char path[1024];
+	if (H5Iget_name(obj, path, sizeof path) < 0)
+		strcpy(path, "?");
+	return path;
+}
+
+hid_t h5_create(const char *final, char *tmp, size_t tmpsize)
+{
+	h5_quiet();
+	if (afile_begin(final, tmp, tmpsize))
+		return -1;
+	hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+	H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST);
+	hid_t f = H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+	H5Pclose(fapl);
+	if (f < 0) {
+		afile_discard(tmp);
+		return err_set("%s: cannot create file (is the directory writable?)", tmp);
+	}
+	if (h5_attr_i64(f, "format_version", FORMAT_VERSION)) {
+		h5_discard(f, tmp);
+		return -1;
+	}
+	return f;
+}
+
+int h5_commit(hid_t file, const char *tmp, const char *final)
+{
+	if (H5Fclose(file) < 0) {
+		afile_discard(tmp);
+		return err_set("%s: cannot close file", tmp);
+	}
+	return afile_commit(tmp, final);
+}
+
+void h5_discard(hid_t file, const char *tmp)
+{
+	H5Fclose(file);
+	afile_discard(tmp);
+}
+
+hid_t h5_open(const char *path, const char *format, int readwrite)
+{
+	h5_quiet();
+	if (H5Fis_hdf5(path) <= 0)
+		return err_set("%s: not a readable HDF5 file (missing, truncated or another format)",
+		               path);
+	hid_t f = H5Fopen(path, readwrite ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT);
+	if (f < 0)
+		return err_set("%s: cannot open HDF5 file", path);
+	char *fmt = NULL;
+	int64_t version = 0;
+	if (H5Aexists(f, "format") <= 0 || !(fmt = h5_read_attr_str(f, "format"))) {
+		H5Fclose(f);
+		return err_set("%s: attribute 'format': missing: expected \"%s\" (not a file "
+		               "written by this toolchain)",
+		               path, format);
+	}
+	if (strcmp(fmt, format) != 0) {
+		err_set("%s: attribute 'format': value \"%s\": expected \"%s\"", path, fmt, format);
+		free(fmt);
+		H5Fclose(f);
+		return -1;
+	}
+	free(fmt);
+	if (h5_read_attr_i64(f, "format_version", &version) || version != FORMAT_VERSION) {
+		H5Fclose(f);
+		return err_set("%s: attribute 'format_version': value %lld: expected %d", path,
+		               (long long)version, FORMAT_VERSION);
+	}
+	return f;
+}
+
+hid_t h5_group(hid_t loc, const char *name)
+{
+	hid_t g = H5Gcreate2(loc, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+	if (g < 0)
+		return err_set("%s: cannot create group '%s'", h5_name(loc), name);
+	return g;
+}
+
+hid_t h5_open_group(hid_t loc, const char *name)
+{
+	hid_t g = h5_exists(loc, name) ? H5Gopen2(loc, name, H5P_DEFAULT) : -1;
+	if (g < 0)
+		return err_set("%s: group '%s': missing", h5_name(loc), name);
+	return g;
+}
+
+int h5_exists(hid_t loc, const char *path)
+{
+	/* Check each component so that a missing parent is not an error. */
+	char buf[1024];
+	snprintf(buf, sizeof buf, "%s", path);
+	for (char *p = buf + (buf[0] == '/'); (p = strchr(p, '/')); p++) {
+		*p = '\0';
+		if (H5Lexists(loc, buf, H5P_DEFAULT) <= 0)
+			return 0;
+		*p = '/';
+	}
+	return H5Lexists(loc, buf, H5P_DEFAULT) > 0;
+}
+
+static int write_attr(hid_t obj, const char *name, hid_t type, hid_t space, const void *data)
+{
+	if (H5Aexists(obj, name) > 0)
+		H5Adelete(obj, name);
+	hid_t a = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+	herr_t rc = a < 0 ? -1 : H5Awrite(a, type, data);
+	if (a >= 0)
+		H5Aclose(a);
+	H5Sclose(space);
+	if (rc < 0)
+		return err_set("%s: cannot write attribute '%s' on '%s'", h5_name(obj), name,
+		               obj_path(obj));
+	return 0;
+}
+
+static hid_t str_type(void)
+{
+	hid_t t = H5Tcopy(H5T_C_S1);
+	H5Tset_size(t, H5T_VARIABLE);
+	H5Tset_cset(t, H5T_CSET_UTF8);
+	return t;
+}
+
+int h5_attr_str(hid_t obj, const char *name, const char *value)
+{
+	hid_t t = str_type();
+	int rc = write_attr(obj, name, t, H5Screate(H5S_SCALAR), &value);
+	H5Tclose(t);
+	return rc;
+}
+
+int h5_attr_f64(hid_t obj, const char *name, double value)
+{
+	return write_attr(obj, name, H5T_NATIVE_DOUBLE, H5Screate(H5S_SCALAR), &value);
+}
+
+int h5_attr_i64(hid_t obj, const char *name, int64_t value)
+{
+	return write_attr(obj, name, H5T_NATIVE_INT64, H5Screate(H5S_SCALAR), &value);
+}
+
+int h5_attr_f64v(hid_t obj, const char *name, const double *v, size_t n)
+{
+	hsize_t dim = n;
+	return write_attr(obj, name, H5T_NATIVE_DOUBLE, H5Screate_simple(1, &dim, NULL), v);
+}
+
+/* Open attribute name on obj and check it holds n elements. */
+static hid_t open_attr(hid_t obj, const char *name, hssize_t n)
+{
+	if (H5Aexists(obj, name) <= 0)
+		return err_set("%s: attribute '%s' on '%s': missing", h5_name(obj), name,
+		               obj_path(obj));
+	hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+	hid_t s = H5Aget_space(a);
+	hssize_t got = H5Sget_simple_extent_npoints(s);
+	H5Sclose(s);
+	if (got != n) {
+		H5Aclose(a);
+		return err_set("%s: attribute '%s' on '%s': has %lld values, expected %lld",
+		               h5_name(obj), name, obj_path(obj), (long long)got, (long long)n);
+	}
+	return a;
+}
+
+char *h5_read_attr_str(hid_t obj, const char *name)
+{
+	hid_t a = open_attr(obj, name, 1);
+	if (a < 0)
+		return NULL;
+	hid_t ft = H5Aget_type(a);
+	char *out = NULL;
+	if (H5Tget_class(ft) == H5T_STRING && H5Tis_variable_str(ft) > 0) {
+		hid_t t = str_type();
+		char *value = NULL;
+		if (H5Aread(a, t, &value) >= 0 && value) {
+			out = xstrdup(value);
+			H5free_memory(value);
+		}
+		H5Tclose(t);
+	}
+	H5Tclose(ft);
+	H5Aclose(a);
+	if (!out)
+		err_set("%s: attribute '%s': expected a string", h5_name(obj), name);
+	return out;
+}
+
+static int read_attr(hid_t obj, const char *name, hid_t type, void *v, size_t n)
+{
+	hid_t a = open_attr(obj, name, (hssize_t)n);
+	if (a < 0)
+		return -1;
+	herr_t rc = H5Aread(a, type, v);
+	H5Aclose(a);
+	if (rc < 0)
+		return err_set("%s: attribute '%s': unreadable or not numeric", h5_name(obj), name);
+	return 0;
+}
+
+int h5_read_attr_f64(hid_t obj, const char *name, double *value)
+{
+	return read_attr(obj, name, H5T_NATIVE_DOUBLE, value, 1);
+}
+
+int h5_read_attr_i64(hid_t obj, const char *name, int64_t *value)
+{
+	return read_attr(obj, name, H5T_NATIVE_INT64, value, 1);
+}
+
+int h5_read_attr_f64v(hid_t obj, const char *name, double *v, size_t n)
+{
+	return read_attr(obj, name, H5T_NATIVE_DOUBLE, v, n);
+}
+
+/* Chunked, deflate-compressed creation properties for a dataset of the
+ * given shape (rank 1 or 2); extendible along rows when ext. */
+static hid_t chunked_plist(size_t rows, size_t cols, int ext)
+{
+	hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+	hsize_t chunk[2] = {rows, cols ? cols : 1};
+	hsize_t target = 65536 / (cols ? cols : 1);
+	if (ext || chunk[0] > target)
+		chunk[0] = target ? target : 1;
+	if (chunk[0] == 0)
+		chunk[0] = 1;
+	H5Pset_chunk(dcpl, cols ? 2 : 1, chunk);
+	H5Pset_shuffle(dcpl);
+	H5Pset_deflate(dcpl, 1);
+	return dcpl;
+}
+
+int h5_write(hid_t loc, const char *name, hid_t type, const void *data, size_t rows, size_t cols,
+             const char *unit)
+{
+	hsize_t dims[2] = {rows, cols};
+	int rank = cols ? 2 : 1;
+	hid_t space = H5Screate_simple(rank, dims, NULL);
+	hid_t dcpl = rows * (cols ? cols : 1) >= 4096 ? chunked_plist(rows, cols, 0) : H5P_DEFAULT;
+	hid_t d = H5Dcreate2(loc, name, type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+	herr_t rc = d < 0 ? -1 : rows ? H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) : 0;
+	if (rc >= 0 && unit && unit[0])
+		rc = h5_attr_str(d, "unit", unit);
+	if (d >= 0)
+		H5Dclose(d);
+	if (dcpl != H5P_DEFAULT)
+		H5Pclose(dcpl);
+	H5Sclose(space);
+	if (rc < 0)
+		return err_set("%s: cannot write dataset '%s' (disk full?)", h5_name(loc), name);
+	return 0;
+}
+
+int h5_read(hid_t loc, const char *name, hid_t type, void **data, size_t *rows, size_t cols)
+{
+	*data = NULL;
+	if (!h5_exists(loc, name))
+		return err_set("%s: dataset '%s' in '%s': missing", h5_name(loc), name, obj_path(loc));
+	hid_t d = H5Dopen2(loc, name, H5P_DEFAULT);
+	if (d < 0)
+		return err_set("%s: dataset '%s': cannot open", h5_name(loc), name);
+	hid_t s = H5Dget_space(d);
+	hsize_t dims[2] = {0, 0};
+	int rank = H5Sget_simple_extent_ndims(s);
+	int want = cols ? 2 : 1;
+	if (rank == want)
+		H5Sget_simple_extent_dims(s, dims, NULL);
+	H5Sclose(s);
+	if (rank != want || (cols && dims[1] != cols)) {
+		H5Dclose(d);
+		if (cols)
+			return err_set("%s: dataset '%s': wrong shape: expected [N, %zu]", h5_name(loc),
+			               name, cols);
+		return err_set("%s: dataset '%s': wrong shape: expected [N]", h5_name(loc), name);
+	}
+	size_t n = (size_t)dims[0] * (cols ? cols : 1);
+	void *buf = xmalloc(n * H5Tget_size(type));
+	if (n && H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0) {
+		free(buf);
+		H5Dclose(d);
+		return err_set("%s: dataset '%s': unreadable (truncated or corrupt file?)",
+		               h5_name(loc), name);
+	}
+	H5Dclose(d);
+	*data = buf;
+	*rows = (size_t)dims[0];
+	return 0;
+}
+
+int h5_read_n(hid_t loc, const char *name, hid_t type, void **data, size_t rows, size_t cols)
+{
+	size_t got;
+	if (h5_read(loc, name, type, data, &got, cols))
+		return -1;
+	if (got != rows) {
+		free(*data);
+		*data = NULL;
+		return err_set("%s: dataset '%s': has %zu rows, expected %zu", h5_name(loc), name, got,
+		               rows);
+	}
+	return 0;
+}
+
+int h5_create_ext(hid_t loc, const char *name, hid_t type, size_t cols, const char *unit)
+{
+	hsize_t dims[2] = {0, cols}, maxdims[2] = {H5S_UNLIMITED, cols};
+	hid_t space = H5Screate_simple(cols ? 2 : 1, dims, maxdims);
+	hid_t dcpl = chunked_plist(0, cols, 1);
+	hid_t d = H5Dcreate2(loc, name, type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+	int rc = d < 0 ? -1 : 0;
+	if (rc == 0 && unit && unit[0])
+		rc = h5_attr_str(d, "unit", unit);
+	if (d >= 0)
+		H5Dclose(d);
+	H5Pclose(dcpl);
+	H5Sclose(space);
+	if (rc < 0)
+		return err_set("%s: cannot create dataset '%s'", h5_name(loc), name);
+	return 0;
+}
+
+int h5_append(hid_t loc, const char *name, hid_t type, const void *data, size_t rows, size_t cols)
+{
+	if (rows == 0)
+		return 0;
+	hid_t d = H5Dopen2(loc, name, H5P_DEFAULT);
+	if (d < 0)
+		return err_set("%s: dataset '%s': missing", h5_name(loc), name);
+	hid_t s = H5Dget_space(d);
+	hsize_t dims[2] = {0, cols};
+	H5Sget_simple_extent_dims(s, dims, NULL);
+	H5Sclose(s);
+	hsize_t start[2] = {dims[0], 0}, count[2] = {rows, cols};
+	dims[0] += rows;
+	int rank = cols ? 2 : 1;
+	herr_t rc = H5Dset_extent(d, dims);
+	hid_t fs = H5Dget_space(d);
+	hid_t ms = H5Screate_simple(rank, count, NULL);
+	if (rc >= 0)
+		rc = H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL);
+	if (rc >= 0)
+		rc = H5Dwrite(d, type, ms, fs, H5P_DEFAULT, data);
+	H5Sclose(ms);
+	H5Sclose(fs);
+	H5Dclose(d);
+	if (rc < 0)
+		return err_set("%s: cannot append to dataset '%s' (disk full?)", h5_name(loc), name);
+	return 0;
+}

@@ -1,0 +1,58 @@
+/* Thin helpers over the HDF5 C API shared by the assembly and run files.
+ * Errors are reported through err_set() naming the file and object, never
+ * through HDF5's own error stack (which is silenced). */
+#ifndef DEM_H5_H
+#define DEM_H5_H
+
+#include <hdf5.h>
+#include <stddef.h>
+#include <stdint.h>
+
+/* Silence HDF5's automatic error printing (called by every open/create). */
+void h5_quiet(void);
+
+/* Create "<final>.tmp" for writing (registered for removal on failure). */
+hid_t h5_create(const char *final, char *tmp, size_t tmpsize);
+/* Close the file and rename tmp to final (atomic output). */
+int h5_commit(hid_t file, const char *tmp, const char *final);
+/* Close the file and remove tmp. */
+void h5_discard(hid_t file, const char *tmp);
+/* Open an existing file and check its `format` attribute equals format and
+ * its format_version is one this build reads. */
+hid_t h5_open(const char *path, const char *format, int readwrite);
+
+/* The file name an object belongs to (for messages). */
+const char *h5_name(hid_t obj);
+
+hid_t h5_group(hid_t loc, const char *name);      /* create */
+hid_t h5_open_group(hid_t loc, const char *name); /* open existing */
+int h5_exists(hid_t loc, const char *path);
+
+/* Attributes on any object. Strings are variable-length UTF-8. */
+int h5_attr_str(hid_t obj, const char *name, const char *value);
+int h5_attr_f64(hid_t obj, const char *name, double value);
+int h5_attr_i64(hid_t obj, const char *name, int64_t value);
+int h5_attr_f64v(hid_t obj, const char *name, const double *v, size_t n);
+char *h5_read_attr_str(hid_t obj, const char *name); /* caller frees; NULL on error */
+int h5_read_attr_f64(hid_t obj, const char *name, double *value);
+int h5_read_attr_i64(hid_t obj, const char *name, int64_t *value);
+int h5_read_attr_f64v(hid_t obj, const char *name, double *v, size_t n);
+
+/* Whole datasets of rank 1 (cols == 0) or rank 2 ([rows, cols]) with an
+ * optional `unit` attribute. type is H5T_NATIVE_DOUBLE, H5T_NATIVE_INT32,
+ * H5T_NATIVE_INT64 or H5T_NATIVE_UINT8. Large datasets are chunked and
+ * compressed. */
+int h5_write(hid_t loc, const char *name, hid_t type, const void *data, size_t rows, size_t cols,
+             const char *unit);
+/* Read a dataset, checking its rank and (when cols > 0) its column count.
+ * *rows gets the row count; the data is allocated (caller frees). Reading a
+ * dataset of zero rows gives a valid pointer. */
+int h5_read(hid_t loc, const char *name, hid_t type, void **data, size_t *rows, size_t cols);
+/* As h5_read but the row count must equal rows. */
+int h5_read_n(hid_t loc, const char *name, hid_t type, void **data, size_t rows, size_t cols);
+
+/* Extendible rank-1/2 datasets for tables that grow (history, cracks). */
+int h5_create_ext(hid_t loc, const char *name, hid_t type, size_t cols, const char *unit);
+int h5_append(hid_t loc, const char *name, hid_t type, const void *data, size_t rows, size_t cols);
+
+#endif

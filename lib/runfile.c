@@ -1,0 +1,463 @@
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lib/err.h"
+#include "lib/h5.h"
+#include "lib/runfile.h"
+
+enum { HISTORY_BUFFER_ROWS = 256 };
+
+struct run_writer {
+	hid_t file;
+	char path[4096], tmp[4096];
+	int ncols;
+	char **names;
+	size_t buffered;
+	double *buffer; /* [ncols][HISTORY_BUFFER_ROWS], column-major */
+};
+
+hid_t run_hid(run_writer *w) { return w->file; }
+
+static void writer_free(run_writer *w)
+{
+	for (int c = 0; c < w->ncols; c++)
+		free(w->names[c]);
+	free(w->names);
+	free(w->buffer);
+	free(w);
+}
+
+run_writer *run_create(const char *path, const dem_provenance *prov, const dem_assembly *a,
+                       const run_column *cols, int ncols)
+{
+	run_writer *w = xcalloc(1, sizeof *w);
+	snprintf(w->path, sizeof w->path, "%s", path);
+	w->file = h5_create(path, w->tmp, sizeof w->tmp);
+	if (w->file < 0) {
+		free(w);
+		return NULL;
+	}
+	w->ncols = ncols;
+	w->names = xcalloc((size_t)ncols, sizeof *w->names);
+	w->buffer = xmalloc((size_t)ncols * HISTORY_BUFFER_ROWS * sizeof *w->buffer);
+	int rc = prov_write(w->file, RUN_FORMAT, prov) || h5_attr_str(w->file, "status", "running") ||
+	         assembly_write_groups(w->file, a);
+	hid_t h = rc ? -1 : h5_group(w->file, "history");
+	rc = rc || h < 0;
+	for (int c = 0; !rc && c < ncols; c++) {
+		w->names[c] = xstrdup(cols[c].name);
+		rc = h5_create_ext(h, cols[c].name, H5T_NATIVE_DOUBLE, 0, cols[c].unit);
+	}
+	if (h >= 0) {
+		/* Column order, so readers list them as the writer meant. */
+		size_t len = 1;
+		for (int c = 0; c < ncols; c++)
+			len += strlen(cols[c].name) + 1;
+		char *order = xcalloc(len, 1);
+		for (int c = 0; c < ncols; c++) {
+			strcat(order, cols[c].name);
+			if (c + 1 < ncols)
+				strcat(order, ",");
+		}
+		rc = rc || h5_attr_str(h, "columns", order);
+		free(order);
+		H5Gclose(h);
+	}
+	hid_t g = rc ? -1 : h5_group(w->file, "snapshots");
+	if (g >= 0)
+		H5Gclose(g);
+	rc = rc || g < 0;
+	hid_t k = rc ? -1 : h5_group(w->file, "cracks");
+	rc = rc || k < 0;
+	if (!rc) {
+		rc = h5_create_ext(k, "t", H5T_NATIVE_DOUBLE, 0, "s") ||
+		     h5_create_ext(k, "strain_axial", H5T_NATIVE_DOUBLE, 0, "") ||
+		     h5_create_ext(k, "step", H5T_NATIVE_INT64, 0, "") ||
+		     h5_create_ext(k, "i", H5T_NATIVE_INT32, 0, "") ||
+		     h5_create_ext(k, "j", H5T_NATIVE_INT32, 0, "") ||
+		     h5_create_ext(k, "mode", H5T_NATIVE_INT32, 0, "") ||
+		     h5_create_ext(k, "x", H5T_NATIVE_DOUBLE, 3, "m") ||
+		     h5_create_ext(k, "normal", H5T_NATIVE_DOUBLE, 3, "") ||
+		     h5_create_ext(k, "radius", H5T_NATIVE_DOUBLE, 0, "m") ||
+		     h5_create_ext(k, "fn", H5T_NATIVE_DOUBLE, 0, "N") ||
+		     h5_create_ext(k, "fs", H5T_NATIVE_DOUBLE, 0, "N");
+		H5Gclose(k);
+	}
+	if (rc) {
+		run_abort(w);
+		return NULL;
+	}
+	return w;
+}
+
+int run_write_bonds(run_writer *w, const dem_bonds *b)
+{
+	hid_t g = h5_group(w->file, "bonds");
+	if (g < 0)
+		return -1;
+	int rc = h5_write(g, "i", H5T_NATIVE_INT32, b->i, b->n, 0, NULL) ||
+	         h5_write(g, "j", H5T_NATIVE_INT32, b->j, b->n, 0, NULL) ||
+	         h5_write(g, "d0", H5T_NATIVE_DOUBLE, b->d0, b->n, 0, "m") ||
+	         h5_write(g, "area", H5T_NATIVE_DOUBLE, b->area, b->n, 0, "m^2") ||
+	         h5_write(g, "kn", H5T_NATIVE_DOUBLE, b->kn, b->n, 0, "N/m") ||
+	         h5_write(g, "ks", H5T_NATIVE_DOUBLE, b->ks, b->n, 0, "N/m");
+	H5Gclose(g);
+	return rc ? -1 : 0;
+}
+
+int run_flush(run_writer *w)
+{
+	if (w->buffered) {
+		hid_t h = H5Gopen2(w->file, "history", H5P_DEFAULT);
+		int rc = 0;
+		for (int c = 0; !rc && c < w->ncols; c++)
+			rc = h5_append(h, w->names[c], H5T_NATIVE_DOUBLE,
+			               w->buffer + (size_t)c * HISTORY_BUFFER_ROWS, w->buffered, 0);
+		H5Gclose(h);
+		if (rc)
+			return -1;
+		w->buffered = 0;
+	}
+	if (H5Fflush(w->file, H5F_SCOPE_GLOBAL) < 0)
+		return err_set("%s: cannot flush (disk full?)", w->tmp);
+	return 0;
+}
+
+int run_history(run_writer *w, const double *row)
+{
+	for (int c = 0; c < w->ncols; c++)
+		w->buffer[(size_t)c * HISTORY_BUFFER_ROWS + w->buffered] = row[c];
+	if (++w->buffered == HISTORY_BUFFER_ROWS)
+		return run_flush(w);
+	return 0;
+}
+
+int run_snapshot(run_writer *w, const dem_snapshot *s)
+{
+	char name[64];
+	snprintf(name, sizeof name, "snapshots/%012" PRId64, s->step);
+	hid_t g = h5_group(w->file, name);
+	if (g < 0)
+		return -1;
+	int rc = h5_attr_i64(g, "step", s->step) || h5_attr_f64(g, "t", s->t) ||
+	         h5_attr_f64(g, "strain_axial", s->strain_axial) ||
+	         h5_attr_f64(g, "stress_axial", s->stress_axial) ||
+	         h5_write(g, "x", H5T_NATIVE_DOUBLE, s->x, s->n, 3, "m") ||
+	         h5_write(g, "v", H5T_NATIVE_DOUBLE, s->v, s->n, 3, "m/s") ||
+	         h5_write(g, "w", H5T_NATIVE_DOUBLE, s->w, s->n, 3, "rad/s") ||
+	         h5_write(g, "bond_state", H5T_NATIVE_UINT8, s->state, s->nbonds, 0, NULL) ||
+	         h5_write(g, "bond_damage_n", H5T_NATIVE_DOUBLE, s->damage_n, s->nbonds, 0, NULL) ||
+	         h5_write(g, "bond_damage_s", H5T_NATIVE_DOUBLE, s->damage_s, s->nbonds, 0, NULL) ||
+	         h5_write(g, "bond_fn", H5T_NATIVE_DOUBLE, s->fn, s->nbonds, 0, "N") ||
+	         h5_write(g, "bond_fs", H5T_NATIVE_DOUBLE, s->fs, s->nbonds, 3, "N");
+	H5Gclose(g);
+	return rc ? -1 : 0;
+}
+
+int run_cracks(run_writer *w, const dem_crack *c, size_t n)
+{
+	if (n == 0)
+		return 0;
+	double *t = xmalloc(n * sizeof *t), *e = xmalloc(n * sizeof *e);
+	double *rad = xmalloc(n * sizeof *rad), *fn = xmalloc(n * sizeof *fn);
+	double *fs = xmalloc(n * sizeof *fs), *x = xmalloc(3 * n * sizeof *x);
+	double *nn = xmalloc(3 * n * sizeof *nn);
+	int64_t *step = xmalloc(n * sizeof *step);
+	int32_t *i = xmalloc(n * sizeof *i), *j = xmalloc(n * sizeof *j);
+	int32_t *mode = xmalloc(n * sizeof *mode);
+	for (size_t k = 0; k < n; k++) {
+		t[k] = c[k].t;
+		e[k] = c[k].strain_axial;
+		step[k] = c[k].step;
+		i[k] = c[k].i;
+		j[k] = c[k].j;
+		mode[k] = c[k].mode;
+		rad[k] = c[k].radius;
+		fn[k] = c[k].fn;
+		fs[k] = c[k].fs;
+		memcpy(x + 3 * k, c[k].x, sizeof c[k].x);
+		memcpy(nn + 3 * k, c[k].normal, sizeof c[k].normal);
+	}
+	hid_t g = H5Gopen2(w->file, "cracks", H5P_DEFAULT);
+	int rc = h5_append(g, "t", H5T_NATIVE_DOUBLE, t, n, 0) ||
+	         h5_append(g, "strain_axial", H5T_NATIVE_DOUBLE, e, n, 0) ||
+	         h5_append(g, "step", H5T_NATIVE_INT64, step, n, 0) ||
+	         h5_append(g, "i", H5T_NATIVE_INT32, i, n, 0) ||
+	         h5_append(g, "j", H5T_NATIVE_INT32, j, n, 0) ||
+	         h5_append(g, "mode", H5T_NATIVE_INT32, mode, n, 0) ||
+	         h5_append(g, "x", H5T_NATIVE_DOUBLE, x, n, 3) ||
+	         h5_append(g, "normal", H5T_NATIVE_DOUBLE, nn, n, 3) ||
+	         h5_append(g, "radius", H5T_NATIVE_DOUBLE, rad, n, 0) ||
+	         h5_append(g, "fn", H5T_NATIVE_DOUBLE, fn, n, 0) ||
+	         h5_append(g, "fs", H5T_NATIVE_DOUBLE, fs, n, 0);
+	H5Gclose(g);
+	free(t), free(e), free(rad), free(fn), free(fs), free(x), free(nn), free(step);
+	free(i), free(j), free(mode);
+	return rc ? -1 : 0;
+}
+
+int run_finish(run_writer *w, const char *status)
+{
+	int rc = run_flush(w) || h5_attr_str(w->file, "status", status);
+	if (rc) {
+		run_abort(w);
+		return -1;
+	}
+	rc = h5_commit(w->file, w->tmp, w->path);
+	writer_free(w);
+	return rc;
+}
+
+void run_abort(run_writer *w)
+{
+	h5_discard(w->file, w->tmp);
+	writer_free(w);
+}
+
+/* ---- reading ---- */
+
+void bonds_free(dem_bonds *b)
+{
+	free(b->i), free(b->j), free(b->d0), free(b->area), free(b->kn), free(b->ks);
+	memset(b, 0, sizeof *b);
+}
+
+static int read_bonds(hid_t f, dem_bonds *b, size_t nparticles)
+{
+	if (!h5_exists(f, "bonds"))
+		return 0; /* a run stopped before its bonds formed */
+	hid_t g = h5_open_group(f, "bonds");
+	int rc = h5_read(g, "i", H5T_NATIVE_INT32, (void **)&b->i, &b->n, 0) ||
+	         h5_read_n(g, "j", H5T_NATIVE_INT32, (void **)&b->j, b->n, 0) ||
+	         h5_read_n(g, "d0", H5T_NATIVE_DOUBLE, (void **)&b->d0, b->n, 0) ||
+	         h5_read_n(g, "area", H5T_NATIVE_DOUBLE, (void **)&b->area, b->n, 0) ||
+	         h5_read_n(g, "kn", H5T_NATIVE_DOUBLE, (void **)&b->kn, b->n, 0) ||
+	         h5_read_n(g, "ks", H5T_NATIVE_DOUBLE, (void **)&b->ks, b->n, 0);
+	H5Gclose(g);
+	if (rc)
+		return -1;
+	for (size_t k = 0; k < b->n; k++)
+		if (b->i[k] < 0 || b->j[k] < 0 || (size_t)b->i[k] >= nparticles ||
+		    (size_t)b->j[k] >= nparticles)
+			return err_set("%s: dataset '/bonds/i' or '/bonds/j': particle index out of range "
+			               "at bond %zu",
+			               h5_name(f), k);
+	return 0;
+}
+
+static int read_history(hid_t f, dem_run *r)
+{
+	hid_t h = h5_open_group(f, "history");
+	if (h < 0)
+		return -1;
+	char *order = h5_read_attr_str(h, "columns");
+	int rc = order ? 0 : -1;
+	if (!rc) {
+		int n = order[0] ? 1 : 0;
+		for (char *p = order; *p; p++)
+			n += *p == ',';
+		r->ncols = n;
+		r->col_name = xcalloc((size_t)n, sizeof *r->col_name);
+		r->col_unit = xcalloc((size_t)n, sizeof *r->col_unit);
+		r->col = xcalloc((size_t)n, sizeof *r->col);
+		char *save = NULL, *tok = strtok_r(order, ",", &save);
+		for (int c = 0; !rc && tok; c++, tok = strtok_r(NULL, ",", &save)) {
+			r->col_name[c] = xstrdup(tok);
+			size_t rows = 0;
+			rc = c == 0 ? h5_read(h, tok, H5T_NATIVE_DOUBLE, (void **)&r->col[c], &rows, 0)
+			            : h5_read_n(h, tok, H5T_NATIVE_DOUBLE, (void **)&r->col[c], r->nrows, 0);
+			if (c == 0)
+				r->nrows = rows;
+			if (!rc) {
+				hid_t d = H5Dopen2(h, tok, H5P_DEFAULT);
+				r->col_unit[c] = H5Aexists(d, "unit") > 0 ? h5_read_attr_str(d, "unit")
+				                                         : xstrdup("");
+				H5Dclose(d);
+			}
+		}
+	}
+	free(order);
+	H5Gclose(h);
+	return rc;
+}
+
+typedef struct {
+	size_t n, cap;
+	int64_t *step;
+} step_list;
+
+static herr_t collect_snapshot(hid_t g, const char *name, const H5L_info_t *info, void *data)
+{
+	(void)g, (void)info;
+	step_list *l = data;
+	char *end;
+	long long step = strtoll(name, &end, 10);
+	if (*end)
+		return 0;
+	if (l->n == l->cap)
+		l->step = xrealloc(l->step, (l->cap = l->cap ? 2 * l->cap : 16) * sizeof *l->step);
+	l->step[l->n++] = step;
+	return 0;
+}
+
+static int cmp_i64(const void *a, const void *b)
+{
+	int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
+	return (x > y) - (x < y);
+}
+
+static int read_snapshot_index(hid_t f, dem_run *r)
+{
+	hid_t g = h5_open_group(f, "snapshots");
+	if (g < 0)
+		return -1;
+	step_list l = {0};
+	H5Literate(g, H5_INDEX_NAME, H5_ITER_NATIVE, NULL, collect_snapshot, &l);
+	qsort(l.step, l.n, sizeof *l.step, cmp_i64);
+	r->nsnap = l.n;
+	r->snap_step = l.step;
+	r->snap_t = xcalloc(l.n, sizeof *r->snap_t);
+	r->snap_strain = xcalloc(l.n, sizeof *r->snap_strain);
+	int rc = 0;
+	for (size_t k = 0; !rc && k < l.n; k++) {
+		char name[64];
+		snprintf(name, sizeof name, "%012" PRId64, l.step[k]);
+		hid_t s = H5Gopen2(g, name, H5P_DEFAULT);
+		rc = s < 0 || h5_read_attr_f64(s, "t", &r->snap_t[k]) ||
+		     h5_read_attr_f64(s, "strain_axial", &r->snap_strain[k]);
+		if (s >= 0)
+			H5Gclose(s);
+	}
+	H5Gclose(g);
+	return rc ? -1 : 0;
+}
+
+static int read_cracks(hid_t f, dem_run *r)
+{
+	hid_t g = h5_open_group(f, "cracks");
+	if (g < 0)
+		return -1;
+	double *t = NULL, *e = NULL, *rad = NULL, *fn = NULL, *fs = NULL, *x = NULL, *nn = NULL;
+	int64_t *step = NULL;
+	int32_t *i = NULL, *j = NULL, *mode = NULL;
+	size_t n = 0;
+	int rc = h5_read(g, "t", H5T_NATIVE_DOUBLE, (void **)&t, &n, 0) ||
+	         h5_read_n(g, "strain_axial", H5T_NATIVE_DOUBLE, (void **)&e, n, 0) ||
+	         h5_read_n(g, "step", H5T_NATIVE_INT64, (void **)&step, n, 0) ||
+	         h5_read_n(g, "i", H5T_NATIVE_INT32, (void **)&i, n, 0) ||
+	         h5_read_n(g, "j", H5T_NATIVE_INT32, (void **)&j, n, 0) ||
+	         h5_read_n(g, "mode", H5T_NATIVE_INT32, (void **)&mode, n, 0) ||
+	         h5_read_n(g, "x", H5T_NATIVE_DOUBLE, (void **)&x, n, 3) ||
+	         h5_read_n(g, "normal", H5T_NATIVE_DOUBLE, (void **)&nn, n, 3) ||
+	         h5_read_n(g, "radius", H5T_NATIVE_DOUBLE, (void **)&rad, n, 0) ||
+	         h5_read_n(g, "fn", H5T_NATIVE_DOUBLE, (void **)&fn, n, 0) ||
+	         h5_read_n(g, "fs", H5T_NATIVE_DOUBLE, (void **)&fs, n, 0);
+	H5Gclose(g);
+	if (!rc) {
+		r->ncracks = n;
+		r->cracks = xcalloc(n, sizeof *r->cracks);
+		for (size_t k = 0; k < n; k++) {
+			dem_crack *c = &r->cracks[k];
+			c->t = t[k];
+			c->strain_axial = e[k];
+			c->step = step[k];
+			c->i = i[k];
+			c->j = j[k];
+			c->mode = mode[k];
+			c->radius = rad[k];
+			c->fn = fn[k];
+			c->fs = fs[k];
+			memcpy(c->x, x + 3 * k, sizeof c->x);
+			memcpy(c->normal, nn + 3 * k, sizeof c->normal);
+		}
+	}
+	free(t), free(e), free(rad), free(fn), free(fs), free(x), free(nn), free(step);
+	free(i), free(j), free(mode);
+	return rc ? -1 : 0;
+}
+
+int run_read(const char *path, dem_run *r)
+{
+	memset(r, 0, sizeof *r);
+	hid_t f = h5_open(path, RUN_FORMAT, 0);
+	if (f < 0)
+		return -1;
+	int rc = prov_read(f, &r->prov) || !(r->status = h5_read_attr_str(f, "status")) ||
+	         assembly_read_groups(f, &r->assembly) || read_bonds(f, &r->bonds, r->assembly.n) ||
+	         read_history(f, r) || read_snapshot_index(f, r) || read_cracks(f, r);
+	H5Fclose(f);
+	if (rc) {
+		run_free(r);
+		return -1;
+	}
+	return 0;
+}
+
+void run_free(dem_run *r)
+{
+	prov_free(&r->prov);
+	free(r->status);
+	assembly_free(&r->assembly);
+	bonds_free(&r->bonds);
+	for (int c = 0; c < r->ncols; c++) {
+		free(r->col_name ? r->col_name[c] : NULL);
+		free(r->col_unit ? r->col_unit[c] : NULL);
+		free(r->col ? r->col[c] : NULL);
+	}
+	free(r->col_name), free(r->col_unit), free(r->col);
+	free(r->snap_step), free(r->snap_t), free(r->snap_strain);
+	free(r->cracks);
+	memset(r, 0, sizeof *r);
+}
+
+const double *run_column_data(const dem_run *r, const char *name)
+{
+	for (int c = 0; c < r->ncols; c++)
+		if (strcmp(r->col_name[c], name) == 0)
+			return r->col[c];
+	return NULL;
+}
+
+void snapshot_free(dem_snapshot *s)
+{
+	free(s->x), free(s->v), free(s->w), free(s->state);
+	free(s->damage_n), free(s->damage_s), free(s->fn), free(s->fs);
+	memset(s, 0, sizeof *s);
+}
+
+int run_read_snapshot(const char *path, const dem_run *r, size_t k, dem_snapshot *s)
+{
+	memset(s, 0, sizeof *s);
+	if (k >= r->nsnap)
+		return err_set("%s: snapshot %zu: out of range (the run has %zu)", path, k, r->nsnap);
+	hid_t f = h5_open(path, RUN_FORMAT, 0);
+	if (f < 0)
+		return -1;
+	char name[64];
+	snprintf(name, sizeof name, "snapshots/%012" PRId64, r->snap_step[k]);
+	hid_t g = h5_open_group(f, name);
+	size_t n = r->assembly.n, nb = r->bonds.n;
+	int rc = g < 0 || h5_read_attr_i64(g, "step", &s->step) || h5_read_attr_f64(g, "t", &s->t) ||
+	         h5_read_attr_f64(g, "strain_axial", &s->strain_axial) ||
+	         h5_read_attr_f64(g, "stress_axial", &s->stress_axial) ||
+	         h5_read_n(g, "x", H5T_NATIVE_DOUBLE, (void **)&s->x, n, 3) ||
+	         h5_read_n(g, "v", H5T_NATIVE_DOUBLE, (void **)&s->v, n, 3) ||
+	         h5_read_n(g, "w", H5T_NATIVE_DOUBLE, (void **)&s->w, n, 3) ||
+	         h5_read_n(g, "bond_state", H5T_NATIVE_UINT8, (void **)&s->state, nb, 0) ||
+	         h5_read_n(g, "bond_damage_n", H5T_NATIVE_DOUBLE, (void **)&s->damage_n, nb, 0) ||
+	         h5_read_n(g, "bond_damage_s", H5T_NATIVE_DOUBLE, (void **)&s->damage_s, nb, 0) ||
+	         h5_read_n(g, "bond_fn", H5T_NATIVE_DOUBLE, (void **)&s->fn, nb, 0) ||
+	         h5_read_n(g, "bond_fs", H5T_NATIVE_DOUBLE, (void **)&s->fs, nb, 3);
+	if (g >= 0)
+		H5Gclose(g);
+	H5Fclose(f);
+	s->n = n;
+	s->nbonds = nb;
+	if (rc) {
+		snapshot_free(s);
+		return -1;
+	}
+	return 0;
+}

@@ -1,0 +1,108 @@
+/* The run file (run.h5), written by solve and read by post: the assembly the
+ * run started from, the bonds, the history table, snapshots and the crack
+ * log. The layout is specified in share/doc/format.md. solve keeps its own
+ * /checkpoint group in the same file through run_hid(). */
+#ifndef DEM_RUNFILE_H
+#define DEM_RUNFILE_H
+
+#include <hdf5.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "lib/assembly.h"
+
+#define RUN_FORMAT "dem-run"
+
+/* State of a bond, as stored in snapshots. */
+enum { BOND_INTACT = 0, BOND_DAMAGED = 1, BOND_BROKEN_TENSION = 2, BOND_BROKEN_SHEAR = 3 };
+/* Failure mode of a crack. */
+enum { CRACK_TENSION = 1, CRACK_SHEAR = 2 };
+
+/* A column of the history table. */
+typedef struct {
+	const char *name;
+	const char *unit; /* "" when dimensionless */
+} run_column;
+
+/* Per-bond values fixed when the bonds form. */
+typedef struct {
+	size_t n;
+	int32_t *i, *j; /* particle indices, i < j */
+	double *d0;     /* m, reference length (centre distance at bonding) */
+	double *area;   /* m^2, effective contact area */
+	double *kn, *ks; /* N/m, initial normal and shear stiffness */
+} dem_bonds;
+
+typedef struct {
+	int64_t step;
+	double t;            /* s */
+	double strain_axial; /* compression positive */
+	double stress_axial; /* Pa, compression positive */
+	size_t n;
+	double *x, *v, *w; /* [n][3]: m, m/s, rad/s */
+	size_t nbonds;
+	uint8_t *state;    /* [nbonds] BOND_* */
+	double *damage_n;  /* [nbonds] tension/normal damage in [0, 1] */
+	double *damage_s;  /* [nbonds] shear damage in [0, 1] */
+	double *fn;        /* [nbonds] N, normal force, tension positive */
+	double *fs;        /* [nbonds][3] N, shear force on particle i */
+} dem_snapshot;
+
+typedef struct {
+	double t;            /* s */
+	double strain_axial; /* at failure */
+	int64_t step;
+	int32_t i, j;        /* the two particles */
+	int32_t mode;        /* CRACK_TENSION or CRACK_SHEAR */
+	double x[3];         /* m, contact point */
+	double normal[3];    /* unit bond direction from i to j */
+	double radius;       /* m, contact radius r_c */
+	double fn, fs;       /* N, normal (tension positive) and shear force magnitude at failure */
+} dem_crack;
+
+typedef struct run_writer run_writer;
+
+/* Create "<path>.tmp" with provenance, the starting assembly and an empty
+ * history of the given columns. */
+run_writer *run_create(const char *path, const dem_provenance *prov, const dem_assembly *a,
+                       const run_column *cols, int ncols);
+int run_write_bonds(run_writer *w, const dem_bonds *b);
+/* Append one row (ncols values). Rows are buffered; run_flush writes them. */
+int run_history(run_writer *w, const double *row);
+int run_snapshot(run_writer *w, const dem_snapshot *s);
+int run_cracks(run_writer *w, const dem_crack *c, size_t n);
+int run_flush(run_writer *w);
+hid_t run_hid(run_writer *w);
+/* Set the root `status` attribute ("complete", "stopped: <why>", ...),
+ * close, and rename to the final name. Frees w. */
+int run_finish(run_writer *w, const char *status);
+/* Close and remove the temporary file. Frees w. */
+void run_abort(run_writer *w);
+
+/* A run file read back (everything but snapshot contents). */
+typedef struct {
+	dem_provenance prov;
+	char *status;
+	dem_assembly assembly;
+	dem_bonds bonds;
+	int ncols;
+	char **col_name, **col_unit;
+	size_t nrows;
+	double **col; /* [ncols][nrows] */
+	size_t nsnap;
+	int64_t *snap_step; /* ascending */
+	double *snap_t, *snap_strain;
+	size_t ncracks;
+	dem_crack *cracks;
+} dem_run;
+
+int run_read(const char *path, dem_run *r);
+void run_free(dem_run *r);
+/* The history column of that name, or NULL. */
+const double *run_column_data(const dem_run *r, const char *name);
+/* Read snapshot k (0 <= k < r->nsnap). */
+int run_read_snapshot(const char *path, const dem_run *r, size_t k, dem_snapshot *s);
+void snapshot_free(dem_snapshot *s);
+void bonds_free(dem_bonds *b);
+
+#endif

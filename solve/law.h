@@ -1,0 +1,123 @@
+/* The contact-law interface.
+ *
+ * A law turns the relative motion of two spheres joined by a bond (or
+ * touching) into forces. The engine never knows which law runs: it holds a
+ * `law` table found by name (law_find) from the material file's "law" key,
+ * in the spirit of CoMD's BasePotential and of the Kratos constitutive-law
+ * base class (seeds/001 §3.2: contact area, elastic constants, normal force,
+ * tangential force, damping).
+ *
+ * Conventions (equation numbers from Oñate et al. 2015, seeds/000):
+ *   n      unit vector from the centre of i to the centre of j
+ *   u_n    |x_j - x_i| - d0, opening positive, compression negative (Eq. 26)
+ *   fn     normal force, TENSION POSITIVE: the force on i is +fn n (towards j
+ *          in tension), on j it is -fn n
+ *   fs     shear force on i (on j: -fs), in the contact plane (Eq. 18b-19)
+ *   dus    tangential displacement increment of j relative to i at the
+ *          contact point during this step, in the current contact plane
+ *          (Eq. 34); a shear force on i acts along +dus when elastic.
+ * A law keeps its tangential history in bond.t, a vector in the contact
+ * plane (accumulated shear displacement for total-displacement laws, shear
+ * force for incremental ones). Before every call the engine rotates t into
+ * the current contact plane, so laws never deal with rigid rotations.
+ *
+ * SI units throughout. Laws are pure: no globals, no allocation in force(),
+ * no I/O; so a single bond can be driven by prescribed displacements in
+ * tests exactly as the engine drives it.
+ */
+#ifndef DEM_LAW_H
+#define DEM_LAW_H
+
+#include <stdint.h>
+
+#include "lib/cfg.h"
+
+enum { LAW_NHIST = 4 };
+
+/* One bond (or contact) as the engine stores it: 80 bytes. */
+typedef struct {
+	int32_t i, j;          /* particle indices */
+	double d0;             /* m, reference length: centre distance at bonding */
+	double t[3];           /* tangential history (law-defined), contact plane */
+	double h[LAW_NHIST];   /* law-defined history: damage, plastic state, ... */
+	uint8_t state;         /* BOND_INTACT, BOND_DAMAGED, BOND_BROKEN_* (lib/runfile.h) */
+} bond;
+
+/* The two spheres of a bond. */
+typedef struct {
+	double ri, rj; /* m */
+	double mi, mj; /* kg */
+	double d0;     /* m */
+} law_pair;
+
+/* Relative motion in this step. */
+typedef struct {
+	double un;     /* m, normal displacement, opening positive */
+	double vn;     /* m/s, normal relative velocity, opening positive */
+	double dus[3]; /* m, tangential displacement increment (contact plane) */
+} law_kin;
+
+typedef struct {
+	double fn;    /* N, tension positive */
+	double fs[3]; /* N, on particle i */
+	int failed;   /* 0, or CRACK_TENSION / CRACK_SHEAR if the bond broke in this call */
+} law_out;
+
+/* Elastic constants of a bond, for the time step estimate and output. */
+typedef struct {
+	double kn, ks; /* N/m, initial (largest) normal and shear stiffness */
+	double cn;     /* N s/m, normal viscous damping coefficient */
+	double area;   /* m^2, effective contact area A-bar */
+	double rc;     /* m, contact radius */
+} law_const;
+
+/* What the engine knows of the packing when bonds have formed. */
+typedef struct {
+	double porosity;     /* 1 - solid fraction of the specimen */
+	double coordination; /* mean bonds per sphere */
+} law_packing;
+
+typedef struct law_params law_params; /* each law's own, opaque */
+
+typedef struct law {
+	const char *name;    /* as in the material file: "onate", "jcfpm", ... */
+	const char *summary; /* one line for help and documentation */
+	/* Read the law's keys from the material object (required ones are an
+	 * error when missing, every value range-checked). NULL and err on error. */
+	law_params *(*parse)(cfg *material);
+	void (*free)(law_params *p);
+	/* Bonds form at start between spheres with d <= range * (ri + rj). */
+	double (*bond_range)(const law_params *p);
+	/* Called once after bonds form (e.g. alpha = 40 P / N_c, Eq. 22). */
+	void (*setup)(law_params *p, const law_packing *packing);
+	void (*constants)(const law_params *p, const law_pair *pair, law_const *out);
+	/* Initialise the history of a new bond. */
+	void (*init)(const law_params *p, const law_pair *pair, bond *b);
+	/* Forces for this step's kinematics; updates b->t, b->h and b->state. */
+	void (*force)(const law_params *p, const law_pair *pair, bond *b, const law_kin *k,
+	              law_out *out);
+	/* The same over n bonds (a loop the compiler can inline force into). */
+	void (*force_batch)(const law_params *p, int n, const law_pair *pair, bond *b,
+	                    const law_kin *k, law_out *out);
+	/* Elastic energy stored in the bond (J). */
+	double (*energy)(const law_params *p, const law_pair *pair, const bond *b);
+	/* Damage in tension and in shear, each in [0, 1]. */
+	void (*damage)(const law_params *p, const bond *b, double *dn, double *ds);
+} law;
+
+/* Defines `static void NAME_batch(...)` looping over an inline force
+ * function FORCE with the signature of law.force. */
+#define LAW_BATCH(NAME, FORCE)                                                                \
+	static void NAME##_batch(const law_params *p, int n, const law_pair *pair, bond *b,        \
+	                         const law_kin *k, law_out *out)                                   \
+	{                                                                                          \
+		for (int q = 0; q < n; q++)                                                        \
+			FORCE(p, &pair[q], &b[q], &k[q], &out[q]);                                  \
+	}
+
+/* The law registered under name, or NULL (err_msg lists the known ones). */
+const law *law_find(const char *name);
+/* All registered laws, NULL-terminated. */
+const law *const *law_all(void);
+
+#endif

@@ -1,0 +1,307 @@
+/* assembly.h5 and run.h5: every field survives a write/read round trip, and
+ * a truncated, foreign or mismatched file gives a clear error, not a crash. */
+#include <stdint.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "lib/assembly.h"
+#include "lib/err.h"
+#include "lib/h5.h"
+#include "lib/runfile.h"
+
+static double *seq(size_t n, double start)
+{
+	double *v = malloc(n * sizeof *v);
+	for (size_t k = 0; k < n; k++)
+		v[k] = start + 0.5 * (double)k;
+	return v;
+}
+
+static void make_assembly(dem_assembly *a, size_t n)
+{
+	memset(a, 0, sizeof *a);
+	prov_init(&a->prov, "pack", "{\"shape\":\"cylinder\"}", 1234);
+	a->n = n;
+	a->x = seq(3 * n, 0.001);
+	a->r = seq(n, 0.0005);
+	a->material = malloc(n * sizeof *a->material);
+	for (size_t i = 0; i < n; i++)
+		a->material[i] = (int32_t)(i % 3);
+	dem_geometry *g = &a->geom;
+	strcpy(g->shape, "cylinder");
+	strcpy(g->source, "share/geometry/x.geo");
+	for (int k = 0; k < 3; k++) {
+		g->center[k] = 0.1 * k;
+		g->axis[k] = k == 2;
+		g->size[k] = 0.01 * k;
+		g->bbox_min[k] = -0.025 - k;
+		g->bbox_max[k] = 0.025 + k;
+	}
+	g->diameter = 0.05;
+	g->height = 0.1;
+	g->volume = 1.9635e-4;
+	g->area = 0.0196;
+	g->nvert = 5;
+	g->vert = seq(15, -1);
+	g->ntri = 2;
+	g->tri = malloc(6 * sizeof *g->tri);
+	for (int k = 0; k < 6; k++)
+		g->tri[k] = k % 5;
+	dem_report *r = &a->report;
+	r->solid_fraction = 0.63;
+	r->solid_fraction_core = 0.645;
+	r->wall_deficit = 0.12;
+	r->mean_radius = 0.001;
+	r->beta = 0.1;
+	r->coordination = 11.5;
+	r->alpha = 40 * 0.37 / 11.5;
+	r->fabric_anisotropy = 0.01;
+	r->overlap_max = 0.008;
+	r->overlap_mean = 0.001;
+	r->time = 2.5;
+	r->nprofile = 4;
+	r->profile_w = seq(4, 0);
+	r->profile_phi = seq(4, 0.3);
+	r->npsd = 3;
+	r->psd_size = seq(3, 0.001);
+	r->psd_target_number = seq(3, 0.1);
+	r->psd_target_volume = seq(3, 0.2);
+	r->psd_number = seq(3, 0.3);
+	r->psd_volume = seq(3, 0.4);
+}
+
+#define SAME_ARRAY(a, b, n) CHECK(memcmp((a), (b), (n) * sizeof *(a)) == 0)
+
+static void compare_assembly(const dem_assembly *a, const dem_assembly *b)
+{
+	CHECK_STR(a->prov.program, b->prov.program);
+	CHECK_STR(a->prov.version, b->prov.version);
+	CHECK_STR(a->prov.created, b->prov.created);
+	CHECK_STR(a->prov.config, b->prov.config);
+	CHECK(a->prov.seed == b->prov.seed);
+	CHECK(a->n == b->n);
+	SAME_ARRAY(a->x, b->x, 3 * a->n);
+	SAME_ARRAY(a->r, b->r, a->n);
+	SAME_ARRAY(a->material, b->material, a->n);
+	const dem_geometry *g = &a->geom, *h = &b->geom;
+	CHECK_STR(g->shape, h->shape);
+	CHECK_STR(g->source, h->source);
+	SAME_ARRAY(g->center, h->center, 3);
+	SAME_ARRAY(g->axis, h->axis, 3);
+	SAME_ARRAY(g->size, h->size, 3);
+	SAME_ARRAY(g->bbox_min, h->bbox_min, 3);
+	SAME_ARRAY(g->bbox_max, h->bbox_max, 3);
+	CHECK(g->diameter == h->diameter && g->height == h->height);
+	CHECK(g->volume == h->volume && g->area == h->area);
+	CHECK(g->nvert == h->nvert && g->ntri == h->ntri);
+	SAME_ARRAY(g->vert, h->vert, 3 * g->nvert);
+	SAME_ARRAY(g->tri, h->tri, 3 * g->ntri);
+	const dem_report *r = &a->report, *s = &b->report;
+	CHECK(r->solid_fraction == s->solid_fraction);
+	CHECK(r->solid_fraction_core == s->solid_fraction_core);
+	CHECK(r->wall_deficit == s->wall_deficit);
+	CHECK(r->mean_radius == s->mean_radius);
+	CHECK(r->beta == s->beta && r->coordination == s->coordination && r->alpha == s->alpha);
+	CHECK(r->fabric_anisotropy == s->fabric_anisotropy);
+	CHECK(r->overlap_max == s->overlap_max && r->overlap_mean == s->overlap_mean);
+	CHECK(r->time == s->time);
+	CHECK(r->nprofile == s->nprofile && r->npsd == s->npsd);
+	SAME_ARRAY(r->profile_w, s->profile_w, r->nprofile);
+	SAME_ARRAY(r->profile_phi, s->profile_phi, r->nprofile);
+	SAME_ARRAY(r->psd_size, s->psd_size, r->npsd);
+	SAME_ARRAY(r->psd_target_number, s->psd_target_number, r->npsd);
+	SAME_ARRAY(r->psd_target_volume, s->psd_target_volume, r->npsd);
+	SAME_ARRAY(r->psd_number, s->psd_number, r->npsd);
+	SAME_ARRAY(r->psd_volume, s->psd_volume, r->npsd);
+}
+
+static void test_assembly_roundtrip(const char *path)
+{
+	dem_assembly a, b;
+	make_assembly(&a, 5000); /* large enough to be chunked and compressed */
+	CHECK(assembly_write(path, &a) == 0);
+	CHECK(assembly_read(path, &b) == 0);
+	compare_assembly(&a, &b);
+	assembly_free(&a);
+	assembly_free(&b);
+}
+
+static const run_column columns[] = {
+	{"t", "s"}, {"strain_axial", ""}, {"stress_axial", "Pa"}};
+
+static void make_snapshot(dem_snapshot *s, size_t n, size_t nb, int64_t step)
+{
+	s->step = step;
+	s->t = 1e-6 * (double)step;
+	s->strain_axial = 1e-5 * (double)step;
+	s->stress_axial = 1e3 * (double)step;
+	s->n = n;
+	s->x = seq(3 * n, (double)step);
+	s->v = seq(3 * n, 2);
+	s->w = seq(3 * n, 3);
+	s->nbonds = nb;
+	s->state = malloc(nb);
+	for (size_t k = 0; k < nb; k++)
+		s->state[k] = (uint8_t)(k % 4);
+	s->damage_n = seq(nb, 0);
+	s->damage_s = seq(nb, 0.1);
+	s->fn = seq(nb, -5);
+	s->fs = seq(3 * nb, 7);
+}
+
+static void test_run_roundtrip(const char *path)
+{
+	dem_assembly a;
+	make_assembly(&a, 40);
+	dem_provenance prov;
+	prov_init(&prov, "solve", "{\"test\":\"ucs\"}", 99);
+	run_writer *w = run_create(path, &prov, &a, columns, 3);
+	CHECK(w != NULL);
+	if (!w)
+		return;
+	size_t nb = 25;
+	dem_bonds b = {.n = nb};
+	b.i = malloc(nb * sizeof *b.i);
+	b.j = malloc(nb * sizeof *b.j);
+	for (size_t k = 0; k < nb; k++)
+		b.i[k] = (int32_t)k, b.j[k] = (int32_t)(k + 1);
+	b.d0 = seq(nb, 0.002);
+	b.area = seq(nb, 1e-6);
+	b.kn = seq(nb, 1e6);
+	b.ks = seq(nb, 4e5);
+	CHECK(run_write_bonds(w, &b) == 0);
+	const size_t nrows = 700; /* several history buffer flushes */
+	for (size_t k = 0; k < nrows; k++) {
+		double row[3] = {1e-6 * (double)k, 1e-5 * (double)k, 2e4 * (double)k};
+		CHECK(run_history(w, row) == 0);
+	}
+	dem_snapshot s1, s2;
+	make_snapshot(&s1, a.n, nb, 100);
+	make_snapshot(&s2, a.n, nb, 20);
+	CHECK(run_snapshot(w, &s1) == 0);
+	CHECK(run_snapshot(w, &s2) == 0);
+	dem_crack c[3];
+	memset(c, 0, sizeof c);
+	for (int k = 0; k < 3; k++) {
+		c[k] = (dem_crack){.t = k, .strain_axial = 0.1 * k, .step = 10 * k, .i = k,
+		                   .j = k + 1, .mode = k % 2 ? CRACK_SHEAR : CRACK_TENSION,
+		                   .x = {k, 1, 2}, .normal = {0, 0, 1}, .radius = 1e-3, .fn = 5.0 * k,
+		                   .fs = 2.0 * k};
+	}
+	CHECK(run_cracks(w, c, 2) == 0);
+	CHECK(run_cracks(w, c + 2, 1) == 0);
+	CHECK(run_finish(w, "complete") == 0);
+
+	dem_run r;
+	CHECK(run_read(path, &r) == 0);
+	CHECK_STR(r.status, "complete");
+	CHECK_STR(r.prov.program, "solve");
+	CHECK_STR(r.prov.config, "{\"test\":\"ucs\"}");
+	CHECK(r.prov.seed == 99);
+	compare_assembly(&a, &r.assembly);
+	CHECK(r.bonds.n == nb);
+	SAME_ARRAY(r.bonds.i, b.i, nb);
+	SAME_ARRAY(r.bonds.j, b.j, nb);
+	SAME_ARRAY(r.bonds.d0, b.d0, nb);
+	SAME_ARRAY(r.bonds.area, b.area, nb);
+	SAME_ARRAY(r.bonds.kn, b.kn, nb);
+	SAME_ARRAY(r.bonds.ks, b.ks, nb);
+	CHECK(r.ncols == 3 && r.nrows == nrows);
+	CHECK_STR(r.col_name[2], "stress_axial");
+	CHECK_STR(r.col_unit[2], "Pa");
+	CHECK_STR(r.col_unit[1], "");
+	const double *stress = run_column_data(&r, "stress_axial");
+	CHECK(stress && stress[nrows - 1] == 2e4 * (double)(nrows - 1));
+	CHECK(run_column_data(&r, "nope") == NULL);
+	CHECK(r.nsnap == 2 && r.snap_step[0] == 20 && r.snap_step[1] == 100);
+	CHECK(r.snap_t[1] == s1.t && r.snap_strain[0] == s2.strain_axial);
+	dem_snapshot t;
+	CHECK(run_read_snapshot(path, &r, 1, &t) == 0);
+	CHECK(t.step == 100 && t.t == s1.t && t.strain_axial == s1.strain_axial);
+	CHECK(t.stress_axial == s1.stress_axial);
+	CHECK(t.n == a.n && t.nbonds == nb);
+	SAME_ARRAY(t.x, s1.x, 3 * a.n);
+	SAME_ARRAY(t.v, s1.v, 3 * a.n);
+	SAME_ARRAY(t.w, s1.w, 3 * a.n);
+	SAME_ARRAY(t.state, s1.state, nb);
+	SAME_ARRAY(t.damage_n, s1.damage_n, nb);
+	SAME_ARRAY(t.damage_s, s1.damage_s, nb);
+	SAME_ARRAY(t.fn, s1.fn, nb);
+	SAME_ARRAY(t.fs, s1.fs, 3 * nb);
+	snapshot_free(&t);
+	CHECK(run_read_snapshot(path, &r, 2, &t) == -1);
+	CHECK_CONTAINS(err_msg(), "snapshot 2: out of range");
+	CHECK(r.ncracks == 3);
+	for (size_t k = 0; k < 3 && r.ncracks == 3; k++)
+		CHECK(memcmp(&r.cracks[k], &c[k], sizeof c[k]) == 0);
+	run_free(&r);
+	snapshot_free(&s1);
+	snapshot_free(&s2);
+	bonds_free(&b);
+	prov_free(&prov);
+	assembly_free(&a);
+}
+
+static void copy_truncated(const char *from, const char *to, double fraction)
+{
+	FILE *in = fopen(from, "rb"), *out = fopen(to, "wb");
+	fseek(in, 0, SEEK_END);
+	long size = ftell(in), keep = (long)(fraction * (double)size);
+	fseek(in, 0, SEEK_SET);
+	char buf[4096];
+	while (keep > 0) {
+		size_t got = fread(buf, 1, keep < 4096 ? (size_t)keep : 4096, in);
+		if (!got)
+			break;
+		fwrite(buf, 1, got, out);
+		keep -= (long)got;
+	}
+	fclose(in);
+	fclose(out);
+}
+
+static void test_bad_files(const char *assembly_path, const char *run_path)
+{
+	dem_assembly a;
+	dem_run r;
+	const char *bad = check_tmp("bad.h5");
+	static const double fractions[] = {0, 0.01, 0.3, 0.6, 0.9, 0.99};
+	for (size_t k = 0; k < sizeof fractions / sizeof *fractions; k++) {
+		copy_truncated(assembly_path, bad, fractions[k]);
+		CHECK(assembly_read(bad, &a) == -1);
+		CHECK_CONTAINS(err_msg(), bad);
+		copy_truncated(run_path, bad, fractions[k]);
+		CHECK(run_read(bad, &r) == -1);
+		CHECK_CONTAINS(err_msg(), bad);
+	}
+
+	FILE *f = fopen(bad, "w");
+	fputs("x y z r\n0 0 0 1\n", f);
+	fclose(f);
+	CHECK(assembly_read(bad, &a) == -1);
+	CHECK_CONTAINS(err_msg(), "not a readable HDF5 file");
+
+	/* A foreign HDF5 file: no format attribute. */
+	hid_t h = H5Fcreate(bad, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+	H5Fclose(h);
+	CHECK(assembly_read(bad, &a) == -1);
+	CHECK_CONTAINS(err_msg(), "attribute 'format': missing: expected \"dem-assembly\"");
+
+	/* The wrong kind of file of ours. */
+	CHECK(run_read(assembly_path, &r) == -1);
+	CHECK_CONTAINS(err_msg(), "value \"dem-assembly\": expected \"dem-run\"");
+	CHECK(assembly_read("/nonexistent/a.h5", &a) == -1);
+	CHECK_CONTAINS(err_msg(), "/nonexistent/a.h5: not a readable HDF5 file");
+	unlink(bad);
+}
+
+int main(void)
+{
+	const char *ap = check_tmp("formats-assembly.h5");
+	const char *rp = check_tmp("formats-run.h5");
+	test_assembly_roundtrip(ap);
+	test_run_roundtrip(rp);
+	test_bad_files(ap, rp);
+	return check_done();
+}
