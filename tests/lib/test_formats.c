@@ -4,7 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "check.h"
+#include "tests/check.h"
 #include "lib/assembly.h"
 #include "lib/err.h"
 #include "lib/h5.h"

@@ -1,6 +1,6 @@
 /* JSON configuration: typed lookups, ranges, messages naming file/key/value,
  * unknown-key detection. */
-#include "check.h"
+#include "tests/check.h"
 #include "lib/cfg.h"
 #include "lib/err.h"
 

@@ -2,7 +2,7 @@
  * are pinned, and the uniform and normal generators have the right moments. */
 #include <stdint.h>
 
-#include "check.h"
+#include "tests/check.h"
 #include "lib/rng.h"
 
 int main(void)

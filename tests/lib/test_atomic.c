@@ -5,7 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "check.h"
+#include "tests/check.h"
 #include "lib/afile.h"
 #include "lib/assembly.h"
 #include "lib/err.h"
