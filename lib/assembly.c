@@ -13,7 +13,8 @@ static int write_geometry(hid_t file, const dem_geometry *g)
 	int rc = h5_attr_str(h, "shape", g->shape) || h5_attr_str(h, "source", g->source) ||
 	         h5_attr_f64v(h, "center", g->center, 3) || h5_attr_f64v(h, "axis", g->axis, 3) ||
 	         h5_attr_f64(h, "diameter", g->diameter) || h5_attr_f64(h, "height", g->height) ||
-	         h5_attr_f64v(h, "size", g->size, 3) || h5_attr_f64v(h, "bbox_min", g->bbox_min, 3) ||
+	         h5_attr_f64v(h, "size", g->size, 3) ||
+	         h5_attr_f64v(h, "bbox_min", g->bbox_min, 3) ||
 	         h5_attr_f64v(h, "bbox_max", g->bbox_max, 3) ||
 	         h5_attr_f64(h, "volume", g->volume) || h5_attr_f64(h, "area", g->area) ||
 	         h5_write(h, "vertices", H5T_NATIVE_DOUBLE, g->vert, g->nvert, 3, "m") ||
@@ -37,41 +38,42 @@ static int read_geometry(hid_t file, dem_geometry *g)
 	hid_t h = h5_open_group(file, "geometry");
 	if (h < 0)
 		return -1;
-	int rc = read_string_attr(h, "shape", g->shape, sizeof g->shape) ||
-	         read_string_attr(h, "source", g->source, sizeof g->source) ||
-	         h5_read_attr_f64v(h, "center", g->center, 3) ||
-	         h5_read_attr_f64v(h, "axis", g->axis, 3) ||
-	         h5_read_attr_f64(h, "diameter", &g->diameter) ||
-	         h5_read_attr_f64(h, "height", &g->height) ||
-	         h5_read_attr_f64v(h, "size", g->size, 3) ||
-	         h5_read_attr_f64v(h, "bbox_min", g->bbox_min, 3) ||
-	         h5_read_attr_f64v(h, "bbox_max", g->bbox_max, 3) ||
-	         h5_read_attr_f64(h, "volume", &g->volume) || h5_read_attr_f64(h, "area", &g->area) ||
-	         h5_read(h, "vertices", H5T_NATIVE_DOUBLE, (void **)&g->vert, &g->nvert, 3) ||
-	         h5_read(h, "triangles", H5T_NATIVE_INT32, (void **)&g->tri, &g->ntri, 3);
+	int rc =
+	    read_string_attr(h, "shape", g->shape, sizeof g->shape) ||
+	    read_string_attr(h, "source", g->source, sizeof g->source) ||
+	    h5_read_attr_f64v(h, "center", g->center, 3) ||
+	    h5_read_attr_f64v(h, "axis", g->axis, 3) ||
+	    h5_read_attr_f64(h, "diameter", &g->diameter) ||
+	    h5_read_attr_f64(h, "height", &g->height) || h5_read_attr_f64v(h, "size", g->size, 3) ||
+	    h5_read_attr_f64v(h, "bbox_min", g->bbox_min, 3) ||
+	    h5_read_attr_f64v(h, "bbox_max", g->bbox_max, 3) ||
+	    h5_read_attr_f64(h, "volume", &g->volume) || h5_read_attr_f64(h, "area", &g->area) ||
+	    h5_read(h, "vertices", H5T_NATIVE_DOUBLE, (void **)&g->vert, &g->nvert, 3) ||
+	    h5_read(h, "triangles", H5T_NATIVE_INT32, (void **)&g->tri, &g->ntri, 3);
 	H5Gclose(h);
 	if (rc)
 		return -1;
 	for (size_t k = 0; k < 3 * g->ntri; k++)
 		if (g->tri[k] < 0 || (size_t)g->tri[k] >= g->nvert)
-			return err_set("%s: dataset '/geometry/triangles': vertex index %d out of range "
-			               "[0, %zu)",
-			               h5_name(file), g->tri[k], g->nvert);
+			return err_set(
+			    "%s: dataset '/geometry/triangles': vertex index %d out of range "
+			    "[0, %zu)",
+			    h5_name(file), g->tri[k], g->nvert);
 	return 0;
 }
 
 /* The report's scalars, in file order, with their attribute names. */
-#define REPORT_SCALARS(X)                                                                     \
-	X(solid_fraction)                                                                          \
-	X(solid_fraction_core)                                                                     \
-	X(wall_deficit)                                                                            \
-	X(mean_radius)                                                                             \
-	X(beta)                                                                                    \
-	X(coordination)                                                                            \
-	X(alpha)                                                                                   \
-	X(fabric_anisotropy)                                                                       \
-	X(overlap_max)                                                                             \
-	X(overlap_mean)                                                                            \
+#define REPORT_SCALARS(X)      \
+	X(solid_fraction)      \
+	X(solid_fraction_core) \
+	X(wall_deficit)        \
+	X(mean_radius)         \
+	X(beta)                \
+	X(coordination)        \
+	X(alpha)               \
+	X(fabric_anisotropy)   \
+	X(overlap_max)         \
+	X(overlap_mean)        \
 	X(time)
 
 static int write_report(hid_t file, const dem_report *r)
@@ -105,8 +107,10 @@ static int read_report(hid_t file, dem_report *r)
 #define READ_SCALAR(name) rc = rc || h5_read_attr_f64(h, #name, &r->name);
 	REPORT_SCALARS(READ_SCALAR)
 #undef READ_SCALAR
-	rc = rc || h5_read(h, "profile_w", H5T_NATIVE_DOUBLE, (void **)&r->profile_w, &r->nprofile, 0) ||
-	     h5_read_n(h, "profile_phi", H5T_NATIVE_DOUBLE, (void **)&r->profile_phi, r->nprofile, 0) ||
+	rc = rc ||
+	     h5_read(h, "profile_w", H5T_NATIVE_DOUBLE, (void **)&r->profile_w, &r->nprofile, 0) ||
+	     h5_read_n(h, "profile_phi", H5T_NATIVE_DOUBLE, (void **)&r->profile_phi, r->nprofile,
+	               0) ||
 	     h5_read(h, "psd_size", H5T_NATIVE_DOUBLE, (void **)&r->psd_size, &r->npsd, 0) ||
 	     h5_read_n(h, "psd_target_number", H5T_NATIVE_DOUBLE, (void **)&r->psd_target_number,
 	               r->npsd, 0) ||
@@ -147,9 +151,10 @@ int assembly_read_groups(hid_t file, dem_assembly *a)
 		return -1;
 	for (size_t i = 0; i < a->n; i++)
 		if (!(a->r[i] > 0))
-			return err_set("%s: dataset '/particles/r': value %g at row %zu: expected a "
-			               "positive radius (m)",
-			               h5_name(file), a->r[i], i);
+			return err_set(
+			    "%s: dataset '/particles/r': value %g at row %zu: expected a "
+			    "positive radius (m)",
+			    h5_name(file), a->r[i], i);
 	return 0;
 }
 

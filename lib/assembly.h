@@ -17,19 +17,19 @@
  * `center`; the boundary triangulation is kept for every shape so inside
  * and distance queries need no gmsh at solve time. */
 typedef struct {
-	char shape[32];          /* "cylinder", "disc", "box" or "file" */
-	char source[512];        /* the geometry file for "file", else "" */
-	double center[3];        /* m */
-	double axis[3];          /* unit vector of the loading axis */
-	double diameter;         /* m (cylinder, disc; 0 otherwise) */
-	double height;           /* m (cylinder; disc thickness; box size[2]) */
-	double size[3];          /* m, box edge lengths (0 otherwise) */
+	char shape[32];                  /* "cylinder", "disc", "box" or "file" */
+	char source[512];                /* the geometry file for "file", else "" */
+	double center[3];                /* m */
+	double axis[3];                  /* unit vector of the loading axis */
+	double diameter;                 /* m (cylinder, disc; 0 otherwise) */
+	double height;                   /* m (cylinder; disc thickness; box size[2]) */
+	double size[3];                  /* m, box edge lengths (0 otherwise) */
 	double bbox_min[3], bbox_max[3]; /* m */
-	double volume;           /* m^3 */
-	double area;             /* m^2, boundary surface */
+	double volume;                   /* m^3 */
+	double area;                     /* m^2, boundary surface */
 	size_t nvert, ntri;
-	double *vert;            /* [nvert][3] m */
-	int32_t *tri;            /* [ntri][3] vertex indices, outward normals */
+	double *vert; /* [nvert][3] m */
+	int32_t *tri; /* [ntri][3] vertex indices, outward normals */
 } dem_geometry;
 
 /* What pack measured of the assembly (share/doc/format.md, /report). */
@@ -44,13 +44,13 @@ typedef struct {
 	double fabric_anisotropy;   /* of <n x n> over core contacts */
 	double overlap_max;         /* relative to the smaller radius */
 	double overlap_mean;
-	double time;                /* s, wall time of pack */
-	size_t nprofile;            /* solid fraction profile phi(w) */
-	double *profile_w;          /* m, distance to the boundary (bin centre) */
+	double time;       /* s, wall time of pack */
+	size_t nprofile;   /* solid fraction profile phi(w) */
+	double *profile_w; /* m, distance to the boundary (bin centre) */
 	double *profile_phi;
-	size_t npsd;                /* size distribution, cumulative */
-	double *psd_size;           /* m, diameter */
-	double *psd_target_number;  /* fractions passing, by number and by volume */
+	size_t npsd;               /* size distribution, cumulative */
+	double *psd_size;          /* m, diameter */
+	double *psd_target_number; /* fractions passing, by number and by volume */
 	double *psd_target_volume;
 	double *psd_number;
 	double *psd_volume;

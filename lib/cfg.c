@@ -9,13 +9,13 @@
 #include "lib/err.h"
 
 struct cfg {
-	cJSON *json;     /* the object this view reads */
-	cJSON *root;     /* owned by the root view only */
-	char *source;    /* file name, owned by the root view only */
-	char *path;      /* dotted path, "" for the root */
+	cJSON *json;         /* the object this view reads */
+	cJSON *root;         /* owned by the root view only */
+	char *source;        /* file name, owned by the root view only */
+	char *path;          /* dotted path, "" for the root */
 	unsigned char *used; /* per member of json */
-	cfg **children;  /* per member: a view when opened as an object */
-	cfg ***items;    /* per member when it is an array of objects */
+	cfg **children;      /* per member: a view when opened as an object */
+	cfg ***items;        /* per member when it is an array of objects */
 	size_t *nitems;
 	int nmembers;
 };
@@ -150,7 +150,10 @@ static cJSON *member(const cfg *c, const char *key, int *index)
 	return NULL;
 }
 
-int cfg_has(const cfg *c, const char *key) { return cJSON_GetObjectItemCaseSensitive(c->json, key) != NULL; }
+int cfg_has(const cfg *c, const char *key)
+{
+	return cJSON_GetObjectItemCaseSensitive(c->json, key) != NULL;
+}
 
 static void describe(char *buf, size_t n, cJSON *v)
 {
@@ -221,7 +224,8 @@ static int check_integer(const cfg *c, const char *key, cJSON *v, long *out, lon
 	describe(got, sizeof got, v);
 	if (!cJSON_IsNumber(v) || v->valuedouble != (double)(long)v->valuedouble ||
 	    (long)v->valuedouble < lo || (long)v->valuedouble > hi)
-		return cfg_error(c, key, "value %s: expected an integer in [%ld, %ld]", got, lo, hi);
+		return cfg_error(c, key, "value %s: expected an integer in [%ld, %ld]", got, lo,
+		                 hi);
 	*out = (long)v->valuedouble;
 	return 0;
 }
@@ -428,7 +432,8 @@ int cfg_check_unused(const cfg *c)
 	int k = 0;
 	for (cJSON *m = c->json->child; m; m = m->next, k++) {
 		if (!c->used[k])
-			return cfg_error(c, m->string, "unknown key (misspelt, or not used by this program)");
+			return cfg_error(c, m->string,
+			                 "unknown key (misspelt, or not used by this program)");
 		if (c->children[k] && cfg_check_unused(c->children[k]))
 			return -1;
 		for (size_t i = 0; i < c->nitems[k]; i++)

@@ -66,6 +66,6 @@ int cfg_check_unused(const cfg *c);
 
 /* Report an error about a key's value in the standard form. Returns -1. */
 int cfg_error(const cfg *c, const char *key, const char *fmt, ...)
-	__attribute__((format(printf, 3, 4)));
+    __attribute__((format(printf, 3, 4)));
 
 #endif

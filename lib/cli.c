@@ -121,7 +121,8 @@ int cli_parse(const cli_spec *spec, int argc, char **argv, char **pos)
 		size_t len = eq ? (size_t)(eq - name) : strlen(name);
 		const cli_opt *o = NULL;
 		for (int i = 0; i < spec->nopts; i++)
-			if (strlen(spec->opts[i].name) == len && strncmp(spec->opts[i].name, name, len) == 0)
+			if (strlen(spec->opts[i].name) == len &&
+			    strncmp(spec->opts[i].name, name, len) == 0)
 				o = &spec->opts[i];
 		if (!o)
 			usage_error(spec, "unknown option '%s'%s", a, "");

@@ -9,13 +9,13 @@
 typedef enum { CLI_FLAG, CLI_INT, CLI_NUM, CLI_STR } cli_kind;
 
 typedef struct {
-	const char *name;  /* long name without "--" */
+	const char *name; /* long name without "--" */
 	cli_kind kind;
-	void *value;       /* int* (flag), long*, double*, const char** */
-	const char *arg;   /* metavariable shown in help, e.g. "N", "FILE" */
-	const char *unit;  /* SI unit shown in help, "" if none */
+	void *value;      /* int* (flag), long*, double*, const char** */
+	const char *arg;  /* metavariable shown in help, e.g. "N", "FILE" */
+	const char *unit; /* SI unit shown in help, "" if none */
 	const char *help;
-	double lo, hi;     /* inclusive bounds for CLI_INT/CLI_NUM */
+	double lo, hi; /* inclusive bounds for CLI_INT/CLI_NUM */
 } cli_opt;
 
 typedef struct {

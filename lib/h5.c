@@ -65,8 +65,8 @@ hid_t h5_open(const char *path, const char *format, int readwrite)
 {
 	h5_quiet();
 	if (H5Fis_hdf5(path) <= 0)
-		return err_set("%s: not a readable HDF5 file (missing, truncated or another format)",
-		               path);
+		return err_set(
+		    "%s: not a readable HDF5 file (missing, truncated or another format)", path);
 	hid_t f = H5Fopen(path, readwrite ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT);
 	if (f < 0)
 		return err_set("%s: cannot open HDF5 file", path);
@@ -280,7 +280,8 @@ int h5_read(hid_t loc, const char *name, hid_t type, void **data, size_t *rows, 
 {
 	*data = NULL;
 	if (!h5_exists(loc, name))
-		return err_set("%s: dataset '%s' in '%s': missing", h5_name(loc), name, obj_path(loc));
+		return err_set("%s: dataset '%s' in '%s': missing", h5_name(loc), name,
+		               obj_path(loc));
 	hid_t d = H5Dopen2(loc, name, H5P_DEFAULT);
 	if (d < 0)
 		return err_set("%s: dataset '%s': cannot open", h5_name(loc), name);
@@ -294,8 +295,8 @@ int h5_read(hid_t loc, const char *name, hid_t type, void **data, size_t *rows, 
 	if (rank != want || (cols && dims[1] != cols)) {
 		H5Dclose(d);
 		if (cols)
-			return err_set("%s: dataset '%s': wrong shape: expected [N, %zu]", h5_name(loc),
-			               name, cols);
+			return err_set("%s: dataset '%s': wrong shape: expected [N, %zu]",
+			               h5_name(loc), name, cols);
 		return err_set("%s: dataset '%s': wrong shape: expected [N]", h5_name(loc), name);
 	}
 	size_t n = (size_t)dims[0] * (cols ? cols : 1);
@@ -320,8 +321,8 @@ int h5_read_n(hid_t loc, const char *name, hid_t type, void **data, size_t rows,
 	if (got != rows) {
 		free(*data);
 		*data = NULL;
-		return err_set("%s: dataset '%s': has %zu rows, expected %zu", h5_name(loc), name, got,
-		               rows);
+		return err_set("%s: dataset '%s': has %zu rows, expected %zu", h5_name(loc), name,
+		               got, rows);
 	}
 	return 0;
 }
@@ -369,6 +370,7 @@ int h5_append(hid_t loc, const char *name, hid_t type, const void *data, size_t 
 	H5Sclose(fs);
 	H5Dclose(d);
 	if (rc < 0)
-		return err_set("%s: cannot append to dataset '%s' (disk full?)", h5_name(loc), name);
+		return err_set("%s: cannot append to dataset '%s' (disk full?)", h5_name(loc),
+		               name);
 	return 0;
 }

@@ -49,7 +49,8 @@ int prov_read(hid_t file, dem_provenance *p)
 	if (!(p->program = h5_read_attr_str(file, "program")) ||
 	    !(p->version = h5_read_attr_str(file, "program_version")) ||
 	    !(p->created = h5_read_attr_str(file, "created")) ||
-	    !(p->config = h5_read_attr_str(file, "config")) || h5_read_attr_i64(file, "seed", &seed)) {
+	    !(p->config = h5_read_attr_str(file, "config")) ||
+	    h5_read_attr_i64(file, "seed", &seed)) {
 		prov_free(p);
 		return -1;
 	}

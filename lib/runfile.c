@@ -42,8 +42,8 @@ run_writer *run_create(const char *path, const dem_provenance *prov, const dem_a
 	w->ncols = ncols;
 	w->names = xcalloc((size_t)ncols, sizeof *w->names);
 	w->buffer = xmalloc((size_t)ncols * HISTORY_BUFFER_ROWS * sizeof *w->buffer);
-	int rc = prov_write(w->file, RUN_FORMAT, prov) || h5_attr_str(w->file, "status", "running") ||
-	         assembly_write_groups(w->file, a);
+	int rc = prov_write(w->file, RUN_FORMAT, prov) ||
+	         h5_attr_str(w->file, "status", "running") || assembly_write_groups(w->file, a);
 	hid_t h = rc ? -1 : h5_group(w->file, "history");
 	rc = rc || h < 0;
 	for (int c = 0; !rc && c < ncols; c++) {
@@ -241,9 +241,10 @@ static int read_bonds(hid_t f, dem_bonds *b, size_t nparticles)
 	for (size_t k = 0; k < b->n; k++)
 		if (b->i[k] < 0 || b->j[k] < 0 || (size_t)b->i[k] >= nparticles ||
 		    (size_t)b->j[k] >= nparticles)
-			return err_set("%s: dataset '/bonds/i' or '/bonds/j': particle index out of range "
-			               "at bond %zu",
-			               h5_name(f), k);
+			return err_set(
+			    "%s: dataset '/bonds/i' or '/bonds/j': particle index out of range "
+			    "at bond %zu",
+			    h5_name(f), k);
 	return 0;
 }
 
@@ -266,14 +267,17 @@ static int read_history(hid_t f, dem_run *r)
 		for (int c = 0; !rc && tok; c++, tok = strtok_r(NULL, ",", &save)) {
 			r->col_name[c] = xstrdup(tok);
 			size_t rows = 0;
-			rc = c == 0 ? h5_read(h, tok, H5T_NATIVE_DOUBLE, (void **)&r->col[c], &rows, 0)
-			            : h5_read_n(h, tok, H5T_NATIVE_DOUBLE, (void **)&r->col[c], r->nrows, 0);
+			rc = c == 0
+			         ? h5_read(h, tok, H5T_NATIVE_DOUBLE, (void **)&r->col[c], &rows, 0)
+			         : h5_read_n(h, tok, H5T_NATIVE_DOUBLE, (void **)&r->col[c],
+			                     r->nrows, 0);
 			if (c == 0)
 				r->nrows = rows;
 			if (!rc) {
 				hid_t d = H5Dopen2(h, tok, H5P_DEFAULT);
-				r->col_unit[c] = H5Aexists(d, "unit") > 0 ? h5_read_attr_str(d, "unit")
-				                                         : xstrdup("");
+				r->col_unit[c] = H5Aexists(d, "unit") > 0
+				                     ? h5_read_attr_str(d, "unit")
+				                     : xstrdup("");
 				H5Dclose(d);
 			}
 		}
@@ -431,7 +435,8 @@ int run_read_snapshot(const char *path, const dem_run *r, size_t k, dem_snapshot
 {
 	memset(s, 0, sizeof *s);
 	if (k >= r->nsnap)
-		return err_set("%s: snapshot %zu: out of range (the run has %zu)", path, k, r->nsnap);
+		return err_set("%s: snapshot %zu: out of range (the run has %zu)", path, k,
+		               r->nsnap);
 	hid_t f = h5_open(path, RUN_FORMAT, 0);
 	if (f < 0)
 		return -1;
@@ -439,7 +444,8 @@ int run_read_snapshot(const char *path, const dem_run *r, size_t k, dem_snapshot
 	snprintf(name, sizeof name, "snapshots/%012" PRId64, r->snap_step[k]);
 	hid_t g = h5_open_group(f, name);
 	size_t n = r->assembly.n, nb = r->bonds.n;
-	int rc = g < 0 || h5_read_attr_i64(g, "step", &s->step) || h5_read_attr_f64(g, "t", &s->t) ||
+	int rc = g < 0 || h5_read_attr_i64(g, "step", &s->step) ||
+	         h5_read_attr_f64(g, "t", &s->t) ||
 	         h5_read_attr_f64(g, "strain_axial", &s->strain_axial) ||
 	         h5_read_attr_f64(g, "stress_axial", &s->stress_axial) ||
 	         h5_read_n(g, "x", H5T_NATIVE_DOUBLE, (void **)&s->x, n, 3) ||

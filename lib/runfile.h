@@ -27,9 +27,9 @@ typedef struct {
 /* Per-bond values fixed when the bonds form. */
 typedef struct {
 	size_t n;
-	int32_t *i, *j; /* particle indices, i < j */
-	double *d0;     /* m, reference length (centre distance at bonding) */
-	double *area;   /* m^2, effective contact area */
+	int32_t *i, *j;  /* particle indices, i < j */
+	double *d0;      /* m, reference length (centre distance at bonding) */
+	double *area;    /* m^2, effective contact area */
 	double *kn, *ks; /* N/m, initial normal and shear stiffness */
 } dem_bonds;
 
@@ -41,23 +41,23 @@ typedef struct {
 	size_t n;
 	double *x, *v, *w; /* [n][3]: m, m/s, rad/s */
 	size_t nbonds;
-	uint8_t *state;    /* [nbonds] BOND_* */
-	double *damage_n;  /* [nbonds] tension/normal damage in [0, 1] */
-	double *damage_s;  /* [nbonds] shear damage in [0, 1] */
-	double *fn;        /* [nbonds] N, normal force, tension positive */
-	double *fs;        /* [nbonds][3] N, shear force on particle i */
+	uint8_t *state;   /* [nbonds] BOND_* */
+	double *damage_n; /* [nbonds] tension/normal damage in [0, 1] */
+	double *damage_s; /* [nbonds] shear damage in [0, 1] */
+	double *fn;       /* [nbonds] N, normal force, tension positive */
+	double *fs;       /* [nbonds][3] N, shear force on particle i */
 } dem_snapshot;
 
 typedef struct {
 	double t;            /* s */
 	double strain_axial; /* at failure */
 	int64_t step;
-	int32_t i, j;        /* the two particles */
-	int32_t mode;        /* CRACK_TENSION or CRACK_SHEAR */
-	double x[3];         /* m, contact point */
-	double normal[3];    /* unit bond direction from i to j */
-	double radius;       /* m, contact radius r_c */
-	double fn, fs;       /* N, normal (tension positive) and shear force magnitude at failure */
+	int32_t i, j;     /* the two particles */
+	int32_t mode;     /* CRACK_TENSION or CRACK_SHEAR */
+	double x[3];      /* m, contact point */
+	double normal[3]; /* unit bond direction from i to j */
+	double radius;    /* m, contact radius r_c */
+	double fn, fs;    /* N, normal (tension positive) and shear force magnitude at failure */
 } dem_crack;
 
 typedef struct run_writer run_writer;

@@ -7,12 +7,13 @@
 int main(int argc, char **argv)
 {
 	static const cli_spec spec = {
-		.usage = "pack [options] OUTPUT.h5",
-		.summary = "Fill a specimen geometry with a dense polydisperse sphere assembly and\nwrite it, with a packing report, to an HDF5 assembly file.",
-		.opts = NULL,
-		.nopts = 0,
-		.min_pos = 1,
-		.max_pos = 1,
+	    .usage = "pack [options] OUTPUT.h5",
+	    .summary = "Fill a specimen geometry with a dense polydisperse sphere assembly "
+	               "and\nwrite it, with a packing report, to an HDF5 assembly file.",
+	    .opts = NULL,
+	    .nopts = 0,
+	    .min_pos = 1,
+	    .max_pos = 1,
 	};
 	char *pos[1];
 	cli_parse(&spec, argc, argv, pos);

@@ -36,11 +36,11 @@ enum { LAW_NHIST = 4 };
 
 /* One bond (or contact) as the engine stores it: 80 bytes. */
 typedef struct {
-	int32_t i, j;          /* particle indices */
-	double d0;             /* m, reference length: centre distance at bonding */
-	double t[3];           /* tangential history (law-defined), contact plane */
-	double h[LAW_NHIST];   /* law-defined history: damage, plastic state, ... */
-	uint8_t state;         /* BOND_INTACT, BOND_DAMAGED, BOND_BROKEN_* (lib/runfile.h) */
+	int32_t i, j;        /* particle indices */
+	double d0;           /* m, reference length: centre distance at bonding */
+	double t[3];         /* tangential history (law-defined), contact plane */
+	double h[LAW_NHIST]; /* law-defined history: damage, plastic state, ... */
+	uint8_t state;       /* BOND_INTACT, BOND_DAMAGED, BOND_BROKEN_* (lib/runfile.h) */
 } bond;
 
 /* The two spheres of a bond. */
@@ -107,12 +107,12 @@ typedef struct law {
 
 /* Defines `static void NAME_batch(...)` looping over an inline force
  * function FORCE with the signature of law.force. */
-#define LAW_BATCH(NAME, FORCE)                                                                \
-	static void NAME##_batch(const law_params *p, int n, const law_pair *pair, bond *b,        \
-	                         const law_kin *k, law_out *out)                                   \
-	{                                                                                          \
-		for (int q = 0; q < n; q++)                                                        \
-			FORCE(p, &pair[q], &b[q], &k[q], &out[q]);                                  \
+#define LAW_BATCH(NAME, FORCE)                                                              \
+	static void NAME##_batch(const law_params *p, int n, const law_pair *pair, bond *b, \
+	                         const law_kin *k, law_out *out)                            \
+	{                                                                                   \
+		for (int q = 0; q < n; q++)                                                 \
+			FORCE(p, &pair[q], &b[q], &k[q], &out[q]);                          \
 	}
 
 /* The law registered under name, or NULL (err_msg lists the known ones). */

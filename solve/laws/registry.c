@@ -18,7 +18,8 @@ const law *law_find(const char *name)
 		if (strcmp(registry[k]->name, name) == 0)
 			return registry[k];
 		size_t len = strlen(known);
-		snprintf(known + len, sizeof known - len, "%s'%s'", k ? ", " : "", registry[k]->name);
+		snprintf(known + len, sizeof known - len, "%s'%s'", k ? ", " : "",
+		         registry[k]->name);
 	}
 	err_set("unknown law \"%s\": expected one of %s", name, known);
 	return NULL;

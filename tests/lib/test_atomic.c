@@ -5,11 +5,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "tests/check.h"
 #include "lib/afile.h"
 #include "lib/assembly.h"
 #include "lib/err.h"
 #include "lib/h5.h"
+#include "tests/check.h"
 
 static int exists(const char *p) { return access(p, F_OK) == 0; }
 

@@ -1,8 +1,8 @@
 /* JSON configuration: typed lookups, ranges, messages naming file/key/value,
  * unknown-key detection. */
-#include "tests/check.h"
 #include "lib/cfg.h"
 #include "lib/err.h"
+#include "tests/check.h"
 
 static void test_values(void)
 {

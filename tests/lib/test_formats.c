@@ -4,11 +4,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "tests/check.h"
 #include "lib/assembly.h"
 #include "lib/err.h"
 #include "lib/h5.h"
 #include "lib/runfile.h"
+#include "tests/check.h"
 
 static double *seq(size_t n, double start)
 {
@@ -127,8 +127,7 @@ static void test_assembly_roundtrip(const char *path)
 	assembly_free(&b);
 }
 
-static const run_column columns[] = {
-	{"t", "s"}, {"strain_axial", ""}, {"stress_axial", "Pa"}};
+static const run_column columns[] = {{"t", "s"}, {"strain_axial", ""}, {"stress_axial", "Pa"}};
 
 static void make_snapshot(dem_snapshot *s, size_t n, size_t nb, int64_t step)
 {
@@ -184,9 +183,16 @@ static void test_run_roundtrip(const char *path)
 	dem_crack c[3];
 	memset(c, 0, sizeof c);
 	for (int k = 0; k < 3; k++) {
-		c[k] = (dem_crack){.t = k, .strain_axial = 0.1 * k, .step = 10 * k, .i = k,
-		                   .j = k + 1, .mode = k % 2 ? CRACK_SHEAR : CRACK_TENSION,
-		                   .x = {k, 1, 2}, .normal = {0, 0, 1}, .radius = 1e-3, .fn = 5.0 * k,
+		c[k] = (dem_crack){.t = k,
+		                   .strain_axial = 0.1 * k,
+		                   .step = 10 * k,
+		                   .i = k,
+		                   .j = k + 1,
+		                   .mode = k % 2 ? CRACK_SHEAR : CRACK_TENSION,
+		                   .x = {k, 1, 2},
+		                   .normal = {0, 0, 1},
+		                   .radius = 1e-3,
+		                   .fn = 5.0 * k,
 		                   .fs = 2.0 * k};
 	}
 	CHECK(run_cracks(w, c, 2) == 0);

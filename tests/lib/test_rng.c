@@ -2,8 +2,8 @@
  * are pinned, and the uniform and normal generators have the right moments. */
 #include <stdint.h>
 
-#include "tests/check.h"
 #include "lib/rng.h"
+#include "tests/check.h"
 
 int main(void)
 {
