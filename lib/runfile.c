@@ -324,13 +324,15 @@ static int read_snapshot_index(hid_t f, dem_run *r)
 	r->snap_step = l.step;
 	r->snap_t = xcalloc(l.n, sizeof *r->snap_t);
 	r->snap_strain = xcalloc(l.n, sizeof *r->snap_strain);
+	r->snap_stress = xcalloc(l.n, sizeof *r->snap_stress);
 	int rc = 0;
 	for (size_t k = 0; !rc && k < l.n; k++) {
 		char name[64];
 		snprintf(name, sizeof name, "%012" PRId64, l.step[k]);
 		hid_t s = H5Gopen2(g, name, H5P_DEFAULT);
 		rc = s < 0 || h5_read_attr_f64(s, "t", &r->snap_t[k]) ||
-		     h5_read_attr_f64(s, "strain_axial", &r->snap_strain[k]);
+		     h5_read_attr_f64(s, "strain_axial", &r->snap_strain[k]) ||
+		     h5_read_attr_f64(s, "stress_axial", &r->snap_stress[k]);
 		if (s >= 0)
 			H5Gclose(s);
 	}
@@ -411,7 +413,7 @@ void run_free(dem_run *r)
 		free(r->col ? r->col[c] : NULL);
 	}
 	free(r->col_name), free(r->col_unit), free(r->col);
-	free(r->snap_step), free(r->snap_t), free(r->snap_strain);
+	free(r->snap_step), free(r->snap_t), free(r->snap_strain), free(r->snap_stress);
 	free(r->cracks);
 	memset(r, 0, sizeof *r);
 }

@@ -90,8 +90,10 @@ typedef struct {
 	size_t nrows;
 	double **col; /* [ncols][nrows] */
 	size_t nsnap;
-	int64_t *snap_step; /* ascending */
-	double *snap_t, *snap_strain;
+	int64_t *snap_step;  /* ascending */
+	double *snap_t;      /* s */
+	double *snap_strain; /* axial strain, compression positive */
+	double *snap_stress; /* Pa, axial stress, compression positive */
 	size_t ncracks;
 	dem_crack *cracks;
 } dem_run;

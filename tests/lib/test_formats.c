@@ -222,6 +222,7 @@ static void test_run_roundtrip(const char *path)
 	CHECK(run_column_data(&r, "nope") == NULL);
 	CHECK(r.nsnap == 2 && r.snap_step[0] == 20 && r.snap_step[1] == 100);
 	CHECK(r.snap_t[1] == s1.t && r.snap_strain[0] == s2.strain_axial);
+	CHECK(r.snap_stress[1] == s1.stress_axial && r.snap_stress[0] == s2.stress_axial);
 	dem_snapshot t;
 	CHECK(run_read_snapshot(path, &r, 1, &t) == 0);
 	CHECK(t.step == 100 && t.t == s1.t && t.strain_axial == s1.strain_axial);
