@@ -10,6 +10,7 @@
 #define DEM_ERR_H
 
 #include <stdarg.h>
+#include <stddef.h>
 
 /* Record the current error (replaces any earlier one). Always returns -1. */
 int err_set(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
