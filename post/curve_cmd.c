@@ -1,0 +1,225 @@
+/* post curve: the history table of a run as curve.csv and figures:
+ * stress_strain.png (axial stress against axial and radial strain),
+ * volumetric.png (volumetric against axial strain), bonds.png (broken
+ * bonds by mode against axial strain, with the stress) and energy.png
+ * (every energy_* column). Experimental points can be overlaid
+ * (post/experiment.h). History columns used: strain_axial, stress_axial
+ * (required), strain_radial, strain_volumetric (else eps_a + 2 eps_r
+ * when the radial strain is there), pressure, energy_*. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lib/cli.h"
+#include "lib/err.h"
+#include "post/crackmap.h"
+#include "post/experiment.h"
+#include "post/load.h"
+#include "post/output.h"
+#include "post/plot.h"
+#include "post/post.h"
+
+static void write_csv(const char *path, const dem_run *r)
+{
+	out_text o;
+	out_text_open(&o, path);
+	for (int c = 0; c < r->ncols; c++) {
+		out_csv_str(o.f, r->col_name[c]);
+		fputc(c + 1 < r->ncols ? ',' : '\n', o.f);
+	}
+	for (size_t k = 0; k < r->nrows; k++)
+		for (int c = 0; c < r->ncols; c++) {
+			out_csv_num(o.f, r->col[c][k]);
+			fputc(c + 1 < r->ncols ? ',' : '\n', o.f);
+		}
+	out_text_commit(&o);
+}
+
+static const double *required(const char *path, const dem_run *r, const char *name)
+{
+	const double *v = run_column_data(r, name);
+	if (!v)
+		fatal("%s: the history has no column '%s' (post curve needs strain_axial and "
+		      "stress_axial)",
+		      path, name);
+	return v;
+}
+
+/* $curve rows: eps_a(%) sigma_a(MPa) eps_r(%) eps_v(%), NaN when absent;
+ * and has_radial, has_volumetric, pc (MPa, the largest confining
+ * pressure, 0 without a pressure column). */
+static void curve_data(FILE *f, const char *path, const dem_run *r)
+{
+	const double *ea = required(path, r, "strain_axial");
+	const double *sa = required(path, r, "stress_axial");
+	const double *er = run_column_data(r, "strain_radial");
+	const double *ev = run_column_data(r, "strain_volumetric");
+	const double *pc = run_column_data(r, "pressure");
+	double pmax = 0;
+	fputs("$curve << EOD\n", f);
+	for (size_t k = 0; k < r->nrows; k++) {
+		double v[4] = {100 * ea[k], 1e-6 * sa[k], er ? 100 * er[k] : NAN,
+		               ev   ? 100 * ev[k]
+		               : er ? 100 * (ea[k] + 2 * er[k])
+		                    : NAN};
+		for (int c = 0; c < 4; c++) {
+			plot_num(f, v[c]);
+			fputc(c < 3 ? ' ' : '\n', f);
+		}
+		if (pc)
+			pmax = fmax(pmax, pc[k]);
+	}
+	fprintf(f, "EOD\nhas_radial = %d\nhas_volumetric = %d\npc = %.6g\n", er != NULL, er || ev,
+	        1e-6 * pmax);
+}
+
+/* $exp rows as $curve, has_exp and exp_label. */
+static void experiment_data(FILE *f, const experiment *e, const char *label)
+{
+	fputs("$exp << EOD\n", f);
+	for (size_t k = 0; e && k < e->n; k++) {
+		const double *ea = e->col[EXP_STRAIN_AXIAL], *er = e->col[EXP_STRAIN_RADIAL];
+		const double *ev = e->col[EXP_STRAIN_VOLUMETRIC];
+		double v[4] = {100 * ea[k], 1e-6 * e->col[EXP_STRESS_AXIAL][k],
+		               er ? 100 * er[k] : NAN,
+		               ev   ? 100 * ev[k]
+		               : er ? 100 * (ea[k] + 2 * er[k])
+		                    : NAN};
+		for (int c = 0; c < 4; c++) {
+			plot_num(f, v[c]);
+			fputc(c < 3 ? ' ' : '\n', f);
+		}
+	}
+	fprintf(f, "EOD\nhas_exp = %d\nexp_label = ", e != NULL);
+	plot_quote(f, label);
+	fputc('\n', f);
+}
+
+/* $energy rows: eps_a(%) and each energy_* column (J); nenergy, ename[k]. */
+static int energy_data(FILE *f, const dem_run *r)
+{
+	const double *ea = run_column_data(r, "strain_axial");
+	int idx[64], n = 0;
+	for (int c = 0; c < r->ncols && n < 64; c++)
+		if (strncmp(r->col_name[c], "energy_", 7) == 0)
+			idx[n++] = c;
+	if (!n)
+		return 0;
+	fputs("$energy << EOD\n", f);
+	for (size_t k = 0; k < r->nrows; k++) {
+		plot_num(f, 100 * ea[k]);
+		for (int c = 0; c < n; c++) {
+			fputc(' ', f);
+			plot_num(f, r->col[idx[c]][k]);
+		}
+		fputc('\n', f);
+	}
+	fprintf(f, "EOD\nnenergy = %d\narray ename[%d]\n", n, n);
+	for (int c = 0; c < n; c++) {
+		fprintf(f, "ename[%d] = ", c + 1);
+		plot_quote(f, r->col_name[idx[c]] + 7);
+		fputc('\n', f);
+	}
+	return n;
+}
+
+static void draw(const char *dir, const char *name, const char *script, plot_data *d)
+{
+	char file[64];
+	snprintf(file, sizeof file, "%s.png", name);
+	char *png = out_path(dir, file);
+	if (plot_png(d, script, png, 900, 650))
+		fatal(NULL);
+	printf("wrote %s\n", png);
+	free(png);
+}
+
+static void plot_curves(const char *dir, const char *path, const dem_run *r, const experiment *e,
+                        const char *label)
+{
+	const char *scripts[] = {"stress_strain", "volumetric"};
+	for (int p = 0; p < 2; p++) {
+		if (p == 1 && !run_column_data(r, "strain_radial") &&
+		    !run_column_data(r, "strain_volumetric")) {
+			printf(
+			    "%s: no radial or volumetric strain in the history: volumetric.png not "
+			    "drawn\n",
+			    path);
+			continue;
+		}
+		plot_data d;
+		plot_begin(&d);
+		curve_data(d.f, path, r);
+		experiment_data(d.f, e, label);
+		draw(dir, scripts[p], scripts[p], &d);
+	}
+	plot_data d;
+	plot_begin(&d);
+	crackmap_count_data(d.f, r);
+	const double *ea = run_column_data(r, "strain_axial");
+	const double *sa = run_column_data(r, "stress_axial");
+	fputs("$stress << EOD\n", d.f);
+	for (size_t k = 0; k < r->nrows; k++)
+		fprintf(d.f, "%.10g %.10g\n", 100 * ea[k], 1e-6 * sa[k]);
+	fputs("EOD\nwith_stress = 1\n", d.f);
+	draw(dir, "bonds", "cracks_count", &d);
+	plot_begin(&d);
+	if (energy_data(d.f, r)) {
+		draw(dir, "energy", "energy", &d);
+	} else {
+		fclose(d.f);
+		free(d.text);
+		printf("%s: no energy_* columns in the history: energy.png not drawn\n", path);
+	}
+}
+
+int post_curve(int argc, char **argv)
+{
+	const char *out = NULL, *exp_path = NULL, *exp_label = "experiment";
+	int no_png = 0;
+	const cli_opt opts[] = {
+	    {"out", CLI_STR, &out, "DIR", "", "output directory (default: that of the run)", 0, 0},
+	    {"experiment", CLI_STR, &exp_path, "FILE", "",
+	     "CSV of experimental points to overlay (share/doc/post.md)", 0, 0},
+	    {"experiment-label", CLI_STR, &exp_label, "TEXT", "", "legend of those points", 0, 0},
+	    {"no-png", CLI_FLAG, &no_png, NULL, "", "write the CSV only", 0, 0},
+	};
+	const cli_spec spec = {
+	    .usage = "post curve [options] RUN.h5",
+	    .summary = "The history of a run: curve.csv (every history column) and figures:\n"
+	               "stress_strain.png (axial stress against axial and radial strain),\n"
+	               "volumetric.png, bonds.png (broken bonds by mode against axial strain)\n"
+	               "and energy.png, with experimental points overlaid if given.",
+	    .opts = opts,
+	    .nopts = sizeof opts / sizeof opts[0],
+	    .min_pos = 1,
+	    .max_pos = 1,
+	};
+	char *pos[1];
+	cli_parse(&spec, argc, argv, pos);
+	dem_run r;
+	load_run("curve", pos[0], &r);
+	if (r.nrows == 0)
+		fatal("%s: the history table is empty (the run stopped before its first row)",
+		      pos[0]);
+	required(pos[0], &r, "strain_axial");
+	required(pos[0], &r, "stress_axial");
+	experiment e, *ep = NULL;
+	if (exp_path) {
+		if (experiment_read(exp_path, &e))
+			fatal(NULL);
+		ep = &e;
+	}
+	char *dir = out_dir(out, pos[0]);
+	char *csv = out_path(dir, "curve.csv");
+	write_csv(csv, &r);
+	printf("wrote %s (%zu rows, %d columns)\n", csv, r.nrows, r.ncols);
+	if (!no_png)
+		plot_curves(dir, pos[0], &r, ep, exp_label);
+	if (ep)
+		experiment_free(ep);
+	free(csv), free(dir);
+	run_free(&r);
+	return 0;
+}

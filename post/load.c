@@ -1,0 +1,54 @@
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "lib/err.h"
+#include "lib/h5.h"
+#include "post/load.h"
+
+static void readable_or_die(const char *path)
+{
+	if (access(path, R_OK) != 0)
+		fatal("%s: cannot read: %s", path, strerror(errno));
+}
+
+file_kind load_kind(const char *cmd, const char *path)
+{
+	readable_or_die(path);
+	h5_quiet();
+	hid_t f = H5Fis_hdf5(path) > 0 ? H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT) : -1;
+	char *fmt = f >= 0 && H5Aexists(f, "format") > 0 ? h5_read_attr_str(f, "format") : NULL;
+	if (f >= 0)
+		H5Fclose(f);
+	file_kind kind = FILE_RUN;
+	int known = fmt && (strcmp(fmt, RUN_FORMAT) == 0 || strcmp(fmt, ASSEMBLY_FORMAT) == 0);
+	if (known)
+		kind = strcmp(fmt, RUN_FORMAT) == 0 ? FILE_RUN : FILE_ASSEMBLY;
+	free(fmt);
+	if (!known)
+		fatal("%s: not a run file (solve) or an assembly file (pack): post %s reads one of "
+		      "them",
+		      path, cmd);
+	return kind;
+}
+
+void load_run(const char *cmd, const char *path, dem_run *r)
+{
+	readable_or_die(path);
+	if (run_read(path, r) == 0)
+		return;
+	if (!strstr(err_msg(), "\"" ASSEMBLY_FORMAT "\""))
+		fatal(NULL);
+	char msg[2048]; /* fatal() formats into the buffer err_msg() points to */
+	snprintf(msg, sizeof msg, "%s", err_msg());
+	fatal("%s (an assembly written by pack: post %s reads a run file written by solve)", msg,
+	      cmd);
+}
+
+void load_snapshot(const char *path, const dem_run *r, size_t k, dem_snapshot *s)
+{
+	if (run_read_snapshot(path, r, k, s))
+		fatal(NULL);
+}

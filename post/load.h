@@ -1,0 +1,19 @@
+/* Reading post's inputs, or exiting with a message that names the file and
+ * says what was expected. */
+#ifndef DEM_POST_LOAD_H
+#define DEM_POST_LOAD_H
+
+#include "lib/assembly.h"
+#include "lib/runfile.h"
+
+typedef enum { FILE_RUN, FILE_ASSEMBLY } file_kind;
+
+/* The kind of a toolchain file (by its `format` attribute); fatal when the
+ * file is missing or of neither kind. */
+file_kind load_kind(const char *cmd, const char *path);
+/* run_read(), fatal on failure. cmd names the command in messages. */
+void load_run(const char *cmd, const char *path, dem_run *r);
+/* run_read_snapshot(), fatal on failure. */
+void load_snapshot(const char *path, const dem_run *r, size_t k, dem_snapshot *s);
+
+#endif

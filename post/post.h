@@ -1,0 +1,17 @@
+/* The commands of post (post/main.c dispatches to them). Each parses its
+ * own options with lib/cli.h from argv (argv[0] is the program) and
+ * returns the exit status. */
+#ifndef DEM_POST_POST_H
+#define DEM_POST_POST_H
+
+int post_ratios(int argc, char **argv);
+int post_cracks(int argc, char **argv);
+int post_vtk(int argc, char **argv);
+int post_curve(int argc, char **argv);
+
+/* The label of a run in legends and tables: the file name without .h5, or
+ * the directory name for a file called run.h5 (runs/ucs/run.h5 -> ucs).
+ * Caller frees. */
+char *post_run_label(const char *path);
+
+#endif

@@ -1,0 +1,18 @@
+# Micro-macro compressive stress ratio r = mean sigma_n / sigma_ref against
+# the contact orientation theta, one line per run (Onate et al. 2015,
+# Fig. 11). Drawn by `post ratios`, which defines before this script:
+#   $all     datablock, one index per run, rows:
+#            theta_mid(deg) r r_std tau/ref tau_std/ref count
+#            (NaN in an empty bin: the line stops there)
+#   nruns    number of runs;  label[k]  legend text of run k
+set title 'Micro-macro compressive stress ratio by contact orientation'
+set xlabel 'angle θ between contact normal and horizontal plane (°)'
+set ylabel 'r = mean σ_n / σ@_a^{ref}'
+set xrange [0:90]
+set xtics 0,10,90
+set yrange [0:*]
+set key bottom right
+# Runs are shifted by a fraction of a degree so error bars do not overlap.
+shift(k) = 0.6 * (k - 0.5 * (nruns + 1))
+plot for [k=1:nruns] $all index k-1 using ($1 + shift(k)):2:3 with yerrorbars lt k lw 1 pt -1 notitle, \
+     for [k=1:nruns] $all index k-1 using ($1 + shift(k)):2 with linespoints lt k title label[k]

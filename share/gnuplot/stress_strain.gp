@@ -1,0 +1,18 @@
+# Axial stress against axial strain (solid) and radial strain (dashed), as
+# rock mechanics plots them, with experimental points when given.
+# Drawn by `post curve`, which defines:
+#   $curve   rows: axial strain(%) axial stress(MPa) radial strain(%)
+#            volumetric strain(%)   (NaN where the run has no value)
+#   $exp     rows as $curve: experimental points;  has_exp, exp_label
+#   has_radial;  pc  largest confining pressure (MPa, 0 for none)
+set title (pc > 0 ? sprintf('Stress-strain curve (confining pressure %.3g MPa)', pc) \
+                  : 'Stress-strain curve')
+set xlabel (has_radial ? 'strain (%)      radial ε_r ←  0  → axial ε_a' : 'axial strain ε_a (%)')
+set ylabel 'axial stress σ_a (MPa)'
+set yrange [0:*]
+set key bottom right
+cmd = "plot $curve using 1:2 with lines lt 1 title 'axial strain ε_a'"
+if (has_radial) cmd = cmd . ", $curve using 3:2 with lines lt 2 title 'radial strain ε_r'"
+if (has_exp) cmd = cmd . ", $exp using 1:2 with points pt 6 ps 1.2 lc rgb '#000000' title exp_label . ' (axial)'"
+if (has_exp) cmd = cmd . ", $exp using 3:2 with points pt 4 ps 1.2 lc rgb '#555555' title exp_label . ' (radial)'"
+eval cmd
