@@ -38,7 +38,7 @@ set(CGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE TRUE)
 find_package(CGAL QUIET)
 dem_require(CGAL_FOUND "CGAL" "libcgal-dev")
 
-find_package(VTK 9 QUIET COMPONENTS CommonCore CommonDataModel IOXML)
+find_package(VTK 9 QUIET COMPONENTS CommonCore CommonDataModel IOXML IOImage)
 dem_require(VTK_FOUND "VTK 9" "libvtk9-dev")
 
 find_library(MATH_LIBRARY m)

@@ -1,0 +1,79 @@
+/* post curve on a synthetic run: curve.csv is the history table, and the
+ * four figures are real images with the curves in their colours;
+ * experimental points add black markers. */
+#include <math.h>
+
+#include "lib/runfile.h"
+#include "tests/check.h"
+#include "tests/post/harness.h"
+#include "tests/post/synth.h"
+#include "tests/post/vtkread.h"
+
+/* Pixels near colour rgb in dir/name (-1 if it is no 900x650 PNG). */
+static long pixels(const char *dir, const char *name, unsigned rgb)
+{
+	char path[1200];
+	snprintf(path, sizeof path, "%s/%s", dir, name);
+	long count = 0, distinct = 0;
+	int w = 0, h = 0;
+	if (vtkr_png(path, &w, &h, &distinct, &rgb, &count, 1) || w != 900 || h != 650 ||
+	    distinct < 20)
+		return -1;
+	return count;
+}
+
+int main(void)
+{
+	char dir[1024], run[1100], path[1200], exp[1100];
+	harness_dir(dir, sizeof dir, "curve");
+	snprintf(run, sizeof run, "%s/run.h5", dir);
+	synth_opts o = synth_defaults();
+	o.nparticles = 150;
+	CHECK(synth_run(run, &o) == 0);
+	dem_run r;
+	CHECK(run_read(run, &r) == 0);
+	post_result res = harness_post("curve %s", run);
+	CHECK(res.status == 0);
+	harness_free(&res);
+
+	snprintf(path, sizeof path, "%s/curve.csv", dir);
+	char *text = harness_slurp(path), *save = NULL, buf[64];
+	size_t row = 0;
+	int bad = 0;
+	for (char *line = strtok_r(text, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {
+		if (row++ == 0) {
+			for (int c = 0; c < r.ncols; c++)
+				bad += strcmp(harness_field(line, c, buf, sizeof buf),
+				              r.col_name[c]) != 0;
+			continue;
+		}
+		for (int c = 0; c < r.ncols; c++) {
+			double want = r.col[c][row - 2];
+			double got = strtod(harness_field(line, c, buf, sizeof buf), NULL);
+			bad += fabs(got - want) > 1e-9 * fabs(want);
+		}
+	}
+	CHECK(row == r.nrows + 1);
+	CHECK(bad == 0);
+	free(text);
+
+	CHECK(pixels(dir, "stress_strain.png", 0x0072B2) > 300); /* axial */
+	CHECK(pixels(dir, "stress_strain.png", 0xD55E00) > 300); /* radial */
+	CHECK(pixels(dir, "volumetric.png", 0x0072B2) > 300);
+	CHECK(pixels(dir, "bonds.png", 0xD62728) > 100 && pixels(dir, "bonds.png", 0x1F4E9E) > 100);
+	CHECK(pixels(dir, "energy.png", 0x0072B2) > 300);
+	long black = pixels(dir, "stress_strain.png", 0x000000);
+
+	snprintf(exp, sizeof exp, "%s/exp.csv", dir);
+	FILE *f = fopen(exp, "w");
+	fputs("# synthetic experiment\nstrain_axial,strain_radial,stress_axial_MPa\n", f);
+	for (int k = 1; k <= 12; k++)
+		fprintf(f, "%g,%g,%g\n", 3e-4 * k, -0.8e-4 * k, 3.0 * k);
+	fclose(f);
+	res = harness_post("curve --experiment %s --experiment-label lab %s", exp, run);
+	CHECK(res.status == 0);
+	harness_free(&res);
+	CHECK(pixels(dir, "stress_strain.png", 0x000000) > black + 200);
+	run_free(&r);
+	return check_done();
+}

@@ -1,0 +1,128 @@
+/* Bad input to post: one exact message on stderr, a non-zero exit status
+ * and no output left behind (the output directory is not even made). */
+#include "lib/runfile.h"
+#include "tests/check.h"
+#include "tests/post/harness.h"
+#include "tests/post/synth.h"
+
+static char dir[1024], out[1100];
+
+/* post <cmd> --out <out> <args> fails with status and exactly message. */
+static void expect(int status, const char *message, const char *cmd, const char *args)
+{
+	post_result r = harness_post("%s --out %s %s", cmd, out, args);
+	if (r.status != status)
+		fprintf(stderr, "post %s %s: status %d\n", cmd, args, r.status);
+	CHECK(r.status == status);
+	CHECK_STR(r.err, message);
+	CHECK(!harness_exists(out));
+	harness_free(&r);
+}
+
+int main(void)
+{
+	harness_dir(dir, sizeof dir, "errors");
+	snprintf(out, sizeof out, "%s/out", dir);
+	char run[1100], empty[1100], assembly[1100], text[1100], exp[1100], msg[4096];
+	snprintf(run, sizeof run, "%s/run.h5", dir);
+	snprintf(empty, sizeof empty, "%s/empty.h5", dir);
+	snprintf(assembly, sizeof assembly, "%s/assembly.h5", dir);
+	snprintf(text, sizeof text, "%s/notes.txt", dir);
+	snprintf(exp, sizeof exp, "%s/exp.csv", dir);
+	const double t[2] = {0, 1e-3}, s[2] = {0, 5e6};
+	CHECK(synth_tiny(run, 2, t, s, 2, t, s, 1) == 0);
+	CHECK(synth_tiny(empty, 0, NULL, NULL, 0, NULL, NULL, 1) == 0);
+	dem_run r;
+	CHECK(run_read(run, &r) == 0);
+	CHECK(assembly_write(assembly, &r.assembly) == 0);
+	run_free(&r);
+	FILE *f = fopen(text, "w");
+	fputs("not a run\n", f);
+	fclose(f);
+
+	const char *commands[] = {"ratios", "cracks", "vtk", "curve"};
+	for (int c = 0; c < 4; c++) {
+		snprintf(msg, sizeof msg,
+		         "post: %s/missing.h5: cannot read: No such file or directory\n", dir);
+		char args[1200];
+		snprintf(args, sizeof args, "%s/missing.h5", dir);
+		expect(1, msg, commands[c], args);
+		if (c == 2)
+			snprintf(msg, sizeof msg,
+			         "post: %s: not a run file (solve) or an assembly file (pack): "
+			         "post vtk reads "
+			         "one of them\n",
+			         text);
+		else
+			snprintf(msg, sizeof msg,
+			         "post: %s: not a readable HDF5 file (missing, truncated or "
+			         "another format)\n",
+			         text);
+		expect(1, msg, commands[c], text);
+		if (c == 2)
+			continue; /* vtk reads assemblies too */
+		snprintf(msg, sizeof msg,
+		         "post: %s: attribute 'format': value \"dem-assembly\": expected "
+		         "\"dem-run\" (an "
+		         "assembly written by pack: post %s reads a run file written by solve)\n",
+		         assembly, commands[c]);
+		expect(1, msg, commands[c], assembly);
+	}
+	/* an empty run: nothing was written after the start */
+	snprintf(msg, sizeof msg,
+	         "post: %s: the run has no snapshots (it stopped before writing one)\n", empty);
+	expect(1, msg, "ratios", empty);
+	expect(1, msg, "vtk", empty);
+	snprintf(msg, sizeof msg,
+	         "post: %s: the history table is empty (the run stopped before its first row)\n",
+	         empty);
+	expect(1, msg, "curve", empty);
+	/* options */
+	char args[2400];
+	snprintf(args, sizeof args, "--labels a,b %s", run);
+	expect(1, "post: --labels a,b: 2 labels for 1 run files (one per run, comma-separated)\n",
+	       "ratios", args);
+	snprintf(args, sizeof args, "--bin-width 0 %s", run);
+	expect(2, "post: --bin-width 0: expected a number in [0.1, 90] (deg)\n", "ratios", args);
+	snprintf(args, sizeof args, "%s %s", run, run);
+	snprintf(
+	    msg, sizeof msg,
+	    "post: unexpected argument '%s' (usage: post curve [options] RUN.h5; see --help)\n",
+	    run);
+	expect(2, msg, "curve", args);
+	/* experimental points */
+	f = fopen(exp, "w");
+	fputs("# test\nstrain_axial,stress_axial_MPa\n0.001,12\n0.002,2O\n", f);
+	fclose(f);
+	snprintf(args, sizeof args, "--experiment %s %s", exp, run);
+	snprintf(msg, sizeof msg,
+	         "post: %s: line 4: column 'stress_axial_MPa': value '2O': expected a number\n",
+	         exp);
+	expect(1, msg, "curve", args);
+	f = fopen(exp, "w");
+	fputs("strain,stress\n0.001,12\n", f);
+	fclose(f);
+	snprintf(msg, sizeof msg,
+	         "post: %s: line 1: the header must name the columns strain_axial and stress_axial "
+	         "(Pa) or stress_axial_MPa\n",
+	         exp);
+	expect(1, msg, "curve", args);
+	/* commands */
+	post_result res = harness_post("nonsense %s", run);
+	CHECK(res.status == 2);
+	CHECK_STR(res.err,
+	          "post: unknown command 'nonsense': expected ratios, cracks, vtk or curve "
+	          "(see post --help)\n");
+	harness_free(&res);
+	res = harness_post("--help");
+	CHECK(res.status == 0);
+	CHECK_CONTAINS(res.out, "  ratios   ");
+	CHECK_CONTAINS(res.out, "  curve    ");
+	harness_free(&res);
+	res = harness_post("ratios --help");
+	CHECK(res.status == 0);
+	CHECK_CONTAINS(res.out,
+	               "--bin-width DEG          width of the angle bins (deg) [default: 10]");
+	harness_free(&res);
+	return check_done();
+}
