@@ -49,11 +49,11 @@ static void compute_run(run_ratios *rr, const instant *in, const ratio_bins *bin
 {
 	dem_run r;
 	load_run("ratios", rr->path, &r);
-	if (r.bonds.n == 0)
-		fatal("%s: the run has no bonds (/bonds is missing or empty)", rr->path);
 	char desc[1024];
 	if (instant_pick(rr->path, &r, in, &rr->snap, desc, sizeof desc))
 		fatal(NULL);
+	if (r.bonds.n == 0)
+		fatal("%s: the run has no bonds (/bonds is missing or empty)", rr->path);
 	printf("%s\n", desc);
 	dem_snapshot s;
 	load_snapshot(rr->path, &r, rr->snap, &s);

@@ -9,7 +9,7 @@ set ylabel 'number of cracks'
 set xrange [0:90]
 set xtics 0,10,90
 set yrange [0:*]
-set style fill solid 0.8 border lc rgb '#333333'
+set style fill solid 0.9 border lc rgb '#333333'
 set key top right
 plot $hist using ($1 - $2 / 4):3:($2 / 2) with boxes lc rgb tension_colour title 'tension', \
      $hist using ($1 + $2 / 4):4:($2 / 2) with boxes lc rgb shear_colour title 'shear'
