@@ -319,7 +319,8 @@ static int read_snapshot_index(hid_t f, dem_run *r)
 		return -1;
 	step_list l = {0};
 	H5Literate(g, H5_INDEX_NAME, H5_ITER_NATIVE, NULL, collect_snapshot, &l);
-	qsort(l.step, l.n, sizeof *l.step, cmp_i64);
+	if (l.n) /* a run without snapshots has no list: qsort must not get NULL */
+		qsort(l.step, l.n, sizeof *l.step, cmp_i64);
 	r->nsnap = l.n;
 	r->snap_step = l.step;
 	r->snap_t = xcalloc(l.n, sizeof *r->snap_t);
