@@ -285,25 +285,57 @@ static void check_png(const char *png)
 	CHECK(count[0] > 300); /* the line of the run */
 }
 
+/* Two runs in one table and figure: 27 rows each under their labels, and
+ * both runs' colours (style.gp) in the picture. */
+static void check_two_runs(const char *dir, const char *run1, const char *run2)
+{
+	post_result r = harness_post("ratios --snapshot 0 --labels UCS,confined --out %s %s %s",
+	                             dir, run1, run2);
+	CHECK(r.status == 0);
+	CHECK_CONTAINS(r.out, "UCS: ");
+	CHECK_CONTAINS(r.out, "confined: ");
+	harness_free(&r);
+	char path[1200];
+	snprintf(path, sizeof path, "%s/ratios.csv", dir);
+	char *text = harness_slurp(path);
+	int ucs = 0, confined = 0;
+	for (const char *p = text; (p = strchr(p, '\n')) != NULL;) {
+		p++;
+		ucs += strncmp(p, "UCS,", 4) == 0;
+		confined += strncmp(p, "confined,", 9) == 0;
+	}
+	CHECK(ucs == 3 * NBINS && confined == 3 * NBINS);
+	free(text);
+	snprintf(path, sizeof path, "%s/ratios.png", dir);
+	const unsigned colours[2] = {0x0072B2, 0xD55E00};
+	long count[2] = {0, 0}, distinct = 0;
+	int w, h;
+	CHECK(vtkr_png(path, &w, &h, &distinct, colours, count, 2) == 0);
+	CHECK(count[0] > 300 && count[1] > 300);
+}
+
 int main(void)
 {
 	static design d;
 	const double axes[2][3] = {{0, 0, 1}, {1 / 3.0, 2 / 3.0, 2 / 3.0}};
 	const double stress = 2.5e6;
+	char runs[2][1100];
 	for (int c = 0; c < 2; c++) {
 		char dir[1024], run[1100], csv[1100];
 		harness_dir(dir, sizeof dir, c ? "ratios_tilted" : "ratios_z");
 		snprintf(run, sizeof run, "%s/run.h5", dir);
 		snprintf(csv, sizeof csv, "%s/ratios.csv", dir);
 		build(&d, axes[c]);
-		write_run(run, &d, axes[c], stress);
+		write_run(run, &d, axes[c], c ? 2 * stress : stress);
+		snprintf(runs[c], sizeof runs[c], "%s", run);
 		post_result r = harness_post("ratios --snapshot 0 --no-png %s", run);
 		CHECK(r.status == 0);
-		CHECK_CONTAINS(r.out,
-		               "snapshot 0 (step 200, t = 0.002 s, axial strain 0.2 %, axial "
-		               "stress 2.5 MPa)");
+		CHECK_CONTAINS(r.out, c ? "snapshot 0 (step 200, t = 0.002 s, axial strain 0.2 %, "
+		                          "axial stress 5 MPa)"
+		                        : "snapshot 0 (step 200, t = 0.002 s, axial strain 0.2 %, "
+		                          "axial stress 2.5 MPa)");
 		harness_free(&r);
-		check_csv(csv, stress);
+		check_csv(csv, c ? 2 * stress : stress);
 		r = harness_post("ratios --snapshot 0 --sigma-ref 1e7 --no-png --out %s %s", dir,
 		                 run);
 		CHECK(r.status == 0);
@@ -325,5 +357,8 @@ int main(void)
 			CHECK(harness_exists(png));
 		}
 	}
+	char dir[1024];
+	harness_dir(dir, sizeof dir, "ratios_two");
+	check_two_runs(dir, runs[0], runs[1]);
 	return check_done();
 }
