@@ -22,6 +22,16 @@ static series get_series(const dem_run *r)
 	return (series){r->nsnap, r->snap_t, r->snap_strain, r->snap_stress};
 }
 
+/* The row of the first largest value of v. */
+static size_t argmax(const series *s, const double *v)
+{
+	size_t p = 0;
+	for (size_t k = 1; k < s->n; k++)
+		if (v[k] > v[p])
+			p = k;
+	return p;
+}
+
 /* The time at which v first attains level (interpolated), or -1. */
 static int first_reach(const series *s, const double *v, double level, double *t)
 {
@@ -96,10 +106,7 @@ static int event_time(const char *path, const dem_run *r, const instant *in, dou
 	case AT_SNAPSHOT:
 		return 0; /* not located on a series */
 	case AT_PEAK: {
-		size_t p = 0;
-		for (size_t k = 1; k < s.n; k++)
-			if (s.stress[k] > s.stress[p])
-				p = k;
+		size_t p = argmax(&s, s.stress);
 		*t = s.t[p];
 		snprintf(what, n, "peak axial stress %.4g MPa at t = %.6g s (axial strain %.4g %%)",
 		         s.stress[p] * 1e-6, *t, 100 * s.strain[p]);
@@ -114,26 +121,18 @@ static int event_time(const char *path, const dem_run *r, const instant *in, dou
 		         100 * at_time(&s, s.strain, *t), 1e-6 * at_time(&s, s.stress, *t));
 		return 0;
 	case AT_STRAIN:
-		if (first_reach(&s, s.strain, in->value, t)) {
-			double top = s.strain[0];
-			for (size_t k = 1; k < s.n; k++)
-				top = fmax(top, s.strain[k]);
+		if (first_reach(&s, s.strain, in->value, t))
 			return err_set(
 			    "%s: --strain %g: the axial strain never reaches it (largest %g)", path,
-			    in->value, top);
-		}
+			    in->value, s.strain[argmax(&s, s.strain)]);
 		snprintf(what, n, "axial strain first reaches %.4g %% at t = %.6g s",
 		         100 * in->value, *t);
 		return 0;
 	case AT_STRESS:
-		if (first_reach(&s, s.stress, in->value, t)) {
-			double top = s.stress[0];
-			for (size_t k = 1; k < s.n; k++)
-				top = fmax(top, s.stress[k]);
+		if (first_reach(&s, s.stress, in->value, t))
 			return err_set(
 			    "%s: --stress %g Pa: the axial stress never reaches it (peak %g Pa)",
-			    path, in->value, top);
-		}
+			    path, in->value, s.stress[argmax(&s, s.stress)]);
 		snprintf(what, n,
 		         "axial stress first reaches %.4g MPa at t = %.6g s (axial strain %.4g %%)",
 		         1e-6 * in->value, *t, 100 * at_time(&s, s.strain, *t));

@@ -66,8 +66,10 @@ static void compute_run(run_ratios *rr, const instant *in, const ratio_bins *bin
 	rr->sigma_ref = sigma_ref > 0 ? sigma_ref : s.stress_axial;
 	rr->stat = xmalloc((size_t)(RATIO_NGROUPS * bins->n) * sizeof *rr->stat);
 	rr->ncontacts = ratios_compute(&r.bonds, &s, &f, bins, rr->stat);
-	if (rr->ncontacts < 0)
-		fatal("%s: snapshot %zu: %s", rr->path, rr->snap, err_msg());
+	if (rr->ncontacts < 0) {
+		err_wrap("%s: snapshot %zu", rr->path, rr->snap);
+		fatal(NULL);
+	}
 	if (!(rr->sigma_ref > 0)) {
 		warn("%s: the axial stress at snapshot %zu is %g Pa, not positive: r is left empty "
 		     "(give --sigma-ref)",
