@@ -12,7 +12,10 @@ set xrange [0:90]
 set xtics 0,10,90
 set yrange [0:*]
 set key bottom right
+# The range Onate et al. 2015 found for cement, for comparison.
+set object 1 rectangle from 0,0.55 to 90,0.65 behind fillcolor rgb '#ececec' fillstyle solid noborder
 # Runs are shifted by a fraction of a degree so error bars do not overlap.
 shift(k) = 0.6 * (k - 0.5 * (nruns + 1))
 plot for [k=1:nruns] $all index k-1 using ($1 + shift(k)):2:3 with yerrorbars lt k lw 1 pt -1 notitle, \
-     for [k=1:nruns] $all index k-1 using ($1 + shift(k)):2 with linespoints lt k title label[k]
+     for [k=1:nruns] $all index k-1 using ($1 + shift(k)):2 with linespoints lt k title label[k], \
+     NaN with filledcurves fillcolor rgb '#ececec' title 'r = 0.55-0.65, cement (Oñate et al. 2015)' 
