@@ -172,7 +172,12 @@ static void plot(const char *dir, const run_ratios *runs, int nruns, const ratio
 		plot_begin(&d);
 		for (int g = 0; g < RATIO_NGROUPS; g++)
 			data_group(d.f, g, runs, nruns, bins);
-		fprintf(d.f, "nruns = %d\narray label[%d]\n", nruns, nruns);
+		size_t ndamaged = 0;
+		for (int q = 0; q < nruns; q++)
+			for (int k = 0; k < bins->n; k++)
+				ndamaged += runs[q].stat[RATIO_DAMAGED * bins->n + k].count;
+		fprintf(d.f, "nruns = %d\nndamaged = %zu\narray label[%d]\n", nruns, ndamaged,
+		        nruns);
 		for (int q = 0; q < nruns; q++) {
 			char text[512];
 			snprintf(text, sizeof text, "%s (σ@_a^{ref} = %.3g MPa)", runs[q].label,
