@@ -168,8 +168,7 @@ static void plot_curves(const char *dir, const char *path, const dem_run *r, con
 	if (energy_data(d.f, r)) {
 		draw(dir, "energy", "energy", &d);
 	} else {
-		fclose(d.f);
-		free(d.text);
+		plot_discard(&d);
 		printf("%s: no energy_* columns in the history: energy.png not drawn\n", path);
 	}
 }

@@ -19,6 +19,12 @@ void plot_begin(plot_data *d)
 		fatal("out of memory");
 }
 
+void plot_discard(plot_data *d)
+{
+	fclose(d->f);
+	free(d->text);
+}
+
 void plot_quote(FILE *f, const char *s)
 {
 	fputc('\'', f);

@@ -19,6 +19,8 @@ typedef struct {
 } plot_data;
 
 void plot_begin(plot_data *d);
+/* Drop a figure prepared in vain. */
+void plot_discard(plot_data *d);
 /* Draw script (a share/gnuplot name) with d's data into png, width x
  * height pixels. Frees d. Returns 0, or -1 with err_set(). */
 int plot_png(plot_data *d, const char *script, const char *png, int width, int height);
