@@ -9,6 +9,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include "tests/check.h"
 
@@ -49,7 +50,11 @@ static inline post_result harness_post(const char *fmt, ...)
 	vsnprintf(args, sizeof args, fmt, ap);
 	va_end(ap);
 	const char *bin = getenv("DEM_BIN");
-	const char *out = check_tmp("post_stdout.txt"), *err = check_tmp("post_stderr.txt");
+	/* per process: tests run side by side in the same scratch directory */
+	char out_name[64], err_name[64];
+	snprintf(out_name, sizeof out_name, "post_stdout.%d.txt", (int)getpid());
+	snprintf(err_name, sizeof err_name, "post_stderr.%d.txt", (int)getpid());
+	const char *out = check_tmp(out_name), *err = check_tmp(err_name);
 	snprintf(cmd, sizeof cmd, "%s/post %s >%s 2>%s", bin && bin[0] ? bin : "build/bin", args,
 	         out, err);
 	int rc = system(cmd);
