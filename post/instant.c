@@ -167,11 +167,21 @@ int instant_pick(const char *path, const dem_run *r, const instant *in, size_t *
 	}
 	char gap[160];
 	describe_gap(r, t, gap, sizeof gap);
-	snprintf(desc, n,
-	         "%s: %s; %ssnapshot %zu (step %lld, t = %.6g s, axial strain %.4g %%, axial "
-	         "stress %.4g MPa)",
-	         path, what, gap, k, (long long)r->snap_step[k], r->snap_t[k],
-	         100 * r->snap_strain[k], 1e-6 * r->snap_stress[k]);
+	int len = snprintf(desc, n,
+	                   "%s: %s; %ssnapshot %zu (step %lld, t = %.6g s, axial strain %.4g %%, "
+	                   "axial stress %.4g MPa)",
+	                   path, what, gap, k, (long long)r->snap_step[k], r->snap_t[k],
+	                   100 * r->snap_strain[k], 1e-6 * r->snap_stress[k]);
+	/* Say so when the snapshot's state is far from the instant's. */
+	series sr = get_series(r);
+	double want = at_time(&sr, sr.stress, t), peak = fabs(sr.stress[argmax(&sr, sr.stress)]);
+	double off = fabs(r->snap_stress[k] - want);
+	if (in->kind != AT_SNAPSHOT && off > 0.05 * fabs(want) && off > 1e-6 * peak && len > 0 &&
+	    (size_t)len < n)
+		snprintf(desc + len, n - (size_t)len,
+		         "; its axial stress is %.0f %% off the instant's %.4g MPa: ask solve for "
+		         "snapshots nearer to it",
+		         100 * off / fabs(want), 1e-6 * want);
 	*snap = k;
 	return 0;
 }

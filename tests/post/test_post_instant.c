@@ -40,7 +40,8 @@ int main(void)
 	snprintf(msg, sizeof msg,
 	         "%s: peak axial stress 32 MPa at t = 0.0024 s (axial strain 0.24 %%); between "
 	         "snapshots 2 (t = 0.002 s) and 3 (t = 0.003 s): using the nearest, snapshot 2 "
-	         "(step 200000, t = 0.002 s, axial strain 0.2 %%, axial stress 30 MPa)\n",
+	         "(step 200000, t = 0.002 s, axial strain 0.2 %%, axial stress 30 MPa); its axial "
+	         "stress is 6 %% off the instant's 32 MPa: ask solve for snapshots nearer to it\n",
 	         run);
 	expect_pick(run, "", msg);
 	snprintf(msg, sizeof msg,
@@ -57,6 +58,8 @@ int main(void)
 	         "300000",
 	         run);
 	expect_pick(run, "--time 0.003", msg);
+	snprintf(msg, sizeof msg, "axial stress 25 MPa)\n");
+	expect_pick(run, "--time 0.003", msg); /* at a snapshot: no note */
 	expect_pick(run, "--snapshot -1", "snapshot -1 requested; snapshot 4 (step 400000");
 	expect_pick(run, "--snapshot 1", "snapshot 1 requested; snapshot 1 (step 100000");
 	/* without a stress column the snapshots' own values are used */
