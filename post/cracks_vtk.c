@@ -35,14 +35,14 @@ static void write_discs(const char *path, const dem_run *r, double t)
 	size_t n = 0;
 	for (size_t k = 0; k < r->ncracks; k++)
 		n += r->cracks[k].t <= t;
-	double *x = xmalloc((n ? n : 1) * 3 * DISC_SIDES * sizeof *x);
-	int64_t *off = xmalloc((n + 1) * sizeof *off);
-	int64_t *conn = xmalloc((n ? n : 1) * DISC_SIDES * sizeof *conn);
-	int32_t *row = xmalloc((n ? n : 1) * sizeof *row),
-	        *mode = xmalloc((n ? n : 1) * sizeof *mode);
-	int32_t *pi = xmalloc((n ? n : 1) * sizeof *pi), *pj = xmalloc((n ? n : 1) * sizeof *pj);
-	int64_t *step = xmalloc((n ? n : 1) * sizeof *step);
-	double *v = xmalloc((n ? n : 1) * 9 * sizeof *v); /* t, strain, fn, fs, radius, normal[3] */
+	size_t na = n ? n : 1; /* allocation size: xmalloc(0) may give NULL */
+	double *x = xmalloc(na * 3 * DISC_SIDES * sizeof *x);
+	int64_t *off = xmalloc((n + 1) * sizeof *off),
+	        *conn = xmalloc(na * DISC_SIDES * sizeof *conn);
+	int32_t *row = xmalloc(na * sizeof *row), *mode = xmalloc(na * sizeof *mode);
+	int32_t *pi = xmalloc(na * sizeof *pi), *pj = xmalloc(na * sizeof *pj);
+	int64_t *step = xmalloc(na * sizeof *step);
+	double *v = xmalloc(na * 9 * sizeof *v); /* t, strain, fn, fs, radius, normal[3] */
 	double *ct = v, *ce = v + n, *cfn = v + 2 * n, *cfs = v + 3 * n, *crad = v + 4 * n;
 	double *cnorm = v + 5 * n;
 	size_t c = 0;
