@@ -5,9 +5,9 @@
 #include "lib/err.h"
 #include "solve/law.h"
 
-extern const law law_linear;
+extern const law law_linear, law_onate, law_jcfpm, law_exponential;
 
-static const law *const registry[] = {&law_linear, NULL};
+static const law *const registry[] = {&law_linear, &law_onate, &law_jcfpm, &law_exponential, NULL};
 
 const law *const *law_all(void) { return registry; }
 

@@ -1,0 +1,161 @@
+/* "exponential": the high-confinement law of Tran, Donzé & Marin 2011 as
+ * described in seeds/001 §3.3.3 (its Eq. 60-66; the formulas are those of
+ * ../shared/MODELS.md §4, the constants of 001 Table 5 are parameters).
+ *
+ * Bonds form between spheres with d <= gamma (r_i + r_j), gamma the
+ * interaction range; d is the zero-force reference length. With
+ * A = pi r_c^2 (r_c = min(r_i, r_j)):
+ *
+ *   K_n0 = A E0 / d,  K_s = K_n0 / (2 (1 + nu)),  C_n as Eq. 30   (local.h)
+ *
+ * Compression, compressive strain eps = -u_n / d:
+ *
+ *   F_n = K_n0 d eps                                     eps <= eps_max
+ *   F_n = K_n0 d eps_max + K_nl (d eps - d eps_max)      loading beyond
+ *   K_nl = K_n0 (gamma3 + gamma1 exp(gamma2 (eps - eps_max))), at most K_n0
+ *
+ * with unloading and reloading below the historical maximum at K_n0
+ * (local.h). Defaults gamma1 = 0.2, gamma2 = 16, gamma3 = 0.275,
+ * eps_max = 0.002 (001 Table 5; Kratos' DEM_ExponentialHC hard-codes
+ * them). Once K_nl reaches K_n0 the force is back on the line K_n0 d eps.
+ *
+ * Tension as in the local model of Oñate et al. 2015: strength
+ * sigma_t A (001 Eq. 64), linear softening with delta_n (000 Eq. 46-49a).
+ *
+ * Shear: modified Mohr-Coulomb (001 Fig. 22, Eq. 65-66; shear.h) on an
+ * elastic shear displacement t, F_s = K_s t: a bond holds up to
+ * c A + F_n tan(phi_i), F_n compressive positive, and ruptures beyond it;
+ * broken bonds (in either mode) are purely frictional, F_n tan(phi_c).
+ *
+ * History as in local.h: h[0] d_n, h[1] d_s (0, or 1 once broken in
+ * shear), h[2] historical maximum compressive strain, h[3] last u_n.
+ */
+#include <stdlib.h>
+
+#include "solve/laws/local.h"
+#include "solve/laws/shear.h"
+
+typedef struct {
+	local_params q;
+	double range;        /* gamma, interaction range */
+	double cohesion;     /* Pa */
+	double tan_i, tan_c; /* bonded and contact friction */
+	double g1, g2, g3;   /* gamma1..3 */
+	double eps_max;      /* elastic limit strain */
+	double ks_over_kn;   /* Eq. 36 */
+} exp_params;
+
+static const double DEG = LOCAL_PI / 180;
+
+static law_params *exp_parse(cfg *m)
+{
+	exp_params *p = calloc(1, sizeof *p);
+	double phi_i, phi_c;
+	if (!p || local_parse(m, &p->q) ||
+	    cfg_number(m, "interaction_range", &p->range, "", 1, INFINITY) ||
+	    cfg_number(m, "cohesion", &p->cohesion, "Pa", 0, INFINITY) ||
+	    cfg_number(m, "friction_angle_deg", &phi_i, "deg", 0, 89) ||
+	    cfg_number(m, "contact_friction_angle_deg", &phi_c, "deg", 0, 89) ||
+	    cfg_number_or(m, "gamma1", &p->g1, 0.2, "", 0, INFINITY) ||
+	    cfg_number_or(m, "gamma2", &p->g2, 16, "", 0, INFINITY) ||
+	    cfg_number_or(m, "gamma3", &p->g3, 0.275, "", 0, INFINITY) ||
+	    cfg_number_or(m, "eps_max", &p->eps_max, 0.002, "", 0, 1)) {
+		free(p);
+		return NULL;
+	}
+	p->tan_i = tan(phi_i * DEG);
+	p->tan_c = tan(phi_c * DEG);
+	p->ks_over_kn = 1 / (2 * (1 + p->q.nu));
+	return (law_params *)p;
+}
+
+static void exp_free(law_params *p) { free(p); }
+
+static double exp_range(const law_params *lp) { return ((const exp_params *)lp)->range; }
+
+static void exp_setup(law_params *p, const law_packing *pk) { (void)p, (void)pk; }
+
+/* Compressive stress at compressive strain c on the loading curve, and the
+ * permanent strain left on unloading from it. */
+static double exp_curve(const void *law, double c, double *cp)
+{
+	const exp_params *p = law;
+	if (c <= p->eps_max) {
+		*cp = 0;
+		return p->q.E0 * c;
+	}
+	double r = fmin(1, p->g3 + p->g1 * exp(p->g2 * (c - p->eps_max)));
+	double s = p->q.E0 * p->eps_max + r * p->q.E0 * (c - p->eps_max);
+	*cp = c - s / p->q.E0;
+	return s;
+}
+
+static double area(const law_pair *pair)
+{
+	double rc = fmin(pair->ri, pair->rj);
+	return LOCAL_PI * rc * rc;
+}
+
+static void exp_constants(const law_params *lp, const law_pair *pair, law_const *out)
+{
+	const exp_params *p = (const exp_params *)lp;
+	out->area = area(pair);
+	out->kn = out->area * p->q.E0 / pair->d0;
+	out->ks = out->kn * p->ks_over_kn;
+	out->cn = local_cn(&p->q, pair, out->area, out->kn);
+	out->rc = fmin(pair->ri, pair->rj);
+}
+
+static inline void exp_force(const law_params *lp, const law_pair *pair, bond *b, const law_kin *k,
+                             law_out *out)
+{
+	const exp_params *p = (const exp_params *)lp;
+	double A = area(pair), kn = A * p->q.E0 / pair->d0, ks = kn * p->ks_over_kn;
+	int intact = b->state < BOND_BROKEN_TENSION, broke = 0;
+	double open;
+	out->failed = 0;
+	b->h[3] = k->un;
+	double fn =
+	    A * local_normal(&p->q, exp_curve, p, k->un / pair->d0, b->h, !intact, &open, &broke);
+	if (broke)
+		shear_break(b, out, BOND_BROKEN_TENSION, CRACK_TENSION);
+	else if (shear_mohr_coulomb(b->t, k->dus, ks, -fn, p->cohesion * A, p->tan_i, p->tan_c,
+	                            intact)) {
+		b->h[1] = 1;
+		b->state = BOND_BROKEN_SHEAR;
+		out->failed = CRACK_SHEAR;
+		fn = fmin(fn, 0);
+	} else if (intact)
+		b->state = b->h[0] > 0 ? BOND_DAMAGED : BOND_INTACT;
+	v3_scale(out->fs, b->t, ks);
+	if (b->state < BOND_BROKEN_TENSION || fn < 0)
+		fn += local_cn(&p->q, pair, A, kn) * k->vn;
+	out->fn = fn;
+}
+
+LAW_BATCH(exp, exp_force)
+
+static double exp_energy(const law_params *lp, const law_pair *pair, const bond *b)
+{
+	const exp_params *p = (const exp_params *)lp;
+	int intact = b->state < BOND_BROKEN_TENSION;
+	double A = area(pair), ks = A * p->q.E0 / pair->d0 * p->ks_over_kn;
+	return local_normal_energy(&p->q, exp_curve, p, A, pair->d0, b->h, !intact) +
+	       0.5 * ks * v3_dot(b->t, b->t);
+}
+
+const law law_exponential = {
+    .name = "exponential",
+    .summary = "Tran, Donzé & Marin 2011 high-confinement law: exponential compaction "
+               "stiffening, modified Mohr-Coulomb",
+    .parse = exp_parse,
+    .free = exp_free,
+    .bond_range = exp_range,
+    .setup = exp_setup,
+    .constants = exp_constants,
+    .init = shear_new_bond,
+    .force = exp_force,
+    .force_batch = exp_batch,
+    .energy = exp_energy,
+    .damage = local_damage,
+};

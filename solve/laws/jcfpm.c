@@ -1,0 +1,172 @@
+/* "jcfpm": the Jointed Cohesive Frictional Particle Model of Scholtès &
+ * Donzé for bulk bonds, as Yade's Law2_ScGeom_JCFpmPhys_
+ * JointedCohesiveFrictionalPM and Ip2_JCFpmMat_JCFpmMat_JCFpmPhys compute it
+ * (seeds/002 ch. 3-4; equation numbers are 002's). One material, so
+ * E1 = E2 = E.
+ *
+ * Bonds form between spheres with d <= gamma (r_i + r_j), gamma the
+ * interaction range coefficient (Sect. 4.2); d is the equilibrium distance.
+ *
+ *   k_n = 2 E R1 E R2 / (E R1 + E R2)          (Eq. 4.4)
+ *   k_s = (k_s/k_n) k_n                        (Eq. 4.5; Table 4.5: 0.15, Yade's "poisson")
+ *   A_int = pi min(R1, R2)^2                   (Eq. 3.10)
+ *   F_n = k_n u_n in tension and compression   (Eq. 3.8)
+ *
+ * Tension: brittle rupture (softening factor zeta = 1, Sect. 3.2.2) once
+ * u_n > sigma_t A_int / k_n (Eq. 3.10). Shear: incremental with k_s
+ * (Eq. 3.12), Mohr-Coulomb bond strength c A_int + F_n tan(phi_b)
+ * (Eq. 3.13), rupture beyond it, then friction F_n tan(phi_c) (Eq. 3.14;
+ * phi_b = phi_c in Yade, Eq. 3.15, unless the material gives both); see
+ * shear.h.
+ *
+ * Broken bonds are frictional contacts. Yade erases an interaction whose
+ * bond broke in tension, or a non-cohesive one whose spheres separate, and
+ * detects a new one when they touch again, taking the distance then as its
+ * equilibrium distance. Here the reference distance moves instead: once a
+ * broken pair is apart it becomes min(distance now, r_i + r_j), so the
+ * contact acts again from the moment the spheres touch.
+ *
+ * No contact damping (Yade uses its global damping only): C_n = 0.
+ *
+ * History: h[0] the shift of the reference distance from d (m), h[1] the
+ * last u_n (m) for energy(), h[2..3] unused; t the elastic shear
+ * displacement, F_s = k_s t. A JCFPM bond is intact or broken, never
+ * damaged.
+ */
+#include <stdlib.h>
+
+#include "solve/laws/shear.h"
+
+typedef struct {
+	double E;          /* Pa */
+	double ks_over_kn; /* Table 4.5 */
+	double sigma_t;    /* Pa, tensile strength */
+	double cohesion;   /* Pa */
+	double tan_b;      /* bond friction, Eq. 3.13 */
+	double tan_c;      /* contact (residual) friction, Eq. 3.14 */
+	double range;      /* gamma */
+} jcfpm_params;
+
+static const double PI = 3.14159265358979323846, DEG = 3.14159265358979323846 / 180;
+
+static law_params *jcfpm_parse(cfg *m)
+{
+	jcfpm_params *p = calloc(1, sizeof *p);
+	double phi_c, phi_b;
+	if (!p || cfg_number(m, "E", &p->E, "Pa", CFG_POS, INFINITY) ||
+	    cfg_number(m, "ks_ratio", &p->ks_over_kn, "", 0, INFINITY) ||
+	    cfg_number(m, "tensile_strength", &p->sigma_t, "Pa", 0, INFINITY) ||
+	    cfg_number(m, "cohesion", &p->cohesion, "Pa", 0, INFINITY) ||
+	    cfg_number(m, "friction_angle_deg", &phi_c, "deg", 0, 89) ||
+	    cfg_number_or(m, "bond_friction_angle_deg", &phi_b, phi_c, "deg", 0, 89) ||
+	    cfg_number(m, "interaction_range", &p->range, "", 1, INFINITY)) {
+		free(p);
+		return NULL;
+	}
+	p->tan_b = tan(phi_b * DEG);
+	p->tan_c = tan(phi_c * DEG);
+	return (law_params *)p;
+}
+
+static void jcfpm_free(law_params *p) { free(p); }
+
+static double jcfpm_range(const law_params *lp) { return ((const jcfpm_params *)lp)->range; }
+
+static void jcfpm_setup(law_params *p, const law_packing *pk) { (void)p, (void)pk; }
+
+static double stiffness(const jcfpm_params *p, const law_pair *pair)
+{
+	double a = p->E * pair->ri, b = p->E * pair->rj;
+	return 2 * a * b / (a + b);
+}
+
+static double area(const law_pair *pair)
+{
+	double r = fmin(pair->ri, pair->rj);
+	return PI * r * r;
+}
+
+static void jcfpm_constants(const law_params *lp, const law_pair *pair, law_const *out)
+{
+	const jcfpm_params *p = (const jcfpm_params *)lp;
+	out->kn = stiffness(p, pair);
+	out->ks = p->ks_over_kn * out->kn;
+	out->cn = 0;
+	out->area = area(pair);
+	out->rc = fmin(pair->ri, pair->rj);
+}
+
+/* A broken pair apart: the interaction is gone until the spheres touch. */
+static void apart(const law_pair *pair, bond *b, double un, law_out *out)
+{
+	b->h[0] = fmin(un, pair->ri + pair->rj - pair->d0);
+	memset(b->t, 0, sizeof b->t);
+	out->fn = 0;
+	memset(out->fs, 0, sizeof out->fs);
+}
+
+static inline void jcfpm_force(const law_params *lp, const law_pair *pair, bond *b,
+                               const law_kin *k, law_out *out)
+{
+	const jcfpm_params *p = (const jcfpm_params *)lp;
+	double kn = stiffness(p, pair), ks = p->ks_over_kn * kn, A = area(pair);
+	double u = k->un - b->h[0];
+	int intact = b->state == BOND_INTACT;
+	out->failed = 0;
+	b->h[1] = k->un;
+	if (intact && u > p->sigma_t * A / kn) {
+		shear_break(b, out, BOND_BROKEN_TENSION, CRACK_TENSION);
+		apart(pair, b, k->un, out);
+		return;
+	}
+	if (!intact && u > 0) {
+		apart(pair, b, k->un, out);
+		return;
+	}
+	double fn = kn * u;
+	if (shear_mohr_coulomb(b->t, k->dus, ks, -fn, p->cohesion * A, p->tan_b, p->tan_c,
+	                       intact)) {
+		b->state = BOND_BROKEN_SHEAR;
+		out->failed = CRACK_SHEAR;
+		if (fn > 0) { /* in tension: erased */
+			apart(pair, b, k->un, out);
+			return;
+		}
+	}
+	out->fn = fn;
+	v3_scale(out->fs, b->t, ks);
+}
+
+LAW_BATCH(jcfpm, jcfpm_force)
+
+static double jcfpm_energy(const law_params *lp, const law_pair *pair, const bond *b)
+{
+	const jcfpm_params *p = (const jcfpm_params *)lp;
+	double kn = stiffness(p, pair), u = b->h[1] - b->h[0];
+	if (b->state != BOND_INTACT && u > 0)
+		u = 0;
+	return 0.5 * kn * u * u + 0.5 * p->ks_over_kn * kn * v3_dot(b->t, b->t);
+}
+
+static void jcfpm_damage(const law_params *p, const bond *b, double *dn, double *ds)
+{
+	(void)p;
+	*dn = b->state == BOND_BROKEN_TENSION;
+	*ds = b->state == BOND_BROKEN_SHEAR;
+}
+
+const law law_jcfpm = {
+    .name = "jcfpm",
+    .summary = "JCFPM (Scholtès & Donzé; Yade's JointedCohesiveFrictionalPM) for bulk "
+               "bonds: brittle tension, Mohr-Coulomb shear",
+    .parse = jcfpm_parse,
+    .free = jcfpm_free,
+    .bond_range = jcfpm_range,
+    .setup = jcfpm_setup,
+    .constants = jcfpm_constants,
+    .init = shear_new_bond,
+    .force = jcfpm_force,
+    .force_batch = jcfpm_batch,
+    .energy = jcfpm_energy,
+    .damage = jcfpm_damage,
+};

@@ -1,0 +1,150 @@
+/* What the exponential law shares with the local model of Oñate et al.
+ * 2015 (seeds/000): the elastic constants and contact damping, tension by
+ * elasto-damage with linear softening, and compression loading along a
+ * hardening curve with unloading and reloading at the initial stiffness.
+ *
+ * Elastic constants (Eq. 21, 29-30, 36), with A the effective area:
+ *
+ *     K_n = A E0 / d          K_s = K_n / (2 (1 + nu))
+ *     C_n = 2 xi A / (r_c d) sqrt(m_ij K_n)        (= Eq. 30 for A = alpha pi r_c^2;
+ *                                                    Eq. 27 carries xi / r_c)
+ *
+ * Linear softening (Eq. 46-49), for a displacement measure x with elastic
+ * limit x_l and x_f = (1 + delta) x_l:
+ *
+ *     d = 0 for x <= x_l,  (x / x_l - 1) / delta on the branch,  1 for x >= x_f
+ *     d = max(d, history): damage never decreases (no healing)
+ *     F = K x (1 - d) / (1 + delta d)
+ *
+ * The last line is Eq. 46 written with the secant stiffness of the point
+ * reached: on the branch x = x_l (1 + delta d), so F = (1 - d) K x_l as in
+ * Eq. 46; below it the bond unloads and reloads along that secant towards
+ * the origin (Fig. 8), so damage alone fixes the force and the area under
+ * the branch, 1/2 F_l x_f, is the work of a failure (Sect. 7.2).
+ *
+ * Normal direction, in strains eps = u_n / d (opening positive) and
+ * contact stresses (F = A sigma, Eq. 20). Compression c = -eps follows a
+ * loading curve sigma_c(c) (Fig. 10 for onate; the exponential curve of
+ * 001 for exponential) while c exceeds its historical maximum c_max
+ * (Eq. 52a); below it the bond unloads and reloads with E0, the initial
+ * stiffness K_n0 (Eq. 52b), about the permanent indentation
+ *
+ *     c_p = c_max - sigma_c(c_max) / E0.
+ *
+ * Opening beyond c_p is tension of the bond, measured from c_p: e = c_p - c,
+ * sigma = E0 e (1 - d_n) / (1 + delta_n d_n), d_n from x = e with the
+ * limit x_l = sigma_t / E0 (u_n^l / d of Eq. 49a). Tensile damage leaves
+ * compression untouched; a broken bond carries no tension.
+ *
+ * History layout shared by both laws (bond.h):
+ *   h[0]  d_n, tension damage in [0, 1]
+ *   h[1]  d_s, shear damage in [0, 1]
+ *   h[2]  c_max, the largest compressive strain reached (>= 0)
+ *   h[3]  u_n of the last force() call (m), so energy() can be evaluated
+ * c_p is recomputed from c_max, so the plastic state costs one slot.
+ */
+#ifndef DEM_LAWS_LOCAL_H
+#define DEM_LAWS_LOCAL_H
+
+#include <math.h>
+
+#include "lib/cfg.h"
+#include "lib/runfile.h"
+#include "solve/law.h"
+
+#define LOCAL_PI 3.14159265358979323846
+
+/* The keys both laws read (see share/doc/materials.md). */
+typedef struct {
+	double E0;      /* Pa, Young modulus at the onset of loading */
+	double nu;      /* Poisson ratio, for K_s (Eq. 36) */
+	double sigma_t; /* Pa, tensile strength sigma_t^f (Eq. 42) */
+	double delta_n; /* (u_n^f - u_n^l) / u_n^l (Eq. 47) */
+	double xi;      /* fraction of critical damping (Eq. 27) */
+	double eps_t;   /* sigma_t / E0: tensile limit strain */
+} local_params;
+
+int local_parse(cfg *m, local_params *q);
+
+/* Loading curve: compressive stress at compressive strain c, and the
+ * permanent strain c - sigma / E0 (exactly 0 on the elastic part). */
+typedef double (*local_curve)(const void *law, double c, double *c_p);
+
+/* Damage of Eq. 49 for the measure x with elastic limit xl. */
+static inline double local_damage_at(double x, double xl, double delta)
+{
+	if (x <= xl)
+		return 0;
+	if (delta <= 0 || x >= (1 + delta) * xl)
+		return 1;
+	return (x / xl - 1) / delta;
+}
+
+/* Secant stiffness of the damaged branch over the undamaged one (Eq. 46). */
+static inline double local_secant(double d, double delta) { return (1 - d) / (1 + delta * d); }
+
+/* Normal stress (tension positive) at strain eps, updating h[0] and h[2]
+ * (see the layout above). *open is the opening strain e from the permanent
+ * indentation (negative in compression). *broke is set when the tension
+ * damage reaches 1 in this call; a broken bond (broken != 0) carries no
+ * tension. */
+static inline double local_normal(const local_params *q, local_curve curve, const void *law,
+                                  double eps, double h[LAW_NHIST], int broken, double *open,
+                                  int *broke)
+{
+	double c = -eps, cp;
+	if (c > h[2]) { /* loading past the historical maximum, Eq. 52a */
+		h[2] = c;
+		double s = curve(law, c, &cp);
+		*open = cp - c;
+		return -s;
+	}
+	curve(law, h[2], &cp);
+	double e = cp - c;
+	*open = e;
+	if (e <= 0) /* unloading or reloading with K_n0, Eq. 52b */
+		return q->E0 * e;
+	if (broken)
+		return 0;
+	double d = fmax(h[0], local_damage_at(e, q->eps_t, q->delta_n));
+	if (d >= 1) {
+		h[0] = 1;
+		*broke = 1;
+		return 0;
+	}
+	h[0] = d;
+	return q->E0 * e * local_secant(d, q->delta_n);
+}
+
+/* Elastic energy of the normal spring in the state stored in h (changing
+ * nothing): 1/2 F^2 / K with the current stiffness, K_n0 in compression and
+ * the damaged secant in tension, i.e. 1/2 A d sigma^2 / E. */
+static inline double local_normal_energy(const local_params *q, local_curve curve, const void *law,
+                                         double area, double d0, const double h[LAW_NHIST],
+                                         int broken)
+{
+	double copy[LAW_NHIST] = {h[0], h[1], h[2], h[3]}, open;
+	int broke = 0;
+	double s = local_normal(q, curve, law, h[3] / d0, copy, broken, &open, &broke);
+	if (s == 0)
+		return 0;
+	double e = q->E0 * (s < 0 ? 1 : local_secant(h[0], q->delta_n));
+	return 0.5 * area * d0 * s * s / e;
+}
+
+/* law.damage of both laws. */
+static inline void local_damage(const law_params *p, const bond *b, double *dn, double *ds)
+{
+	(void)p;
+	*dn = b->h[0];
+	*ds = b->h[1];
+}
+
+/* Contact damping coefficient (Eq. 30) for effective area A. */
+static inline double local_cn(const local_params *q, const law_pair *pair, double area, double kn)
+{
+	double rc = fmin(pair->ri, pair->rj), mij = pair->mi * pair->mj / (pair->mi + pair->mj);
+	return 2 * q->xi * area / (rc * pair->d0) * sqrt(mij * kn);
+}
+
+#endif

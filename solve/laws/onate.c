@@ -1,0 +1,221 @@
+/* "onate": the local constitutive model of Oñate et al. 2015 (seeds/000;
+ * equation numbers are the paper's).
+ *
+ * Bonds form between spheres with d <= (1 + beta)(r_i + r_j) (Eq. 16),
+ * beta = 0.10 (Sect. 4.2); d, the distance at bonding, is the zero-force
+ * reference length. With r_c = min(r_i, r_j):
+ *
+ *   A   = alpha pi r_c^2,  alpha = 40 P / N_c or given   (Eq. 21-22)
+ *   K_n = A E0 / d,  K_s = K_n / (2 (1 + nu)),  C_n (Eq. 30)   (local.h)
+ *   F_n = K_n u_n + C_n du_n/dt                              (Eq. 29)
+ *
+ * Tension: elasto-damage with linear softening (Eq. 41-42, 46-49a),
+ * strength sigma_t A, u_n^l = sigma_t A / K_n, u_n^f = (1 + delta_n) u_n^l;
+ * at d_n = 1 the bond breaks in tension (local.h).
+ *
+ * Shear, on the accumulated shear displacement u_s = t (Eq. 34-38), same
+ * softening (Eq. 46, 49b) with the strength
+ *
+ *   F_s = tau^f A + mu1 |F_nc|                 uncoupled criterion (Eq. 42, Fig. 7a)
+ *   F_s = tau^f A (1 - e / u_n^l) in tension   coupled criterion (Fig. 7b), option
+ *
+ * so u_s^l = F_s / K_s moves with the normal force; F_nc is the elastic
+ * compressive force. In the coupled criterion the shear strength falls
+ * linearly with the opening e (from the permanent indentation) to zero at
+ * the tensile limit: in elastic states F_nt / (sigma_t A) + F_s / (tau^f A)
+ * = 1, the line of Fig. 7b from (sigma_t A, 0) to (0, tau^f A); compression
+ * is as in the uncoupled criterion. At d_s = 1 the bond breaks in shear.
+ *
+ * Compression: elasto-plastic (Eq. 52-53, Fig. 10). On the contact stress
+ * sigma = F_nc / A and strain u_n / d the loading curve has slope E0 up to
+ * LCS1, then E0/YRC1 up to LCS2, E0/YRC2 up to LCS3, E0/YRC3 beyond;
+ * unloading and reloading below the historical maximum go with K_n0 and
+ * leave a permanent indentation (local.h).
+ *
+ * After failure in either mode: no tension, compression as before (the
+ * reference length is kept, as Kratos' DEM_Dempack_CL keeps the initial
+ * distance), and Coulomb friction |F_s| <= mu2 |F_nc| (Eq. 45) on an
+ * elastic shear displacement that starts from zero at the failure, where
+ * the softening branch ends at zero force.
+ *
+ * History: h[0] d_n, h[1] d_s, h[2] historical maximum compressive strain,
+ * h[3] last u_n (local.h); t the accumulated shear displacement u_s while
+ * bonded, the elastic shear displacement of the frictional contact after.
+ * A bond is BOND_DAMAGED once d_n or d_s > 0.
+ */
+#include <stdlib.h>
+
+#include "solve/laws/local.h"
+#include "solve/laws/shear.h"
+
+typedef struct {
+	local_params q;
+	double alpha;      /* Eq. 21-22 */
+	int alpha_given;   /* else alpha = 40 P / N_c at setup */
+	double beta;       /* interaction range, Eq. 16 */
+	double tau;        /* Pa, shear strength tau^f */
+	double mu1, mu2;   /* Eq. 42, 45 */
+	double delta_s;    /* Eq. 47 */
+	int coupled;       /* Fig. 7b */
+	double lcs[3];     /* Pa, limit compressive stresses */
+	double slope[3];   /* Pa, E0 / YRC_k */
+	double eps[3];     /* compressive strain at LCS_k on the curve */
+	double ks_over_kn; /* 1 / (2 (1 + nu)), Eq. 36 */
+} onate_params;
+
+static law_params *onate_parse(cfg *m)
+{
+	onate_params *p = calloc(1, sizeof *p);
+	static const char *const criteria[] = {"uncoupled", "coupled", NULL};
+	double yrc[3];
+	if (!p || local_parse(m, &p->q) ||
+	    cfg_number(m, "shear_strength", &p->tau, "Pa", 0, INFINITY) ||
+	    cfg_number(m, "mu1", &p->mu1, "", 0, INFINITY) ||
+	    cfg_number(m, "mu2", &p->mu2, "", 0, INFINITY) ||
+	    cfg_number(m, "delta_s", &p->delta_s, "", 0, INFINITY) ||
+	    cfg_number_or(m, "beta", &p->beta, 0.10, "", 0, 1) ||
+	    cfg_choice_or(m, "criterion", &p->coupled, criteria, 0))
+		goto fail;
+	p->alpha_given = cfg_has(m, "alpha");
+	if (cfg_number_or(m, "alpha", &p->alpha, 1.0, "", CFG_POS, INFINITY))
+		goto fail;
+	for (int k = 0; k < 3; k++) {
+		char lcs[8], prev[8];
+		snprintf(lcs, sizeof lcs, "LCS%d", k + 1);
+		snprintf(prev, sizeof prev, "LCS%d", k);
+		if (cfg_number(m, lcs, &p->lcs[k], "Pa", CFG_POS, INFINITY))
+			goto fail;
+		if (k && p->lcs[k] <= p->lcs[k - 1]) {
+			cfg_error(m, lcs,
+			          "value %.17g: expected a number greater than %s = %.17g (Pa)",
+			          p->lcs[k], prev, p->lcs[k - 1]);
+			goto fail;
+		}
+	}
+	/* The YRC after the LCS so messages come in the order of the table. */
+	for (int k = 0; k < 3; k++) {
+		char yrck[8];
+		snprintf(yrck, sizeof yrck, "YRC%d", k + 1);
+		if (cfg_number(m, yrck, &yrc[k], "", 1, INFINITY))
+			goto fail;
+		p->slope[k] = p->q.E0 / yrc[k];
+	}
+	p->eps[0] = p->lcs[0] / p->q.E0;
+	for (int k = 1; k < 3; k++)
+		p->eps[k] = p->eps[k - 1] + (p->lcs[k] - p->lcs[k - 1]) / p->slope[k - 1];
+	p->ks_over_kn = 1 / (2 * (1 + p->q.nu));
+	return (law_params *)p;
+fail:
+	free(p);
+	return NULL;
+}
+
+static void onate_free(law_params *p) { free(p); }
+
+static double onate_range(const law_params *lp) { return 1 + ((const onate_params *)lp)->beta; }
+
+static void onate_setup(law_params *lp, const law_packing *pk)
+{
+	onate_params *p = (onate_params *)lp;
+	/* Eq. 22; with no bonds at all alpha keeps the quasi-optimal value 1. */
+	if (!p->alpha_given && pk->coordination > 0)
+		p->alpha = 40 * pk->porosity / pk->coordination;
+}
+
+/* Fig. 10: compressive stress at compressive strain c, and the permanent
+ * strain the bond keeps when unloaded from there (Eq. 52b). */
+static double onate_curve(const void *law, double c, double *cp)
+{
+	const onate_params *p = law;
+	int k = (c > p->eps[0]) + (c > p->eps[1]) + (c > p->eps[2]);
+	if (k == 0) {
+		*cp = 0;
+		return p->q.E0 * c;
+	}
+	double s = p->lcs[k - 1] + p->slope[k - 1] * (c - p->eps[k - 1]);
+	*cp = c - s / p->q.E0;
+	return s;
+}
+
+static double area(const onate_params *p, const law_pair *pair)
+{
+	double rc = fmin(pair->ri, pair->rj);
+	return p->alpha * LOCAL_PI * rc * rc;
+}
+
+static void onate_constants(const law_params *lp, const law_pair *pair, law_const *out)
+{
+	const onate_params *p = (const onate_params *)lp;
+	out->area = area(p, pair);
+	out->kn = out->area * p->q.E0 / pair->d0;
+	out->ks = out->kn * p->ks_over_kn;
+	out->cn = local_cn(&p->q, pair, out->area, out->kn);
+	out->rc = fmin(pair->ri, pair->rj);
+}
+
+static inline void onate_force(const law_params *lp, const law_pair *pair, bond *b,
+                               const law_kin *k, law_out *out)
+{
+	const onate_params *p = (const onate_params *)lp;
+	double A = area(p, pair), kn = A * p->q.E0 / pair->d0, ks = kn * p->ks_over_kn;
+	int intact = b->state < BOND_BROKEN_TENSION, broke = 0;
+	double open;
+	out->failed = 0;
+	b->h[3] = k->un;
+	double fn =
+	    A * local_normal(&p->q, onate_curve, p, k->un / pair->d0, b->h, !intact, &open, &broke);
+	double fnc = fn < 0 ? -fn : 0;
+	if (broke)
+		shear_break(b, out, BOND_BROKEN_TENSION, CRACK_TENSION);
+	else if (intact) {
+		v3_add(b->t, b->t, k->dus);
+		double strength = p->tau * A + p->mu1 * fnc;
+		if (p->coupled && open > 0)
+			strength = p->tau * A * (1 - fmin(1, open / p->q.eps_t));
+		double d = fmax(b->h[1], local_damage_at(v3_norm(b->t), strength / ks, p->delta_s));
+		if (d >= 1) {
+			b->h[1] = 1;
+			shear_break(b, out, BOND_BROKEN_SHEAR, CRACK_SHEAR);
+			fn = fmin(fn, 0);
+		} else {
+			b->h[1] = d;
+			b->state = b->h[0] > 0 || d > 0 ? BOND_DAMAGED : BOND_INTACT;
+		}
+	} else {
+		v3_add(b->t, b->t, k->dus);
+		shear_slip(b->t, ks, p->mu2 * fnc);
+	}
+	double ss = b->state < BOND_BROKEN_TENSION ? local_secant(b->h[1], p->delta_s) : 1;
+	v3_scale(out->fs, b->t, ks * ss);
+	if (b->state < BOND_BROKEN_TENSION || fnc > 0)
+		fn += local_cn(&p->q, pair, A, kn) * k->vn;
+	out->fn = fn;
+}
+
+LAW_BATCH(onate, onate_force)
+
+static double onate_energy(const law_params *lp, const law_pair *pair, const bond *b)
+{
+	const onate_params *p = (const onate_params *)lp;
+	int intact = b->state < BOND_BROKEN_TENSION;
+	double A = area(p, pair), kn = A * p->q.E0 / pair->d0, ks = kn * p->ks_over_kn;
+	double ss = intact ? local_secant(b->h[1], p->delta_s) : 1;
+	return local_normal_energy(&p->q, onate_curve, p, A, pair->d0, b->h, !intact) +
+	       0.5 * ks * ss * v3_dot(b->t, b->t);
+}
+
+const law law_onate = {
+    .name = "onate",
+    .summary = "Oñate et al. 2015 local model: elasto-damage tension and shear, "
+               "elasto-plastic compression",
+    .parse = onate_parse,
+    .free = onate_free,
+    .bond_range = onate_range,
+    .setup = onate_setup,
+    .constants = onate_constants,
+    .init = shear_new_bond,
+    .force = onate_force,
+    .force_batch = onate_batch,
+    .energy = onate_energy,
+    .damage = local_damage,
+};

@@ -1,0 +1,113 @@
+/* Driving one bond of a law by prescribed relative displacements, as the
+ * engine does, without dynamics: the tests of the laws are written on top
+ * of these few helpers. */
+#ifndef DEM_TEST_LAWS_DRIVE_H
+#define DEM_TEST_LAWS_DRIVE_H
+
+#include <stdint.h>
+#include <string.h>
+
+#include "lib/cfg.h"
+#include "lib/err.h"
+#include "lib/runfile.h"
+#include "solve/law.h"
+#include "tests/check.h"
+
+extern const law law_onate, law_jcfpm, law_exponential;
+
+#define PI 3.14159265358979323846
+
+/* The laws of this library by name (the engine's law_find adds linear). */
+static inline const law *drive_find(const char *name)
+{
+	const law *all[] = {&law_onate, &law_jcfpm, &law_exponential};
+	for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
+		if (strcmp(all[k]->name, name) == 0)
+			return all[k];
+	return NULL;
+}
+
+/* Parse a material given as JSON text the way the engine reads a material
+ * file: its own keys, the law's keys, then no key may be left unused.
+ * NULL (and err_msg) on error. */
+static inline law_params *drive_parse(const law *L, const char *json, const char *source)
+{
+	cfg *c = cfg_parse(json, source);
+	if (!c)
+		return NULL;
+	const char *name, *lawname;
+	double density;
+	law_params *p = NULL;
+	if (cfg_string_or(c, "name", &name, "") == 0 &&
+	    cfg_string_or(c, "law", &lawname, "") == 0 &&
+	    cfg_number_or(c, "density", &density, 2500, "kg/m^3", CFG_POS, INFINITY) == 0)
+		p = L->parse(c);
+	if (p && cfg_check_unused(c)) {
+		L->free(p);
+		p = NULL;
+	}
+	cfg_free(c);
+	return p;
+}
+
+/* The error message of a material that must not parse. */
+static inline const char *drive_error(const law *L, const char *json, const char *source)
+{
+	law_params *p = drive_parse(L, json, source);
+	if (p) {
+		L->free(p);
+		return "(parsed without error)";
+	}
+	return err_msg();
+}
+
+/* A new bond between the two spheres of pair. */
+static inline bond drive_bond(const law *L, const law_params *p, const law_pair *pair)
+{
+	bond b;
+	memset(&b, 0, sizeof b);
+	b.i = 0;
+	b.j = 1;
+	b.d0 = pair->d0;
+	L->init(p, pair, &b);
+	return b;
+}
+
+/* One call of force() with normal displacement un (opening positive), normal
+ * velocity vn and tangential increment (dx, dy, dz). */
+static inline law_out drive_step(const law *L, const law_params *p, const law_pair *pair, bond *b,
+                                 double un, double vn, double dx, double dy, double dz)
+{
+	law_kin k = {.un = un, .vn = vn, .dus = {dx, dy, dz}};
+	law_out o;
+	memset(&o, 0x55, sizeof o);
+	L->force(p, pair, b, &k, &o);
+	return o;
+}
+
+/* Normal path from un0 to un1 in n equal steps with no shear. Returns the
+ * work done on the bond, the integral of fn dun (tension and opening both
+ * positive) by the trapezoidal rule: exact for a piecewise-linear law when
+ * every kink falls on a step. */
+static inline double drive_normal(const law *L, const law_params *p, const law_pair *pair, bond *b,
+                                  double un0, double un1, int n, double *fn_last)
+{
+	law_out o = drive_step(L, p, pair, b, un0, 0, 0, 0, 0);
+	double w = 0, f0 = o.fn;
+	for (int s = 1; s <= n; s++) {
+		double u = un0 + (un1 - un0) * s / n;
+		o = drive_step(L, p, pair, b, u, 0, 0, 0, 0);
+		w += 0.5 * (f0 + o.fn) * ((un1 - un0) / n);
+		f0 = o.fn;
+	}
+	if (fn_last)
+		*fn_last = o.fn;
+	return w;
+}
+
+static inline double drive_fs(const law_out *o)
+{
+	return sqrt(o->fs[0] * o->fs[0] + o->fs[1] * o->fs[1] + o->fs[2] * o->fs[2]);
+}
+
+#endif

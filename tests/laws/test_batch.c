@@ -1,0 +1,96 @@
+/* force_batch gives exactly what force gives bond by bond: the same forces,
+ * failures and histories, bit for bit, for every law along random paths that
+ * visit every branch. */
+#include "tests/laws/drive.h"
+
+#include "lib/rng.h"
+
+enum { NB = 64, NSTEP = 300 };
+
+static const char *materials[][2] = {
+    {"onate", "{\"E0\": 3.8e9, \"nu\": 0.2, \"tensile_strength\": 4.8e6,"
+              " \"shear_strength\": 8.5e6, \"mu1\": 0.3, \"mu2\": 0.4, \"LCS1\": 8.5e6,"
+              " \"LCS2\": 9e6, \"LCS3\": 11e6, \"YRC1\": 3, \"YRC2\": 9, \"YRC3\": 24,"
+              " \"delta_n\": 0.2, \"delta_s\": 0.2, \"alpha\": 1}"},
+    {"onate", "{\"E0\": 3.8e9, \"nu\": 0.2, \"tensile_strength\": 4.8e6,"
+              " \"shear_strength\": 8.5e6, \"mu1\": 0.3, \"mu2\": 0.4, \"LCS1\": 8.5e6,"
+              " \"LCS2\": 9e6, \"LCS3\": 11e6, \"YRC1\": 3, \"YRC2\": 9, \"YRC3\": 24,"
+              " \"delta_n\": 0, \"delta_s\": 0.5, \"criterion\": \"coupled\"}"},
+    {"jcfpm", "{\"E\": 17e9, \"ks_ratio\": 0.15, \"tensile_strength\": 3.163e6,"
+              " \"cohesion\": 9e6, \"friction_angle_deg\": 34.25, \"interaction_range\": 1.4}"},
+    {"exponential", "{\"E0\": 28e9, \"nu\": 0.2, \"tensile_strength\": 10e6,"
+                    " \"delta_n\": 0.2, \"cohesion\": 13e6, \"friction_angle_deg\": 30,"
+                    " \"contact_friction_angle_deg\": 30, \"interaction_range\": 1.1}"},
+};
+
+/* Field by field (padding bytes are not compared), bit for bit. */
+static int same_out(const law_out *a, const law_out *b)
+{
+	return memcmp(&a->fn, &b->fn, sizeof a->fn) == 0 &&
+	       memcmp(a->fs, b->fs, sizeof a->fs) == 0 && a->failed == b->failed;
+}
+
+static int same_bond(const bond *a, const bond *b)
+{
+	return a->i == b->i && a->j == b->j && memcmp(&a->d0, &b->d0, sizeof a->d0) == 0 &&
+	       memcmp(a->t, b->t, sizeof a->t) == 0 && memcmp(a->h, b->h, sizeof a->h) == 0 &&
+	       a->state == b->state;
+}
+
+static void run(const char *name, const char *json)
+{
+	const law *L = drive_find(name);
+	law_params *p = drive_parse(L, json, name);
+	CHECK(p != NULL);
+	if (!p)
+		return;
+	law_packing pk = {.porosity = 0.15, .coordination = 7};
+	L->setup(p, &pk);
+	rng g;
+	rng_seed(&g, 42);
+	static law_pair pair[NB];
+	static bond one[NB], many[NB];
+	static law_kin kin[NB];
+	static law_out o1[NB], on[NB];
+	double scale[NB];
+	for (int q = 0; q < NB; q++) {
+		pair[q].ri = rng_range(&g, 0.5e-3, 2e-3);
+		pair[q].rj = rng_range(&g, 0.5e-3, 2e-3);
+		pair[q].d0 = (pair[q].ri + pair[q].rj) * rng_range(&g, 0.92, 1.08);
+		pair[q].mi = 2e3 * pair[q].ri * pair[q].ri * pair[q].ri;
+		pair[q].mj = 2e3 * pair[q].rj * pair[q].rj * pair[q].rj;
+		one[q] = drive_bond(L, p, &pair[q]);
+		many[q] = one[q];
+		scale[q] = pair[q].d0 * rng_range(&g, 1e-5, 3e-3);
+		kin[q].un = 0;
+	}
+	int states[4] = {0};
+	for (int s = 0; s < NSTEP; s++) {
+		for (int q = 0; q < NB; q++) {
+			kin[q].un += scale[q] * rng_range(&g, -1.0, 0.9);
+			kin[q].vn = rng_range(&g, -1e-3, 1e-3);
+			for (int k = 0; k < 3; k++)
+				kin[q].dus[k] = scale[q] * rng_range(&g, -0.5, 0.5);
+		}
+		for (int q = 0; q < NB; q++)
+			L->force(p, &pair[q], &one[q], &kin[q], &o1[q]);
+		L->force_batch(p, NB, pair, many, kin, on);
+		int same = 1;
+		for (int q = 0; q < NB; q++)
+			same &= same_out(&o1[q], &on[q]) && same_bond(&one[q], &many[q]);
+		CHECK(same);
+	}
+	for (int q = 0; q < NB; q++)
+		states[one[q].state]++;
+	/* The paths reached broken bonds and kept some intact or damaged. */
+	CHECK(states[BOND_BROKEN_TENSION] + states[BOND_BROKEN_SHEAR] > 0);
+	CHECK(states[BOND_INTACT] + states[BOND_DAMAGED] > 0);
+	L->free(p);
+}
+
+int main(void)
+{
+	for (size_t k = 0; k < sizeof materials / sizeof materials[0]; k++)
+		run(materials[k][0], materials[k][1]);
+	return check_done();
+}
