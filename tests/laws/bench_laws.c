@@ -1,0 +1,67 @@
+/* Throughput of each law's force_batch on bonds in a mix of states (a
+ * benchmark: prints figures, asserts nothing; label bench). */
+#include "tests/laws/drive.h"
+
+#include "lib/rng.h"
+#include "lib/timer.h"
+
+enum { NB = 1 << 16, NSTEP = 200 };
+
+static const char *materials[][2] = {
+    {"onate", "share/materials/concrete.json"},
+    {"jcfpm", "share/materials/concrete-jcfpm.json"},
+    {"exponential", "share/materials/concrete-exponential.json"},
+};
+
+int main(void)
+{
+	static law_pair pair[NB];
+	static bond b[NB];
+	static law_kin kin[NB];
+	static law_out out[NB];
+	for (size_t m = 0; m < sizeof materials / sizeof materials[0]; m++) {
+		const law *L = drive_find(materials[m][0]);
+		cfg *c = cfg_load(materials[m][1]);
+		if (!c) {
+			fprintf(stderr, "%s\n", err_msg());
+			return 1;
+		}
+		const char *s;
+		double rho;
+		cfg_string(c, "name", &s), cfg_string(c, "law", &s);
+		cfg_number(c, "density", &rho, "", 0, INFINITY);
+		law_params *p = L->parse(c);
+		cfg_free(c);
+		rng g;
+		rng_seed(&g, 1);
+		for (int q = 0; q < NB; q++) {
+			pair[q].ri = rng_range(&g, 0.5e-3, 1e-3);
+			pair[q].rj = rng_range(&g, 0.5e-3, 1e-3);
+			pair[q].d0 = (pair[q].ri + pair[q].rj) * rng_range(&g, 0.98, 1.05);
+			pair[q].mi = rho * 4.2 * pair[q].ri * pair[q].ri * pair[q].ri;
+			pair[q].mj = rho * 4.2 * pair[q].rj * pair[q].rj * pair[q].rj;
+			b[q] = drive_bond(L, p, &pair[q]);
+			kin[q].un = 0;
+		}
+		double t0 = timer_now(), work = 0;
+		for (int s = 0; s < NSTEP; s++) {
+			for (int q = 0; q < NB; q++) {
+				kin[q].un = pair[q].d0 * 2e-5 * (q % 97 - 60) * s / NSTEP;
+				kin[q].vn = 1e-4;
+				kin[q].dus[0] = pair[q].d0 * 1e-6 * (q % 13 - 6);
+				kin[q].dus[1] = kin[q].dus[2] = 0;
+			}
+			double t1 = timer_now();
+			L->force_batch(p, NB, pair, b, kin, out);
+			work += timer_now() - t1;
+		}
+		int st[4] = {0};
+		for (int q = 0; q < NB; q++)
+			st[b[q].state]++;
+		printf("%-12s %6.1f ns/bond  (intact %d, damaged %d, broken %d/%d; %.1f s)\n",
+		       L->name, work / ((double)NB * NSTEP) * 1e9, st[0], st[1], st[2], st[3],
+		       timer_now() - t0);
+		L->free(p);
+	}
+	return 0;
+}
