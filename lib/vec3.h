@@ -4,6 +4,9 @@
 
 #include <math.h>
 
+/* π (M_PI is not part of C17). */
+#define DEM_PI 3.14159265358979323846
+
 static inline double v3_dot(const double a[3], const double b[3])
 {
 	return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];

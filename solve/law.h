@@ -61,6 +61,12 @@ typedef struct {
 	double fn;    /* N, tension positive */
 	double fs[3]; /* N, on particle i */
 	int failed;   /* 0, or CRACK_TENSION / CRACK_SHEAR if the bond broke in this call */
+	/* Energy bookkeeping for the run's history (energy_damped, _fracture,
+	 * _friction). The engine sets these three to 0 before every call, so a
+	 * law that does not track them simply leaves them. */
+	double fn_viscous; /* N, the viscous part of fn (included in fn), tension positive */
+	double e_damage;   /* J, dissipated by damage, plastic flow or failure in this call */
+	double e_friction; /* J, dissipated by sliding in this call */
 } law_out;
 
 /* Elastic constants of a bond, for the time step estimate and output. */
