@@ -45,7 +45,7 @@ typedef struct {
 	double ks_over_kn;   /* Eq. 36 */
 } exp_params;
 
-static const double DEG = LOCAL_PI / 180;
+static const double DEG = DEM_PI / 180;
 
 static law_params *exp_parse(cfg *m)
 {
@@ -93,7 +93,7 @@ static double exp_curve(const void *law, double c, double *cp)
 static double area(const law_pair *pair)
 {
 	double rc = fmin(pair->ri, pair->rj);
-	return LOCAL_PI * rc * rc;
+	return DEM_PI * rc * rc;
 }
 
 static void exp_constants(const law_params *lp, const law_pair *pair, law_const *out)
@@ -112,25 +112,31 @@ static inline void exp_force(const law_params *lp, const law_pair *pair, bond *b
 	const exp_params *p = (const exp_params *)lp;
 	double A = area(pair), kn = A * p->q.E0 / pair->d0, ks = kn * p->ks_over_kn;
 	int intact = b->state < BOND_BROKEN_TENSION, broke = 0;
-	double open;
+	double open, w = 0;
 	out->failed = 0;
 	b->h[3] = k->un;
-	double fn =
-	    A * local_normal(&p->q, exp_curve, p, k->un / pair->d0, b->h, !intact, &open, &broke);
-	if (broke)
+	double fn = A * local_normal(&p->q, exp_curve, p, k->un / pair->d0, b->h, !intact, &open,
+	                             &broke, &w);
+	out->e_damage += A * pair->d0 * w;
+	if (broke) { /* the shear spring goes with the bond */
+		out->e_damage += 0.5 * ks * v3_dot(b->t, b->t);
 		shear_break(b, out, BOND_BROKEN_TENSION, CRACK_TENSION);
-	else if (shear_mohr_coulomb(b->t, k->dus, ks, -fn, p->cohesion * A, p->tan_i, p->tan_c,
-	                            intact)) {
+	} else if (shear_mohr_coulomb(b->t, k->dus, ks, -fn, p->cohesion * A, p->tan_i, p->tan_c,
+	                              intact, out)) {
 		b->h[1] = 1;
 		b->state = BOND_BROKEN_SHEAR;
 		out->failed = CRACK_SHEAR;
-		fn = fmin(fn, 0);
+		if (fn > 0) { /* the tension spring goes with the bond */
+			out->e_damage += 0.5 * fn * fn / (kn * local_secant(b->h[0], p->q.delta_n));
+			fn = 0;
+		}
 	} else if (intact)
 		b->state = b->h[0] > 0 ? BOND_DAMAGED : BOND_INTACT;
 	v3_scale(out->fs, b->t, ks);
+	out->fn_viscous = 0;
 	if (b->state < BOND_BROKEN_TENSION || fn < 0)
-		fn += local_cn(&p->q, pair, A, kn) * k->vn;
-	out->fn = fn;
+		out->fn_viscous = local_cn(&p->q, pair, A, kn) * k->vn;
+	out->fn = fn + out->fn_viscous;
 }
 
 LAW_BATCH(exp, exp_force)

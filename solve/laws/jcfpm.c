@@ -47,7 +47,7 @@ typedef struct {
 	double range;      /* gamma */
 } jcfpm_params;
 
-static const double PI = 3.14159265358979323846, DEG = 3.14159265358979323846 / 180;
+static const double DEG = DEM_PI / 180;
 
 static law_params *jcfpm_parse(cfg *m)
 {
@@ -83,7 +83,7 @@ static double stiffness(const jcfpm_params *p, const law_pair *pair)
 static double area(const law_pair *pair)
 {
 	double r = fmin(pair->ri, pair->rj);
-	return PI * r * r;
+	return DEM_PI * r * r;
 }
 
 static void jcfpm_constants(const law_params *lp, const law_pair *pair, law_const *out)
@@ -114,7 +114,8 @@ static inline void jcfpm_force(const law_params *lp, const law_pair *pair, bond 
 	int intact = b->state == BOND_INTACT;
 	out->failed = 0;
 	b->h[1] = k->un;
-	if (intact && u > p->sigma_t * A / kn) {
+	if (intact && u > p->sigma_t * A / kn) { /* its stored energy is released */
+		out->e_damage += 0.5 * kn * u * u + 0.5 * ks * v3_dot(b->t, b->t);
 		shear_break(b, out, BOND_BROKEN_TENSION, CRACK_TENSION);
 		apart(pair, b, k->un, out);
 		return;
@@ -124,11 +125,12 @@ static inline void jcfpm_force(const law_params *lp, const law_pair *pair, bond 
 		return;
 	}
 	double fn = kn * u;
-	if (shear_mohr_coulomb(b->t, k->dus, ks, -fn, p->cohesion * A, p->tan_b, p->tan_c,
-	                       intact)) {
+	if (shear_mohr_coulomb(b->t, k->dus, ks, -fn, p->cohesion * A, p->tan_b, p->tan_c, intact,
+	                       out)) {
 		b->state = BOND_BROKEN_SHEAR;
 		out->failed = CRACK_SHEAR;
 		if (fn > 0) { /* in tension: erased */
+			out->e_damage += 0.5 * fn * fn / kn;
 			apart(pair, b, k->un, out);
 			return;
 		}

@@ -50,9 +50,8 @@
 
 #include "lib/cfg.h"
 #include "lib/runfile.h"
+#include "lib/vec3.h"
 #include "solve/law.h"
-
-#define LOCAL_PI 3.14159265358979323846
 
 /* The keys both laws read (see share/doc/materials.md). */
 typedef struct {
@@ -87,15 +86,23 @@ static inline double local_secant(double d, double delta) { return (1 - d) / (1 
  * (see the layout above). *open is the opening strain e from the permanent
  * indentation (negative in compression). *broke is set when the tension
  * damage reaches 1 in this call; a broken bond (broken != 0) carries no
- * tension. */
+ * tension. Adds to *w the energy dissipated in this call per unit volume
+ * A d (J/m^3): by damage, G d_n with G = 1/2 sigma_t eps_t (1 + delta_n)
+ * the work of a whole failure (the area between the loading path and the
+ * secant grows linearly with d_n), and by plastic flow along the curve,
+ * the work of the trapezoid less the change of recoverable energy. */
 static inline double local_normal(const local_params *q, local_curve curve, const void *law,
                                   double eps, double h[LAW_NHIST], int broken, double *open,
-                                  int *broke)
+                                  int *broke, double *w)
 {
 	double c = -eps, cp;
 	if (c > h[2]) { /* loading past the historical maximum, Eq. 52a */
-		h[2] = c;
 		double s = curve(law, c, &cp);
+		if (cp > 0) {
+			double cp0, s0 = curve(law, h[2], &cp0);
+			*w += 0.5 * (s0 + s) * (c - h[2]) - 0.5 * (s * s - s0 * s0) / q->E0;
+		}
+		h[2] = c;
 		*open = cp - c;
 		return -s;
 	}
@@ -106,13 +113,13 @@ static inline double local_normal(const local_params *q, local_curve curve, cons
 		return q->E0 * e;
 	if (broken)
 		return 0;
-	double d = fmax(h[0], local_damage_at(e, q->eps_t, q->delta_n));
+	double d = fmin(1, fmax(h[0], local_damage_at(e, q->eps_t, q->delta_n)));
+	*w += 0.5 * q->E0 * q->eps_t * q->eps_t * (1 + q->delta_n) * (d - h[0]);
+	h[0] = d;
 	if (d >= 1) {
-		h[0] = 1;
 		*broke = 1;
 		return 0;
 	}
-	h[0] = d;
 	return q->E0 * e * local_secant(d, q->delta_n);
 }
 
@@ -123,9 +130,9 @@ static inline double local_normal_energy(const local_params *q, local_curve curv
                                          double area, double d0, const double h[LAW_NHIST],
                                          int broken)
 {
-	double copy[LAW_NHIST] = {h[0], h[1], h[2], h[3]}, open;
+	double copy[LAW_NHIST] = {h[0], h[1], h[2], h[3]}, open, w = 0;
 	int broke = 0;
-	double s = local_normal(q, curve, law, h[3] / d0, copy, broken, &open, &broke);
+	double s = local_normal(q, curve, law, h[3] / d0, copy, broken, &open, &broke, &w);
 	if (s == 0)
 		return 0;
 	double e = q->E0 * (s < 0 ? 1 : local_secant(h[0], q->delta_n));

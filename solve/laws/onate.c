@@ -140,7 +140,7 @@ static double onate_curve(const void *law, double c, double *cp)
 static double area(const onate_params *p, const law_pair *pair)
 {
 	double rc = fmin(pair->ri, pair->rj);
-	return p->alpha * LOCAL_PI * rc * rc;
+	return p->alpha * DEM_PI * rc * rc;
 }
 
 static void onate_constants(const law_params *lp, const law_pair *pair, law_const *out)
@@ -159,37 +159,44 @@ static inline void onate_force(const law_params *lp, const law_pair *pair, bond 
 	const onate_params *p = (const onate_params *)lp;
 	double A = area(p, pair), kn = A * p->q.E0 / pair->d0, ks = kn * p->ks_over_kn;
 	int intact = b->state < BOND_BROKEN_TENSION, broke = 0;
-	double open;
+	double open, w = 0;
 	out->failed = 0;
 	b->h[3] = k->un;
-	double fn =
-	    A * local_normal(&p->q, onate_curve, p, k->un / pair->d0, b->h, !intact, &open, &broke);
+	double fn = A * local_normal(&p->q, onate_curve, p, k->un / pair->d0, b->h, !intact, &open,
+	                             &broke, &w);
+	out->e_damage += A * pair->d0 * w;
 	double fnc = fn < 0 ? -fn : 0;
-	if (broke)
+	if (broke) { /* the shear spring goes with the bond */
+		out->e_damage += 0.5 * ks * local_secant(b->h[1], p->delta_s) * v3_dot(b->t, b->t);
 		shear_break(b, out, BOND_BROKEN_TENSION, CRACK_TENSION);
-	else if (intact) {
+	} else if (intact) {
 		v3_add(b->t, b->t, k->dus);
 		double strength = p->tau * A + p->mu1 * fnc;
 		if (p->coupled && open > 0)
 			strength = p->tau * A * (1 - fmin(1, open / p->q.eps_t));
-		double d = fmax(b->h[1], local_damage_at(v3_norm(b->t), strength / ks, p->delta_s));
+		double us = v3_norm(b->t);
+		double d = fmin(1, fmax(b->h[1], local_damage_at(us, strength / ks, p->delta_s)));
+		/* Work of the shear softening: 1/2 F_s u_s^f per unit of damage. */
+		out->e_damage += 0.5 * strength * strength / ks * (1 + p->delta_s) * (d - b->h[1]);
+		b->h[1] = d;
 		if (d >= 1) {
-			b->h[1] = 1;
 			shear_break(b, out, BOND_BROKEN_SHEAR, CRACK_SHEAR);
-			fn = fmin(fn, 0);
-		} else {
-			b->h[1] = d;
+			if (fn > 0) { /* the tension spring goes with the bond */
+				out->e_damage +=
+				    0.5 * fn * fn / (kn * local_secant(b->h[0], p->q.delta_n));
+				fn = 0;
+			}
+		} else
 			b->state = b->h[0] > 0 || d > 0 ? BOND_DAMAGED : BOND_INTACT;
-		}
 	} else {
-		v3_add(b->t, b->t, k->dus);
-		shear_slip(b->t, ks, p->mu2 * fnc);
+		shear_slip(b->t, k->dus, ks, p->mu2 * fnc, out);
 	}
 	double ss = b->state < BOND_BROKEN_TENSION ? local_secant(b->h[1], p->delta_s) : 1;
 	v3_scale(out->fs, b->t, ks * ss);
+	out->fn_viscous = 0;
 	if (b->state < BOND_BROKEN_TENSION || fnc > 0)
-		fn += local_cn(&p->q, pair, A, kn) * k->vn;
-	out->fn = fn;
+		out->fn_viscous = local_cn(&p->q, pair, A, kn) * k->vn;
+	out->fn = fn + out->fn_viscous;
 }
 
 LAW_BATCH(onate, onate_force)

@@ -44,28 +44,54 @@ static inline void shear_break(bond *b, law_out *out, uint8_t state, int crack)
 	memset(b->t, 0, sizeof b->t);
 }
 
-static inline void shear_slip(double t[3], double ks, double limit)
+/* Scales the trial displacement t (= t_old + dus) by s <= 1 and returns the
+ * energy this dissipates: the work done in the step less the change of
+ * stored energy, 1/2 k_s (t_old + t_new) . (t_trial - t_new). It is
+ * limit x slip when sliding steadily, and includes what a drop of the limit
+ * (a rupture, a falling normal force) releases. */
+static inline double shear_scale(double t[3], const double old[3], double ks, double s)
 {
-	double f = ks * v3_norm(t);
-	if (f > limit)
-		v3_scale(t, t, limit > 0 ? limit / f : 0);
+	double a[3];
+	v3_copy(a, old);
+	v3_axpy(a, t, s);
+	double e = 0.5 * ks * (1 - s) * v3_dot(a, t);
+	v3_scale(t, t, s);
+	return e;
 }
 
-/* Adds dus to t and applies the limits above; fnc is the compressive normal
- * force (negative in tension), cA the cohesive strength c A. Returns 1 when
- * an intact bond ruptures in this call. */
-static inline int shear_mohr_coulomb(double t[3], const double dus[3], double ks, double fnc,
-                                     double cA, double tan_b, double tan_c, int intact)
+/* Adds dus to t and applies the Coulomb limit, booking the work of sliding
+ * to out->e_friction. */
+static inline void shear_slip(double t[3], const double dus[3], double ks, double limit,
+                              law_out *out)
 {
+	double old[3];
+	v3_copy(old, t);
 	v3_add(t, t, dus);
+	double f = ks * v3_norm(t);
+	if (f > limit)
+		out->e_friction += shear_scale(t, old, ks, limit > 0 ? limit / f : 0);
+}
+
+/* Adds dus to t and applies the Mohr-Coulomb limits above; fnc is the
+ * compressive normal force (negative in tension), cA the cohesive strength
+ * c A. Returns 1 when an intact bond ruptures in this call, booking what the
+ * rupture releases to out->e_damage; sliding afterwards goes to
+ * out->e_friction. */
+static inline int shear_mohr_coulomb(double t[3], const double dus[3], double ks, double fnc,
+                                     double cA, double tan_b, double tan_c, int intact,
+                                     law_out *out)
+{
 	if (!intact) {
-		shear_slip(t, ks, fnc * tan_c);
+		shear_slip(t, dus, ks, fnc * tan_c, out);
 		return 0;
 	}
+	double old[3];
+	v3_copy(old, t);
+	v3_add(t, t, dus);
 	double limit = cA + fnc * tan_b, f = ks * v3_norm(t);
 	if (f <= limit)
 		return 0;
-	v3_scale(t, t, fnc < 0 ? 0 : limit / f);
+	out->e_damage += shear_scale(t, old, ks, fnc < 0 ? 0 : limit / f);
 	return 1;
 }
 

@@ -81,6 +81,7 @@ static inline law_out drive_step(const law *L, const law_params *p, const law_pa
 	law_kin k = {.un = un, .vn = vn, .dus = {dx, dy, dz}};
 	law_out o;
 	memset(&o, 0x55, sizeof o);
+	o.fn_viscous = o.e_damage = o.e_friction = 0; /* as the engine does */
 	L->force(p, pair, b, &k, &o);
 	return o;
 }
@@ -103,6 +104,39 @@ static inline double drive_normal(const law *L, const law_params *p, const law_p
 	if (fn_last)
 		*fn_last = o.fn;
 	return w;
+}
+
+/* Energy bookkeeping along a path: the work done on the bond by the
+ * trapezoidal rule, fn dun + fs . dus (fs acts on i and j moves by dus
+ * relative to i), and the dissipation the law reports. */
+typedef struct {
+	law_out last;
+	double un, work, dissipated;
+} drive_books;
+
+static inline law_out drive_booked(const law *L, const law_params *p, const law_pair *pair, bond *b,
+                                   drive_books *k, double un, double dx, double dy, double dz)
+{
+	law_out o = drive_step(L, p, pair, b, un, 0, dx, dy, dz);
+	const double dus[3] = {dx, dy, dz};
+	k->work += 0.5 * (k->last.fn + o.fn) * (un - k->un);
+	for (int c = 0; c < 3; c++)
+		k->work += 0.5 * (k->last.fs[c] + o.fs[c]) * dus[c];
+	k->dissipated += o.e_damage + o.e_friction;
+	k->last = o;
+	k->un = un;
+	return o;
+}
+
+/* drive_booked, returning the energy balance of the step: the work done less
+ * the change of stored energy and the dissipation (zero for a law that
+ * books its energy exactly). */
+static inline double drive_balance(const law *L, const law_params *p, const law_pair *pair, bond *b,
+                                   drive_books *k, double un, double dx, double dy, double dz)
+{
+	double e0 = L->energy(p, pair, b), w0 = k->work, d0 = k->dissipated;
+	drive_booked(L, p, pair, b, k, un, dx, dy, dz);
+	return (k->work - w0) - (L->energy(p, pair, b) - e0) - (k->dissipated - d0);
 }
 
 static inline double drive_fs(const law_out *o)

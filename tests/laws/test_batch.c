@@ -27,7 +27,10 @@ static const char *materials[][2] = {
 static int same_out(const law_out *a, const law_out *b)
 {
 	return memcmp(&a->fn, &b->fn, sizeof a->fn) == 0 &&
-	       memcmp(a->fs, b->fs, sizeof a->fs) == 0 && a->failed == b->failed;
+	       memcmp(a->fs, b->fs, sizeof a->fs) == 0 && a->failed == b->failed &&
+	       memcmp(&a->fn_viscous, &b->fn_viscous, sizeof a->fn_viscous) == 0 &&
+	       memcmp(&a->e_damage, &b->e_damage, sizeof a->e_damage) == 0 &&
+	       memcmp(&a->e_friction, &b->e_friction, sizeof a->e_friction) == 0;
 }
 
 static int same_bond(const bond *a, const bond *b)
@@ -71,6 +74,10 @@ static void run(const char *name, const char *json)
 			kin[q].vn = rng_range(&g, -1e-3, 1e-3);
 			for (int k = 0; k < 3; k++)
 				kin[q].dus[k] = scale[q] * rng_range(&g, -0.5, 0.5);
+		}
+		for (int q = 0; q < NB; q++) { /* as the engine does */
+			o1[q].fn_viscous = o1[q].e_damage = o1[q].e_friction = 0;
+			on[q].fn_viscous = on[q].e_damage = on[q].e_friction = 0;
 		}
 		for (int q = 0; q < NB; q++)
 			L->force(p, &pair[q], &one[q], &kin[q], &o1[q]);

@@ -183,6 +183,44 @@ static void test_no_healing(void)
 	}
 }
 
+/* The energy the law books: work done = change of stored energy +
+ * dissipation in every step, through compaction, unloading and reloading,
+ * a tension failure (1/2 sigma_t A u_n^f) and a shear rupture with sliding. */
+static void test_energy_books(void)
+{
+	law_pair q = pair_of();
+	bond b = drive_bond(L, P, &q);
+	drive_books k = {0};
+	const double path[4] = {0.02, 0.015, 0.04, 0.035};
+	double c = 0, scale = K0 * d0 * d0 * 0.05 * 0.05;
+	for (int n = 0; n < 4; n++) {
+		for (int s = 1; s <= 50; s++) {
+			double cs = c + (path[n] - c) * s / 50;
+			CHECK_NEAR(drive_balance(L, P, &q, &b, &k, -cs * d0, 0, 0, 0), 0,
+			           1e-12 * scale);
+		}
+		c = path[n];
+	}
+	CHECK(k.dissipated > 0);
+
+	b = drive_bond(L, P, &q);
+	k = (drive_books){0};
+	double g = 0.5 * SIGT * A * UF;
+	for (int s = 1; s <= 180; s++)
+		CHECK_NEAR(drive_balance(L, P, &q, &b, &k, 1.8 * UL * s / 180, 0, 0, 0), 0,
+		           1e-12 * g);
+	CHECK_REL(k.dissipated, g, 1e-12);
+
+	b = drive_bond(L, P, &q);
+	k = (drive_books){0};
+	double lim = COH * A + K0 * UL * TANPHI;
+	CHECK_NEAR(drive_balance(L, P, &q, &b, &k, -UL, 0, 0, 0), 0, 1e-12 * g);
+	for (int s = 1; s <= 30; s++)
+		CHECK_NEAR(drive_balance(L, P, &q, &b, &k, -UL, 0, lim / KS / 10, 0), 0,
+		           1e-12 * lim * lim / KS);
+	CHECK(b.state == BOND_BROKEN_SHEAR && k.last.e_friction > 0);
+}
+
 int main(void)
 {
 	L = drive_find("exponential");
@@ -198,6 +236,7 @@ int main(void)
 	test_tension();
 	test_shear();
 	test_no_healing();
+	test_energy_books();
 	L->free(P);
 	return check_done();
 }

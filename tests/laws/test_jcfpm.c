@@ -201,6 +201,34 @@ static void test_no_healing(void)
 	}
 }
 
+/* The energy the law books: work done = change of stored energy +
+ * dissipation in every step; a rupture dissipates what the bond stored. */
+static void test_energy_books(void)
+{
+	law_pair q = pair_at(2.4e-3);
+	bond b = drive_bond(L, P, &q);
+	drive_books k = {0};
+	double g = 0.5 * SIGT * AREA * UT;
+	for (int s = 1; s <= 10; s++)
+		CHECK_NEAR(drive_balance(L, P, &q, &b, &k, UT * s / 10, 0, 0, 0), 0, 1e-12 * g);
+	drive_booked(L, P, &q, &b, &k, UT * (1 + 1e-9), 0, 0, 0);
+	CHECK(b.state == BOND_BROKEN_TENSION && L->energy(P, &q, &b) == 0);
+	CHECK_REL(k.dissipated, g, 1e-8);
+
+	/* Shear rupture under compression, then sliding. */
+	b = drive_bond(L, P, &q);
+	k = (drive_books){0};
+	double fnc = 10 * KN * UT, lim = COH * AREA + fnc * TANPHI, fric = fnc * TANPHI;
+	double scale = 0.5 * lim * lim / KS;
+	CHECK_NEAR(drive_balance(L, P, &q, &b, &k, -10 * UT, 0, 0, 0), 0, 1e-12 * scale);
+	for (int s = 1; s <= 30; s++)
+		CHECK_NEAR(drive_balance(L, P, &q, &b, &k, -10 * UT, lim / KS / 10, 0, 0), 0,
+		           1e-12 * scale);
+	CHECK(b.state == BOND_BROKEN_SHEAR);
+	CHECK(k.dissipated > 0 && k.last.e_friction > 0);
+	CHECK_REL(k.last.e_friction, fric * lim / KS / 10, 1e-12); /* steady sliding */
+}
+
 int main(void)
 {
 	L = drive_find("jcfpm");
@@ -216,6 +244,7 @@ int main(void)
 	test_shear();
 	test_recontact();
 	test_no_healing();
+	test_energy_books();
 	L->free(P);
 	return check_done();
 }

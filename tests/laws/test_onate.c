@@ -430,6 +430,66 @@ static void test_no_healing(void)
 	}
 }
 
+/* The energy the law books: in every step the work done on the bond is the
+ * change of its elastic energy plus what it reports as dissipated by damage,
+ * plastic flow and friction (steps end on the kinks of the path, so the
+ * trapezoidal work is exact); a tension failure dissipates 1/2 F_nt u_n^f. */
+static void test_energy_books(void)
+{
+	law_pair q = pair_of();
+	bond b = drive_bond(L, P, &q);
+	drive_books k = {0};
+	double g = 0.5 * SIGT * A * UF;
+	for (int s = 1; s <= 180; s++)
+		CHECK_NEAR(drive_balance(L, P, &q, &b, &k, 1.8 * UL * s / 180, 0, 0, 0), 0,
+		           1e-12 * g);
+	CHECK(b.state == BOND_BROKEN_TENSION);
+	CHECK_REL(k.dissipated, g, 1e-12);
+
+	/* Plastic compression: loading through three branches, unloading,
+	 * reloading, unloading to the permanent indentation. */
+	b = drive_bond(L, P, &q);
+	k = (drive_books){0};
+	const double path[5] = {2.0e-3, 9e-3, 8e-3, 1.2e-2, 1.2e-2 - sigma_curve(1.2e-2) / E0};
+	double c = 0, scale = 0.5 * A * 70e6 * 70e6 / E0 * d0;
+	for (int n = 0; n < 5; n++) {
+		for (int s = 1; s <= 40; s++) {
+			double cs = c + (path[n] - c) * s / 40;
+			CHECK_NEAR(drive_balance(L, P, &q, &b, &k, -cs * d0, 0, 0, 0), 0,
+			           1e-12 * scale);
+		}
+		c = path[n];
+	}
+	CHECK(k.dissipated > 0 && b.state == BOND_INTACT);
+
+	/* Shear to failure under compression, then sliding. */
+	b = drive_bond(L, P, &q);
+	k = (drive_books){0};
+	double delta = 0.5 * LCS1_STRAIN * d0, fnc = KN * delta;
+	double fsl = TAU * A + MU1 * fnc, usl = fsl / KS, lim = MU2 * fnc;
+	for (int s = 1; s <= 10; s++)
+		CHECK_NEAR(drive_balance(L, P, &q, &b, &k, -delta * s / 10, 0, 0, 0), 0,
+		           1e-12 * fsl * usl);
+	for (int s = 1; s <= 24; s++) /* the last step just past u_s^f */
+		CHECK_NEAR(drive_balance(L, P, &q, &b, &k, -delta, usl / 20 * (1 + 1e-9), 0, 0), 0,
+		           1e-9 * fsl * usl);
+	CHECK(b.state == BOND_BROKEN_SHEAR);
+	double before = k.dissipated;
+	CHECK_REL(before, 0.5 * fsl * (1 + DELTA) * usl, 1e-9);
+	for (int s = 1; s <= 20; s++)
+		CHECK_NEAR(drive_balance(L, P, &q, &b, &k, -delta, lim / KS / 4, 0, 0), 0,
+		           1e-9 * fsl * usl);
+	CHECK_REL(k.dissipated - before, lim * 16 * lim / KS / 4, 1e-9); /* 16 steps sliding */
+
+	/* The viscous part of the normal force. */
+	law_const cst;
+	L->constants(P, &q, &cst);
+	b = drive_bond(L, P, &q);
+	law_out o = drive_step(L, P, &q, &b, 0.5 * UL, 0.02, 0, 0, 0);
+	CHECK_REL(o.fn_viscous, cst.cn * 0.02, 1e-14);
+	CHECK_REL(o.fn - o.fn_viscous, 0.5 * KN * UL, 1e-12);
+}
+
 int main(void)
 {
 	L = drive_find("onate");
@@ -452,6 +512,7 @@ int main(void)
 	test_coupled();
 	test_damping();
 	test_no_healing();
+	test_energy_books();
 	L->free(P);
 	return check_done();
 }
