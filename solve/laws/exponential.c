@@ -110,13 +110,14 @@ static inline void exp_force(const law_params *lp, const law_pair *pair, bond *b
                              law_out *out)
 {
 	const exp_params *p = (const exp_params *)lp;
-	double A = area(pair), kn = A * p->q.E0 / pair->d0, ks = kn * p->ks_over_kn;
+	double inv_d = 1 / pair->d0, A = area(pair), kn = A * p->q.E0 * inv_d;
+	double ks = kn * p->ks_over_kn;
 	int intact = b->state < BOND_BROKEN_TENSION, broke = 0;
 	double open, w = 0;
 	out->failed = 0;
 	b->h[3] = k->un;
-	double fn = A * local_normal(&p->q, exp_curve, p, k->un / pair->d0, b->h, !intact, &open,
-	                             &broke, &w);
+	double fn =
+	    A * local_normal(&p->q, exp_curve, p, k->un * inv_d, b->h, !intact, &open, &broke, &w);
 	out->e_damage += A * pair->d0 * w;
 	if (broke) { /* the shear spring goes with the bond */
 		out->e_damage += 0.5 * ks * v3_dot(b->t, b->t);

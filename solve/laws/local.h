@@ -132,7 +132,7 @@ static inline double local_normal_energy(const local_params *q, local_curve curv
 {
 	double copy[LAW_NHIST] = {h[0], h[1], h[2], h[3]}, open, w = 0;
 	int broke = 0;
-	double s = local_normal(q, curve, law, h[3] / d0, copy, broken, &open, &broke, &w);
+	double s = local_normal(q, curve, law, h[3] * (1 / d0), copy, broken, &open, &broke, &w);
 	if (s == 0)
 		return 0;
 	double e = q->E0 * (s < 0 ? 1 : local_secant(h[0], q->delta_n));

@@ -157,12 +157,13 @@ static inline void onate_force(const law_params *lp, const law_pair *pair, bond 
                                const law_kin *k, law_out *out)
 {
 	const onate_params *p = (const onate_params *)lp;
-	double A = area(p, pair), kn = A * p->q.E0 / pair->d0, ks = kn * p->ks_over_kn;
+	double inv_d = 1 / pair->d0, A = area(p, pair), kn = A * p->q.E0 * inv_d;
+	double ks = kn * p->ks_over_kn;
 	int intact = b->state < BOND_BROKEN_TENSION, broke = 0;
 	double open, w = 0;
 	out->failed = 0;
 	b->h[3] = k->un;
-	double fn = A * local_normal(&p->q, onate_curve, p, k->un / pair->d0, b->h, !intact, &open,
+	double fn = A * local_normal(&p->q, onate_curve, p, k->un * inv_d, b->h, !intact, &open,
 	                             &broke, &w);
 	out->e_damage += A * pair->d0 * w;
 	double fnc = fn < 0 ? -fn : 0;
@@ -174,11 +175,15 @@ static inline void onate_force(const law_params *lp, const law_pair *pair, bond 
 		double strength = p->tau * A + p->mu1 * fnc;
 		if (p->coupled && open > 0)
 			strength = p->tau * A * (1 - fmin(1, open / p->q.eps_t));
-		double us = v3_norm(b->t);
-		double d = fmin(1, fmax(b->h[1], local_damage_at(us, strength / ks, p->delta_s)));
-		/* Work of the shear softening: 1/2 F_s u_s^f per unit of damage. */
-		out->e_damage += 0.5 * strength * strength / ks * (1 + p->delta_s) * (d - b->h[1]);
-		b->h[1] = d;
+		double us = v3_norm(b->t), d = b->h[1];
+		if (ks * us > strength) { /* beyond the elastic limit */
+			double dnew =
+			    fmin(1, fmax(d, local_damage_at(us, strength / ks, p->delta_s)));
+			/* Work of the shear softening: 1/2 F_s u_s^f per unit of damage. */
+			out->e_damage +=
+			    0.5 * strength * strength / ks * (1 + p->delta_s) * (dnew - d);
+			d = b->h[1] = dnew;
+		}
 		if (d >= 1) {
 			shear_break(b, out, BOND_BROKEN_SHEAR, CRACK_SHEAR);
 			if (fn > 0) { /* the tension spring goes with the bond */
