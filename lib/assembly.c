@@ -74,7 +74,12 @@ static int read_geometry(hid_t file, dem_geometry *g)
 	X(fabric_anisotropy)   \
 	X(overlap_max)         \
 	X(overlap_mean)        \
-	X(time)
+	X(wall_overlap_max)    \
+	X(time)                \
+	X(time_geometry)       \
+	X(time_cell)           \
+	X(time_fill)           \
+	X(time_report)
 
 static int write_report(hid_t file, const dem_report *r)
 {

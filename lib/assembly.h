@@ -44,9 +44,14 @@ typedef struct {
 	double fabric_anisotropy;   /* of <n x n> over core contacts */
 	double overlap_max;         /* relative to the smaller radius */
 	double overlap_mean;
-	double time;       /* s, wall time of pack */
-	size_t nprofile;   /* solid fraction profile phi(w) */
-	double *profile_w; /* m, distance to the boundary (bin centre) */
+	double wall_overlap_max; /* protrusion beyond the boundary / radius */
+	double time;             /* s, wall time of pack */
+	double time_geometry;    /* s, of which: geometry and its search tree */
+	double time_cell;        /* s, periodic cell */
+	double time_fill;        /* s, tiling and wall-band repair */
+	double time_report;      /* s, this report */
+	size_t nprofile;         /* solid fraction profile phi(w) */
+	double *profile_w;       /* m, distance to the boundary (bin centre) */
 	double *profile_phi;
 	size_t npsd;               /* size distribution, cumulative */
 	double *psd_size;          /* m, diameter */

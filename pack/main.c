@@ -1,22 +1,154 @@
+/* pack: a dense polydisperse sphere assembly inside a specimen, with its
+ * packing report (share/doc/pack.md). */
+#include <math.h>
+#include <omp.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
 
 #include "lib/afile.h"
-#include "lib/cli.h"
+#include "lib/assembly.h"
 #include "lib/err.h"
+#include "lib/timer.h"
+#include "pack/options.h"
+#include "pack/packer.h"
+#include "pack/report.h"
+#include "pack/textio.h"
+
+static double smallest_extent(const dem_geometry *g)
+{
+	double e = INFINITY;
+	for (int k = 0; k < 3; k++)
+		e = fmin(e, g->bbox_max[k] - g->bbox_min[k]);
+	return e;
+}
+
+/* Apply --count / --mean-radius and check that the spheres fit. */
+static void size_spheres(const pack_options *o, psd *d, const dem_geometry *g)
+{
+	if (o->count > 0 && o->mean_radius > 0)
+		fatal("--count %ld and --mean-radius %g: expected one of them, not both", o->count,
+		      o->mean_radius);
+	if (o->count > 0)
+		psd_scale(d, packer_count_scale(d, g->volume, o->count));
+	else if (o->mean_radius > 0)
+		psd_scale(d, o->mean_radius / psd_moment(d, 1));
+	double ext = smallest_extent(g);
+	if (2 * d->rmax < ext)
+		return;
+	if (o->count > 0)
+		fatal(
+		    "--count %ld: too few spheres: they would need radii up to %.3g m, larger than "
+		    "the specimen (smallest extent %.3g m)",
+		    o->count, d->rmax, ext);
+	fatal("spheres of radius up to %.3g m do not fit in the specimen: expected the largest "
+	      "diameter below its smallest extent (%.3g m)",
+	      d->rmax, ext);
+}
+
+/* Imported spheres must have their centres inside the specimen. */
+static void import_spheres(const pack_options *o, double *x, double *r, size_t n, spheres *S,
+                           const surface *surf, const zones *z)
+{
+	for (size_t i = 0; i < n; i++) {
+		int32_t hint = z->hint[zones_cell(z, x + 3 * i)];
+		double s = surface_distance(surf, x + 3 * i, NULL, &hint);
+		if (s < 0)
+			fatal("%s: sphere %zu at (%g, %g, %g) m lies outside the specimen",
+			      o->import_path, i + 1, x[3 * i], x[3 * i + 1], x[3 * i + 2]);
+		spheres_push(S, x + 3 * i, r[i], s, s);
+	}
+	free(x);
+	free(r);
+}
 
 int main(int argc, char **argv)
 {
-	static const cli_spec spec = {
-	    .usage = "pack [options] OUTPUT.h5",
-	    .summary = "Fill a specimen geometry with a dense polydisperse sphere assembly "
-	               "and\nwrite it, with a packing report, to an HDF5 assembly file.",
-	    .opts = NULL,
-	    .nopts = 0,
-	    .min_pos = 1,
-	    .max_pos = 1,
-	};
-	char *pos[1];
-	cli_parse(&spec, argc, argv, pos);
+	pack_options o;
+	options_parse(&o, argc, argv);
 	afile_install_signal_cleanup();
-	fatal("%s: not implemented yet", pos[0]);
+	if (o.threads > 0)
+		omp_set_num_threads((int)o.threads);
+	double t0 = timer_now();
+
+	dem_assembly a;
+	memset(&a, 0, sizeof a);
+	geometry_spec gs;
+	if (options_geometry(&o, &gs) || geometry_build(&gs, &a.geom))
+		fatal(NULL);
+	surface *surf = surface_new(a.geom.vert, a.geom.nvert, a.geom.tri, a.geom.ntri);
+	if (!surf)
+		fatal("out of memory building the boundary's search tree");
+	psd d = {0}, *target = NULL;
+	double rmean = 0, rmax = 0, *xi = NULL, *ri = NULL;
+	size_t ni = 0;
+	spheres S = {0};
+	if (o.import_path) {
+		if (textio_read(o.import_path, &xi, &ri, &ni))
+			fatal(NULL);
+		for (size_t i = 0; i < ni; i++) {
+			rmean += ri[i] / (double)ni;
+			rmax = fmax(rmax, ri[i]);
+		}
+	} else {
+		if (options_psd(&o, &d))
+			fatal(NULL);
+		size_spheres(&o, &d, &a.geom);
+		target = &d;
+		rmean = psd_moment(&d, 1);
+		rmax = d.rmax;
+	}
+	zones z;
+	double depth = fmax(o.band, REPORT_PROFILE_DEPTH + 1) * 2 * rmean + 3 * rmax;
+	zones_build(&z, surf, a.geom.bbox_min, a.geom.bbox_max, 2 * rmean, depth);
+	double t1 = timer_now();
+	a.report.time_geometry = t1 - t0;
+
+	packer_stats st = {0};
+	if (o.import_path) {
+		import_spheres(&o, xi, ri, ni, &S, surf, &z);
+	} else {
+		packer_params pp = {(uint64_t)o.seed, o.cell, o.keep, o.band, o.count};
+		packer_run(&S, &d, &a.geom, surf, &z, &pp, &st);
+		a.report.time_cell = st.time_cell;
+		a.report.time_fill = st.time_fill;
+	}
+	double t2 = timer_now();
+	a.n = S.n;
+	a.x = S.x;
+	a.r = S.r;
+	a.material = xcalloc(S.n + 1, sizeof *a.material);
+	report_compute(&a, surf, &z, target, o.beta);
+	double t3 = timer_now();
+	a.report.time_report = t3 - t2;
+	a.report.time = t3 - t0;
+	char *config = options_json(&o);
+	prov_init(&a.prov, "pack", config, (uint64_t)o.seed);
+	free(config);
+	if (assembly_write(o.output, &a))
+		fatal(NULL);
+	if (o.export_path && textio_write(o.export_path, a.x, a.r, a.n)) {
+		unlink(o.output);
+		fatal(NULL);
+	}
+	if (!o.quiet) {
+		report_print(&a, stdout);
+		if (!o.import_path)
+			printf("  packing          periodic cell of %zu spheres at %.4f (%ld "
+			       "iterations); "
+			       "%zu tiled;\n                   wall band: %zu moved, %zu inserted, "
+			       "%zu "
+			       "removed (%ld iterations)\n",
+			       st.cell_n, st.cell_phi, st.cell_iter, st.tiled, st.band_mobile,
+			       st.inserted, st.pruned, st.band_iter);
+	}
+	free(S.lo);
+	free(S.hi);
+	assembly_free(&a);
+	zones_free(&z);
+	surface_free(surf);
+	psd_free(&d);
+	options_free(&o);
+	return 0;
 }

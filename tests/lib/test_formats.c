@@ -59,7 +59,12 @@ static void make_assembly(dem_assembly *a, size_t n)
 	r->fabric_anisotropy = 0.01;
 	r->overlap_max = 0.008;
 	r->overlap_mean = 0.001;
+	r->wall_overlap_max = 0.002;
 	r->time = 2.5;
+	r->time_geometry = 0.1;
+	r->time_cell = 0.7;
+	r->time_fill = 1.2;
+	r->time_report = 0.3;
 	r->nprofile = 4;
 	r->profile_w = seq(4, 0);
 	r->profile_phi = seq(4, 0.3);
@@ -105,7 +110,10 @@ static void compare_assembly(const dem_assembly *a, const dem_assembly *b)
 	CHECK(r->beta == s->beta && r->coordination == s->coordination && r->alpha == s->alpha);
 	CHECK(r->fabric_anisotropy == s->fabric_anisotropy);
 	CHECK(r->overlap_max == s->overlap_max && r->overlap_mean == s->overlap_mean);
+	CHECK(r->wall_overlap_max == s->wall_overlap_max);
 	CHECK(r->time == s->time);
+	CHECK(r->time_geometry == s->time_geometry && r->time_cell == s->time_cell);
+	CHECK(r->time_fill == s->time_fill && r->time_report == s->time_report);
 	CHECK(r->nprofile == s->nprofile && r->npsd == s->npsd);
 	SAME_ARRAY(r->profile_w, s->profile_w, r->nprofile);
 	SAME_ARRAY(r->profile_phi, s->profile_phi, r->nprofile);

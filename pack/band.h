@@ -1,0 +1,30 @@
+/* Relaxation of the layer along the specimen boundary after tiling: the
+ * spheres cut by the boundary are pushed inside and the layer settles
+ * against the boundary as against a wall. */
+#ifndef PACK_BAND_H
+#define PACK_BAND_H
+
+#include "lib/assembly.h"
+#include "pack/spheres.h"
+#include "pack/surface.h"
+
+typedef struct {
+	double width; /* m, spheres whose centre is closer than this to the
+	               * boundary move (the band plus its mobile buffer) */
+	double otol;  /* stop when the largest relative overlap is below */
+	double ftol;  /* or when max |F|/r is below (force balance) */
+	long max_iter;
+	double skin; /* m, Verlet skin */
+} band_params;
+
+typedef struct {
+	size_t mobile, involved; /* spheres moved; spheres in the computation */
+	long iter;
+	double overlap; /* largest relative overlap at the end */
+} band_result;
+
+/* surf is the search tree over g's boundary triangles. */
+void band_relax(spheres *S, const surface *surf, const dem_geometry *g, const band_params *p,
+                band_result *res);
+
+#endif

@@ -1,0 +1,102 @@
+/* The packing pipeline (see packer.h).
+ *
+ * The periodic cell is the specimen's bounding box when that holds at most
+ * cell_max spheres (no copy is repeated), else a cube of cell_max spheres;
+ * an edge is never shorter than 8 r_max, so no sphere meets two images of
+ * another. Tolerances: the cell and the band stop at a largest overlap of
+ * 0.5 % of the smaller radius; pruning removes what still exceeds 0.9 %, so
+ * the assembly stays below the 1 % a bond's reference length tolerates.
+ * Voids are filled only within half a mean diameter of the boundary, where
+ * the cut left them: deeper, the room a sphere of r_min finds is the cage
+ * of a rattler of the jammed cell, and filling it would add small spheres
+ * the size distribution does not have. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lib/err.h"
+#include "lib/timer.h"
+#include "pack/band.h"
+#include "pack/jam.h"
+#include "pack/packer.h"
+#include "pack/prune.h"
+#include "pack/tile.h"
+#include "pack/voids.h"
+
+static const double PHI_RCP = 0.64, CELL_OTOL = 0.005, BAND_OTOL = 0.005, BAND_FTOL = 1e-5,
+                    PRUNE_LIMIT = 0.009, VOID_DEPTH = 0.5;
+static const long BAND_ITER = 1000;
+
+double packer_count_scale(const psd *d, double volume, long count)
+{
+	double v = 4.0 / 3.0 * M_PI * psd_moment(d, 3);
+	return cbrt(PHI_RCP * volume / ((double)count * v));
+}
+
+static void cell_shape(const psd *d, const dem_geometry *g, long cell_max, double shape[3],
+                       size_t *n)
+{
+	double v = 4.0 / 3.0 * M_PI * psd_moment(d, 3), vb = 1, edge_min = 8 * d->rmax;
+	for (int k = 0; k < 3; k++) {
+		shape[k] = fmax(g->bbox_max[k] - g->bbox_min[k], edge_min);
+		vb *= shape[k];
+	}
+	double nb = PHI_RCP * vb / v;
+	if (nb <= (double)cell_max) {
+		*n = (size_t)ceil(nb);
+		return;
+	}
+	shape[0] = shape[1] = shape[2] = 1;
+	*n = (size_t)cell_max;
+}
+
+void packer_run(spheres *S, psd *d, const dem_geometry *g, const surface *surf, const zones *z,
+                const packer_params *params, packer_stats *st)
+{
+	memset(st, 0, sizeof *st);
+	double t0 = timer_now();
+	double shape[3];
+	size_t n;
+	cell_shape(d, g, params->cell_max, shape, &n);
+	jam_cell c;
+	jam_make(&c, d, n, shape, params->seed, CELL_OTOL);
+	if (params->count > 0) {
+		/* Refine the sizes' scale with the cell's own solid fraction. */
+		double vs = 0;
+		for (size_t i = 0; i < c.n; i++)
+			vs += 4.0 / 3.0 * M_PI * c.r[i] * c.r[i] * c.r[i];
+		double expect = c.phi * g->volume / (vs / (double)c.n);
+		double s = cbrt(expect / (double)params->count);
+		for (size_t i = 0; i < 3 * c.n; i++)
+			c.x[i] *= s;
+		for (size_t i = 0; i < c.n; i++)
+			c.r[i] *= s;
+		for (int k = 0; k < 3; k++)
+			c.box[k] *= s;
+		psd_scale(d, s);
+	}
+	st->cell_n = c.n;
+	st->cell_phi = c.phi;
+	st->cell_iter = c.iter;
+	double t1 = timer_now();
+	st->time_cell = t1 - t0;
+
+	tile_fill(S, &c, surf, z, g->bbox_min, g->bbox_max, params->keep);
+	st->tiled = S->n;
+	double rmean = 0, rmax = 0;
+	for (size_t i = 0; i < c.n; i++) {
+		rmean += c.r[i] / (double)c.n;
+		rmax = fmax(rmax, c.r[i]);
+	}
+	jam_free(&c);
+	band_params bp = {params->band * 2 * rmean, BAND_OTOL, BAND_FTOL, BAND_ITER, 0.2 * rmean};
+	band_result br;
+	band_relax(S, surf, g, &bp, &br);
+	st->band_mobile = br.mobile;
+	st->band_iter = br.iter;
+	st->inserted = voids_fill(S, surf, z, d, VOID_DEPTH * 2 * rmean, 0, params->seed);
+	band_relax(S, surf, g, &bp, &br);
+	st->band_iter += br.iter;
+	st->pruned = prune_overlaps(S, surf, bp.width + 2 * rmax + bp.skin, PRUNE_LIMIT);
+	st->time_fill = timer_now() - t1;
+}

@@ -1,0 +1,41 @@
+/* The packing pipeline: a periodic jammed cell, tiled over the specimen;
+ * the wall band relaxed, its voids next to the boundary filled, relaxed
+ * again, and the worst remaining overlaps removed. */
+#ifndef PACK_PACKER_H
+#define PACK_PACKER_H
+
+#include <stdint.h>
+
+#include "lib/assembly.h"
+#include "lib/progress.h"
+#include "pack/psd.h"
+#include "pack/spheres.h"
+#include "pack/surface.h"
+#include "pack/zones.h"
+
+typedef struct {
+	uint64_t seed;
+	long cell_max; /* largest number of spheres in the periodic cell */
+	double keep;   /* keep a tiled sphere whose centre is >= keep r inside */
+	double band;   /* depth relaxed against the boundary, mean diameters */
+	long count;    /* target number of spheres (0: sizes as given) */
+} packer_params;
+
+typedef struct {
+	size_t cell_n;
+	double cell_phi;
+	long cell_iter, band_iter;
+	size_t tiled, band_mobile, inserted, pruned;
+	double time_cell, time_fill;
+} packer_stats;
+
+/* The scale on the sizes of d that makes about `count` spheres fill a
+ * volume at the solid fraction of a random close packing. */
+double packer_count_scale(const psd *d, double volume, long count);
+
+/* Fill S; d is rescaled in place when params->count > 0 refines the
+ * first estimate of the sizes. */
+void packer_run(spheres *S, psd *d, const dem_geometry *g, const surface *surf, const zones *z,
+                const packer_params *params, packer_stats *st);
+
+#endif

@@ -1,0 +1,337 @@
+/* Packing report (see report.h).
+ *
+ * Solid fraction profile: with s_i the depth of centre i below the boundary
+ * (its signed distance), sphere i puts the volume
+ *     V_i[a, b] = pi [r^2 t - t^3/3] from t = max(a - s_i, -r) to min(b - s_i, r)
+ * at depths between a and b (the boundary is taken as flat over one sphere,
+ * exact for faces and off by O(r/R) on a surface of curvature radius R).
+ * phi(w) in a bin [a, b] is sum_i V_i[a, b] over the volume of the specimen
+ * at those depths, V_in(a) - V_in(b), V_in(w) being the volume deeper than
+ * w: exact for the built-in shapes, measured with a lattice of probe
+ * points (8 per zone cell near the boundary) for files.
+ *     phi_core = sum_i V_i[w_c, inf) / V_in(w_c),  w_c = 2 mean diameters,
+ *     delta*   = integral_0^{w_c} (phi_core - phi(w)) dw   (in mean diameters).
+ * Contacts: pairs with d_ij <= (1 + beta)(r_i + r_j) (Eq. 16 of Onate et al.
+ * 2015) give the coordination N_c = 2 B / N and alpha = 40 P / N_c with P
+ * = 1 - phi the porosity (Eq. 22). Fabric F = <n n> over such pairs with
+ * both spheres in the core; anisotropy sqrt(3/2 D:D) with D = F - I/3,
+ * which is the difference of principal values for an axisymmetric fabric
+ * (0 isotropic, 1 all contacts along one axis). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lib/err.h"
+#include "lib/vec3.h"
+#include "pack/geometry.h"
+#include "pack/report.h"
+#include "pack/soft.h"
+
+static double cap_volume(double r, double t0, double t1)
+{
+	t0 = fmax(t0, -r);
+	t1 = fmin(t1, r);
+	if (t1 <= t0)
+		return 0;
+	return M_PI * (r * r * (t1 - t0) - (t1 * t1 * t1 - t0 * t0 * t0) / 3);
+}
+
+/* Depth of every centre: exact where it matters (shallower than `limit`
+ * plus its radius), else the zone's lower bound. */
+static double *depths(const dem_assembly *a, const surface *surf, const zones *z, double limit)
+{
+	double *s = xmalloc(a->n * sizeof *s + 1);
+	size_t n = a->n;
+#pragma omp parallel for schedule(dynamic, 512)
+	for (size_t i = 0; i < n; i++) {
+		size_t c = zones_cell(z, a->x + 3 * i);
+		if (z->lb[c] >= limit + a->r[i]) {
+			s[i] = z->lb[c];
+			continue;
+		}
+		int32_t hint = z->hint[c];
+		s[i] = surface_distance(surf, a->x + 3 * i, NULL, &hint);
+	}
+	return s;
+}
+
+/* V_in at the bin edges edge[0..nb] (edge[0] = 0). */
+static void inner_volumes(const dem_geometry *g, const surface *surf, const zones *z,
+                          const double *edge, size_t nb, double *vin)
+{
+	if (geometry_inner_volume(g, 0) >= 0) {
+		for (size_t k = 0; k <= nb; k++)
+			vin[k] = geometry_inner_volume(g, edge[k]);
+		return;
+	}
+	size_t ncell = (size_t)z->dim[0] * (size_t)z->dim[1] * (size_t)z->dim[2];
+	double h = 0.5 * z->edge, dv = h * h * h, wmax = edge[nb];
+	double *hist = xcalloc(nb + 1, sizeof *hist);
+	for (size_t c = 0; c < ncell; c++) {
+		if (z->ub[c] < 0 || z->lb[c] >= wmax)
+			continue;
+		size_t i = c % (size_t)z->dim[0], j = c / (size_t)z->dim[0] % (size_t)z->dim[1],
+		       k = c / ((size_t)z->dim[0] * (size_t)z->dim[1]);
+		size_t ijk[3] = {i, j, k};
+		for (int q = 0; q < 8; q++) {
+			double p[3];
+			for (int d = 0; d < 3; d++)
+				p[d] = z->lo[d] +
+				       ((double)ijk[d] + 0.25 + 0.5 * ((q >> d) & 1)) * z->edge;
+			int32_t hint = z->hint[c];
+			double s = surface_distance(surf, p, NULL, &hint);
+			if (s < 0 || s >= wmax)
+				continue;
+			size_t b = (size_t)(s / (wmax / (double)nb));
+			hist[b < nb ? b : nb - 1] += dv;
+		}
+	}
+	vin[0] = g->volume;
+	for (size_t k = 0; k < nb; k++)
+		vin[k + 1] = vin[k] - hist[k];
+	free(hist);
+}
+
+static void profile(dem_assembly *a, const double *s, const surface *surf, const zones *z)
+{
+	dem_report *rep = &a->report;
+	double dmean = 2 * rep->mean_radius, wc = REPORT_CORE_DEPTH * dmean;
+	size_t nb = REPORT_PROFILE_BINS,
+	       ncore = (size_t)lround(nb * REPORT_CORE_DEPTH / REPORT_PROFILE_DEPTH);
+	double dw = REPORT_PROFILE_DEPTH * dmean / (double)nb;
+	double edge[REPORT_PROFILE_BINS + 1], vin[REPORT_PROFILE_BINS + 1];
+	double mass[REPORT_PROFILE_BINS] = {0}, core = 0;
+	for (size_t k = 0; k <= nb; k++)
+		edge[k] = dw * (double)k;
+	for (size_t i = 0; i < a->n; i++) {
+		double r = a->r[i];
+		if (s[i] - r >= edge[nb] && s[i] - r >= wc) {
+			core += 4.0 / 3.0 * M_PI * r * r * r;
+			continue;
+		}
+		for (size_t k = 0; k < nb; k++)
+			mass[k] += cap_volume(r, edge[k] - s[i], edge[k + 1] - s[i]);
+		core += cap_volume(r, wc - s[i], r);
+	}
+	inner_volumes(&a->geom, surf, z, edge, nb, vin);
+	rep->nprofile = nb;
+	rep->profile_w = xmalloc(nb * sizeof *rep->profile_w);
+	rep->profile_phi = xmalloc(nb * sizeof *rep->profile_phi);
+	double vcore = vin[ncore];
+	rep->solid_fraction_core = vcore > 0 ? core / vcore : 0;
+	double deficit = 0;
+	for (size_t k = 0; k < nb; k++) {
+		double shell = vin[k] - vin[k + 1];
+		rep->profile_w[k] = 0.5 * (edge[k] + edge[k + 1]);
+		rep->profile_phi[k] = shell > 0 ? mass[k] / shell : 0;
+		if (k < ncore)
+			deficit += (rep->solid_fraction_core - rep->profile_phi[k]) * dw;
+	}
+	rep->wall_deficit = dmean > 0 ? deficit / dmean : 0;
+}
+
+/* Coordination, fabric and overlaps from one neighbour list. */
+static void contacts(dem_assembly *a, const double *s, double beta)
+{
+	dem_report *rep = &a->report;
+	size_t n = a->n;
+	double rmax = 0;
+	for (size_t i = 0; i < n; i++)
+		rmax = fmax(rmax, a->r[i]);
+	soft_system sys;
+	soft_init(&sys, n, a->x, a->r, NULL);
+	sys.skin = 2 * beta * rmax + 1e-12 * rmax;
+	soft_rebuild(&sys);
+	double wc = REPORT_CORE_DEPTH * 2 * rep->mean_radius;
+	/* Per sphere, over its partners j > i: bonds, fabric (6), overlap sum,
+	 * overlapping pairs; the maxima reduce exactly in any order. */
+	enum { BONDS, F_XX, F_YY, F_ZZ, F_XY, F_XZ, F_YZ, NCORE, OV_SUM, OV_N, NSUM };
+	double *part = xcalloc(NSUM * n + 1, sizeof *part);
+	double ov_max = 0, wall_max = 0;
+#pragma omp parallel for schedule(static) reduction(max : ov_max, wall_max)
+	for (size_t i = 0; i < n; i++) {
+		double *p = part + NSUM * i, ri = a->r[i];
+		if (s[i] < ri)
+			wall_max = fmax(wall_max, (ri - s[i]) / ri);
+		for (size_t q = sys.nb_start[i]; q < sys.nb_start[i + 1]; q++) {
+			size_t j = (size_t)sys.nb[q];
+			if (j < i)
+				continue;
+			double d[3];
+			soft_delta(&sys, i, j, d);
+			double dist = v3_norm(d), sum = ri + a->r[j];
+			if (dist > (1 + beta) * sum)
+				continue;
+			p[BONDS] += 1;
+			if (dist < sum) {
+				double rel = (sum - dist) / fmin(ri, a->r[j]);
+				p[OV_SUM] += rel;
+				p[OV_N] += 1;
+				ov_max = fmax(ov_max, rel);
+			}
+			if (s[i] >= wc && s[j] >= wc && dist > 0) {
+				double u[3];
+				v3_scale(u, d, 1 / dist);
+				p[F_XX] += u[0] * u[0];
+				p[F_YY] += u[1] * u[1];
+				p[F_ZZ] += u[2] * u[2];
+				p[F_XY] += u[0] * u[1];
+				p[F_XZ] += u[0] * u[2];
+				p[F_YZ] += u[1] * u[2];
+				p[NCORE] += 1;
+			}
+		}
+	}
+	double tot[NSUM] = {0};
+	for (size_t i = 0; i < n; i++)
+		for (int k = 0; k < NSUM; k++)
+			tot[k] += part[NSUM * i + k];
+	free(part);
+	soft_free(&sys);
+	rep->beta = beta;
+	rep->coordination = n ? 2 * tot[BONDS] / (double)n : 0;
+	rep->alpha = rep->coordination > 0 ? 40 * (1 - rep->solid_fraction) / rep->coordination : 0;
+	rep->overlap_max = ov_max;
+	rep->overlap_mean = tot[OV_N] > 0 ? tot[OV_SUM] / tot[OV_N] : 0;
+	rep->wall_overlap_max = wall_max;
+	rep->fabric_anisotropy = 0;
+	if (tot[NCORE] > 0) {
+		double f[6];
+		for (int k = 0; k < 6; k++)
+			f[k] = tot[F_XX + k] / tot[NCORE];
+		double tr = (f[0] + f[1] + f[2]) / 3;
+		double dd = (f[0] - tr) * (f[0] - tr) + (f[1] - tr) * (f[1] - tr) +
+		            (f[2] - tr) * (f[2] - tr) +
+		            2 * (f[3] * f[3] + f[4] * f[4] + f[5] * f[5]);
+		rep->fabric_anisotropy = sqrt(1.5 * dd);
+	}
+}
+
+static int cmp_double(const void *x, const void *y)
+{
+	double a = *(const double *)x, b = *(const double *)y;
+	return (a > b) - (a < b);
+}
+
+static void size_distribution(dem_assembly *a, const psd *target)
+{
+	dem_report *rep = &a->report;
+	size_t n = a->n, m = REPORT_PSD_POINTS;
+	double *r = xmalloc(n * sizeof *r + 1), *cumv = xmalloc((n + 1) * sizeof *cumv);
+	memcpy(r, a->r, n * sizeof *r);
+	qsort(r, n, sizeof *r, cmp_double);
+	cumv[0] = 0;
+	for (size_t i = 0; i < n; i++)
+		cumv[i + 1] = cumv[i] + r[i] * r[i] * r[i];
+	double lo = n ? r[0] : 0, hi = n ? r[n - 1] : 0;
+	if (target) {
+		lo = fmin(lo, target->rmin);
+		hi = fmax(hi, target->rmax);
+	}
+	rep->npsd = m;
+	rep->psd_size = xmalloc(m * sizeof *rep->psd_size);
+	rep->psd_number = xmalloc(m * sizeof *rep->psd_number);
+	rep->psd_volume = xmalloc(m * sizeof *rep->psd_volume);
+	rep->psd_target_number = xmalloc(m * sizeof *rep->psd_target_number);
+	rep->psd_target_volume = xmalloc(m * sizeof *rep->psd_target_volume);
+	size_t below = 0;
+	for (size_t k = 0; k < m; k++) {
+		double rk = lo + (hi - lo) * (double)k / (double)(m - 1);
+		while (below < n && r[below] <= rk)
+			below++;
+		rep->psd_size[k] = 2 * rk;
+		rep->psd_number[k] = n ? (double)below / (double)n : 0;
+		rep->psd_volume[k] = cumv[n] > 0 ? cumv[below] / cumv[n] : 0;
+		rep->psd_target_number[k] =
+		    target ? psd_cdf_number(target, rk) : rep->psd_number[k];
+		rep->psd_target_volume[k] =
+		    target ? psd_cdf_volume(target, rk) : rep->psd_volume[k];
+	}
+	free(r);
+	free(cumv);
+}
+
+void report_compute(dem_assembly *a, const surface *surf, const zones *z, const psd *target,
+                    double beta)
+{
+	dem_report *rep = &a->report;
+	double vs = 0, rsum = 0;
+	for (size_t i = 0; i < a->n; i++) {
+		vs += 4.0 / 3.0 * M_PI * a->r[i] * a->r[i] * a->r[i];
+		rsum += a->r[i];
+	}
+	rep->solid_fraction = vs / a->geom.volume;
+	rep->mean_radius = a->n ? rsum / (double)a->n : 0;
+	double dmean = 2 * rep->mean_radius;
+	double *s = depths(a, surf, z, fmax(REPORT_PROFILE_DEPTH, REPORT_CORE_DEPTH) * dmean);
+	profile(a, s, surf, z);
+	contacts(a, s, beta);
+	size_distribution(a, target);
+	free(s);
+}
+
+/* The diameter below which a fraction f of the spheres (by number or
+ * volume) lies, interpolated in the reported distribution. */
+static double percentile(const dem_report *r, const double *cum, double f)
+{
+	for (size_t k = 1; k < r->npsd; k++)
+		if (cum[k] >= f) {
+			double t =
+			    cum[k] > cum[k - 1] ? (f - cum[k - 1]) / (cum[k] - cum[k - 1]) : 1;
+			return r->psd_size[k - 1] + t * (r->psd_size[k] - r->psd_size[k - 1]);
+		}
+	return r->npsd ? r->psd_size[r->npsd - 1] : 0;
+}
+
+void report_print(const dem_assembly *a, FILE *out)
+{
+	const dem_report *r = &a->report;
+	const dem_geometry *g = &a->geom;
+	fprintf(out, "pack: %zu spheres in ", a->n);
+	if (strcmp(g->shape, "box") == 0)
+		fprintf(out, "box %g x %g x %g mm", 1e3 * g->size[0], 1e3 * g->size[1],
+		        1e3 * g->size[2]);
+	else if (strcmp(g->shape, "file") == 0)
+		fprintf(out, "%s", g->source);
+	else
+		fprintf(out, "%s %g x %g mm", g->shape, 1e3 * g->diameter, 1e3 * g->height);
+	fprintf(out, " (volume %.4g m^3)\n", g->volume);
+	fprintf(out, "  solid fraction   %.4f total, %.4f core (deeper than %g mean diameters)\n",
+	        r->solid_fraction, r->solid_fraction_core, REPORT_CORE_DEPTH);
+	fprintf(out, "  wall deficit     delta* = %.3f mean diameters\n", r->wall_deficit);
+	fprintf(out, "  profile phi(w)  ");
+	for (size_t k = 1; k < r->nprofile; k += r->nprofile / 6)
+		fprintf(out, " %.2fd:%.3f", r->profile_w[k] / (2 * r->mean_radius),
+		        r->profile_phi[k]);
+	fprintf(out, "\n");
+	fprintf(out,
+	        "  diameters (mm)   d10 %.3f  d50 %.3f  d90 %.3f by number (target %.3f %.3f "
+	        "%.3f)\n",
+	        1e3 * percentile(r, r->psd_number, 0.1), 1e3 * percentile(r, r->psd_number, 0.5),
+	        1e3 * percentile(r, r->psd_number, 0.9),
+	        1e3 * percentile(r, r->psd_target_number, 0.1),
+	        1e3 * percentile(r, r->psd_target_number, 0.5),
+	        1e3 * percentile(r, r->psd_target_number, 0.9));
+	fprintf(out,
+	        "                   d10 %.3f  d50 %.3f  d90 %.3f by volume (target %.3f %.3f "
+	        "%.3f)\n",
+	        1e3 * percentile(r, r->psd_volume, 0.1), 1e3 * percentile(r, r->psd_volume, 0.5),
+	        1e3 * percentile(r, r->psd_volume, 0.9),
+	        1e3 * percentile(r, r->psd_target_volume, 0.1),
+	        1e3 * percentile(r, r->psd_target_volume, 0.5),
+	        1e3 * percentile(r, r->psd_target_volume, 0.9));
+	fprintf(out,
+	        "  coordination     %.2f bonds per sphere at beta = %.2f; alpha = 40 P/N_c = "
+	        "%.3f\n",
+	        r->coordination, r->beta, r->alpha);
+	fprintf(out, "  fabric           anisotropy %.4f in the core\n", r->fabric_anisotropy);
+	fprintf(out,
+	        "  overlaps         max %.3f %%, mean %.3f %% of the smaller radius; "
+	        "boundary max %.3f %% of the radius\n",
+	        100 * r->overlap_max, 100 * r->overlap_mean, 100 * r->wall_overlap_max);
+	fprintf(out,
+	        "  seed %llu; time %.3f s (geometry %.3f, cell %.3f, fill %.3f, report %.3f)\n",
+	        (unsigned long long)a->prov.seed, r->time, r->time_geometry, r->time_cell,
+	        r->time_fill, r->time_report);
+}

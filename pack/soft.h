@@ -1,0 +1,80 @@
+/* Soft spheres for packing: harmonic repulsion between overlapping spheres
+ * and against the specimen boundary, with a Verlet neighbour list. The
+ * energy minimised by pack/fire.c is
+ *
+ *   U = 1/2 sum_{pairs} (r_i + r_j - d_ij)^2_+  +  1/2 sum_i (r_i - s_i)^2_+
+ *
+ * (d_ij the centre distance, s_i the signed distance of centre i to the
+ * boundary), i.e. unit contact stiffness; F_i = -dU/dx_i. Forces are
+ * gathered per sphere in a fixed order, so results are identical whatever
+ * the number of threads. */
+#ifndef PACK_SOFT_H
+#define PACK_SOFT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "pack/surface.h"
+
+#define WALL_MAX 48 /* boundary triangles kept per sphere */
+
+typedef struct {
+	size_t n;
+	double *x;               /* [n][3] m */
+	double *r;               /* [n] m */
+	uint8_t *mobile;         /* [n] 1 if the sphere moves; NULL: all move */
+	double box[3];           /* periodic cell lengths (m); all 0: not periodic */
+	const surface *wall;     /* boundary to stay inside, or NULL; then */
+	const double *wall_vert; /* its triangulation (pack/trimesh.h) */
+	const int32_t *wall_tri;
+	double skin; /* Verlet skin (m) */
+
+	/* Neighbour list (CSR over mobile spheres), rebuilt on demand. */
+	size_t *nb_start;  /* [n+1] */
+	int32_t *nb;       /* neighbour indices */
+	uint8_t *nb_shift; /* periodic image of each: 13 + sum_k 3^k s_k, s_k in -1..1 */
+	size_t nb_cap;
+	double *x_built; /* positions when the list was built */
+	double *r_built;
+	/* The boundary triangles within r + skin of each sphere near it, found
+	 * at the last build: wall_slot[i] >= 0 indexes WALL_MAX entries of
+	 * wall_pool, wall_count[i] of them used. wall_s0 is a lower bound of
+	 * the signed distance at wall_xq; a caller that knows one may store it
+	 * (with wall_xq = the position) to spare the first query. */
+	double *wall_s0;
+	double *wall_xq; /* [n][3] */
+	int32_t *wall_hint;
+	int32_t *wall_slot;
+	uint8_t *wall_count;
+	int32_t *wall_pool;
+	size_t wall_slots;
+	int stale;
+	long builds;
+} soft_system;
+
+/* Allocate the per-sphere work arrays for n spheres (x, r, mobile are the
+ * caller's). */
+void soft_init(soft_system *s, size_t n, double *x, double *r, uint8_t *mobile);
+void soft_free(soft_system *s);
+
+/* Rebuild the neighbour list now (periodic positions are wrapped into the
+ * cell), or only if a sphere moved or grew enough to make it stale. */
+void soft_rebuild(soft_system *s);
+void soft_update(soft_system *s, int force);
+
+typedef struct {
+	double overlap_max;  /* largest overlap relative to the smaller radius
+	                      * (pairs) or to the radius (boundary) */
+	double overlap_mean; /* mean of the same over touching pairs, seen from
+	                      * each mobile sphere */
+	double contacts;     /* their number */
+	double fmax;         /* max_i |F_i| / r_i */
+} soft_stats;
+
+/* Forces on the mobile spheres (f, [n][3]; 0 for fixed ones). */
+void soft_forces(soft_system *s, double *f, soft_stats *st);
+
+/* Minimum-image separation x_j - x_i. */
+void soft_delta(const soft_system *s, size_t i, size_t j, double d[3]);
+
+#endif
