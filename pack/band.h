@@ -12,7 +12,6 @@ typedef struct {
 	double width; /* m, spheres whose centre is closer than this to the
 	               * boundary move (the band plus its mobile buffer) */
 	double otol;  /* stop when the largest relative overlap is below */
-	double ftol;  /* or when max |F|/r is below (force balance) */
 	long max_iter;
 	double skin; /* m, Verlet skin */
 } band_params;
@@ -21,6 +20,7 @@ typedef struct {
 	size_t mobile, involved; /* spheres moved; spheres in the computation */
 	long iter;
 	double overlap; /* largest relative overlap at the end */
+	double shrink;  /* mean relative radius reduction of the moved spheres */
 } band_result;
 
 /* surf is the search tree over g's boundary triangles. */

@@ -136,12 +136,11 @@ int main(int argc, char **argv)
 		report_print(&a, stdout);
 		if (!o.import_path)
 			printf("  packing          periodic cell of %zu spheres at %.4f (%ld "
-			       "iterations); "
-			       "%zu tiled;\n                   wall band: %zu moved, %zu inserted, "
-			       "%zu "
-			       "removed (%ld iterations)\n",
+			       "iterations), "
+			       "%zu tiled;\n                   wall band: %zu moved (radii %.2f %% "
+			       "smaller on average), %zu inserted, %zu removed (%ld iterations)\n",
 			       st.cell_n, st.cell_phi, st.cell_iter, st.tiled, st.band_mobile,
-			       st.inserted, st.pruned, st.band_iter);
+			       100 * st.band_shrink, st.inserted, st.pruned, st.band_iter);
 	}
 	free(S.lo);
 	free(S.hi);

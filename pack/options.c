@@ -93,8 +93,8 @@ static void defaults(pack_options *o)
 	o->seed = 1;
 	o->beta = 0.10;
 	o->cell = 4000;
-	o->keep = 0.5;
-	o->band = 4;
+	o->keep = 0.3;
+	o->band = 3;
 }
 
 static void json_key(const char *name, char *key, size_t n)

@@ -23,9 +23,8 @@
 #include "pack/tile.h"
 #include "pack/voids.h"
 
-static const double PHI_RCP = 0.64, CELL_OTOL = 0.005, BAND_OTOL = 0.005, BAND_FTOL = 1e-5,
-                    PRUNE_LIMIT = 0.009, VOID_DEPTH = 0.5;
-static const long BAND_ITER = 1000;
+static const double PHI_RCP = 0.64, CELL_OTOL = 0.005, BAND_OTOL = 0.005, PRUNE_LIMIT = 0.009;
+static const long BAND_ITER = 200, REFILL_ITER = 150;
 
 double packer_count_scale(const psd *d, double volume, long count)
 {
@@ -89,14 +88,16 @@ void packer_run(spheres *S, psd *d, const dem_geometry *g, const surface *surf, 
 		rmax = fmax(rmax, c.r[i]);
 	}
 	jam_free(&c);
-	band_params bp = {params->band * 2 * rmean, BAND_OTOL, BAND_FTOL, BAND_ITER, 0.2 * rmean};
+	band_params bp = {params->band * 2 * rmean, BAND_OTOL, BAND_ITER, 0.2 * rmean};
 	band_result br;
 	band_relax(S, surf, g, &bp, &br);
 	st->band_mobile = br.mobile;
 	st->band_iter = br.iter;
-	st->inserted = voids_fill(S, surf, z, d, VOID_DEPTH * 2 * rmean, 0, params->seed);
+	st->inserted = voids_fill(S, surf, g, d, params->seed);
+	bp.max_iter = REFILL_ITER;
 	band_relax(S, surf, g, &bp, &br);
 	st->band_iter += br.iter;
+	st->band_shrink = br.shrink;
 	st->pruned = prune_overlaps(S, surf, bp.width + 2 * rmax + bp.skin, PRUNE_LIMIT);
 	st->time_fill = timer_now() - t1;
 }

@@ -26,6 +26,7 @@ typedef struct {
 	double cell_phi;
 	long cell_iter, band_iter;
 	size_t tiled, band_mobile, inserted, pruned;
+	double band_shrink; /* mean relative radius reduction in the band */
 	double time_cell, time_fill;
 } packer_stats;
 

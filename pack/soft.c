@@ -29,6 +29,7 @@ void soft_init(soft_system *s, size_t n, double *x, double *r, uint8_t *mobile)
 	s->r = r;
 	s->mobile = mobile;
 	s->nb_start = xcalloc(n + 1, sizeof *s->nb_start);
+	s->xr = xmalloc(4 * n * sizeof *s->xr + 1);
 	s->x_built = xmalloc(3 * n * sizeof *s->x_built + 1);
 	s->r_built = xmalloc(n * sizeof *s->r_built + 1);
 	s->wall_s0 = xmalloc(n * sizeof *s->wall_s0 + 1);
@@ -48,6 +49,7 @@ void soft_init(soft_system *s, size_t n, double *x, double *r, uint8_t *mobile)
 void soft_free(soft_system *s)
 {
 	free(s->nb_start);
+	free(s->xr);
 	free(s->nb);
 	free(s->nb_shift);
 	free(s->x_built);
@@ -84,8 +86,7 @@ static inline void image_delta(const soft_system *s, size_t i, size_t j, int cod
 {
 	v3_sub(d, s->x + 3 * j, s->x + 3 * i);
 	if (code != 13)
-		for (int k = 0; k < 3; k++)
-			d[k] += s->box[k] * (double)(code / (k == 0 ? 1 : k == 1 ? 3 : 9) % 3 - 1);
+		v3_add(d, d, s->shift[code]);
 }
 
 /* The image code of a minimum-image separation d (small grids). */
@@ -256,6 +257,14 @@ static void wall_collect(soft_system *s)
 
 void soft_rebuild(soft_system *s)
 {
+	for (int code = 0; code < 27; code++)
+		for (int k = 0; k < 3; k++)
+			s->shift[code][k] = s->box[k] * (double)(code /
+			                                             (k == 0   ? 1
+			                                              : k == 1 ? 3
+			                                                       : 9) %
+			                                             3 -
+			                                         1);
 	if (periodic(s))
 		for (size_t i = 0; i < 3 * s->n; i++)
 			s->x[i] -= s->box[i % 3] * floor(s->x[i] / s->box[i % 3]);
@@ -341,27 +350,39 @@ void soft_update(soft_system *s, int force)
 void soft_forces(soft_system *s, double *f, soft_stats *out)
 {
 	size_t n = s->n, nblock = (n + FORCE_BLOCK - 1) / FORCE_BLOCK;
-	double *part = xcalloc(2 * nblock + 1, sizeof *part);
+	double *part = xcalloc(2 * nblock + 1, sizeof *part), *xr = s->xr;
 	double worst = 0, fmx = 0;
+	/* Position and radius side by side: one cache line per neighbour. */
+#pragma omp parallel for schedule(static)
+	for (size_t i = 0; i < n; i++) {
+		v3_copy(xr + 4 * i, s->x + 3 * i);
+		xr[4 * i + 3] = s->r[i];
+	}
 #pragma omp parallel for reduction(max : worst, fmx) schedule(static)
 	for (size_t b = 0; b < nblock; b++) {
 		double sum = 0, count = 0;
 		size_t end = (b + 1) * FORCE_BLOCK < n ? (b + 1) * FORCE_BLOCK : n;
 		for (size_t i = b * FORCE_BLOCK; i < end; i++) {
-			double fi[3] = {0, 0, 0};
+			double fi[3] = {0, 0, 0}, wi = 0;
 			if (is_mobile(s, i)) {
-				double ri = s->r[i];
+				const double *pi = xr + 4 * i;
+				double ri = pi[3];
 				for (size_t q = s->nb_start[i]; q < s->nb_start[i + 1]; q++) {
-					size_t j = (size_t)s->nb[q];
+					const double *pj = xr + 4 * (size_t)s->nb[q];
 					double d[3];
-					image_delta(s, i, j, s->nb_shift[q], d);
-					double dd = v3_dot(d, d), rs = ri + s->r[j];
+					v3_sub(d, pj, pi);
+					if (s->nb_shift[q] != 13)
+						v3_add(d, d, s->shift[s->nb_shift[q]]);
+					double dd = v3_dot(d, d), rs = ri + pj[3];
 					if (dd >= rs * rs)
 						continue;
+					/* One division for both delta/dist and delta/min(r). */
 					double dist = sqrt(dd), delta = rs - dist;
-					v3_axpy(fi, d, -delta / dist);
-					double rel = delta / (ri < s->r[j] ? ri : s->r[j]);
-					worst = rel > worst ? rel : worst;
+					double rmin = ri < pj[3] ? ri : pj[3],
+					       inv = 1 / (dist * rmin);
+					v3_axpy(fi, d, -delta * rmin * inv);
+					double rel = delta * dist * inv;
+					wi = rel > wi ? rel : wi;
 					sum += rel;
 					count += 1;
 				}
@@ -383,15 +404,18 @@ void soft_forces(soft_system *s, double *f, soft_stats *out)
 						double d[3];
 						v3_sub(d, s->x + 3 * i, q);
 						v3_axpy(fi, d, delta / dmin);
-						worst = delta / ri > worst ? delta / ri : worst;
+						wi = delta / ri > wi ? delta / ri : wi;
 						sum += delta / ri;
 						count += 1;
 					}
 				}
+				worst = wi > worst ? wi : worst;
 				double fr = sqrt(v3_dot(fi, fi)) / ri;
 				fmx = fr > fmx ? fr : fmx;
 			}
 			v3_copy(f + 3 * i, fi);
+			if (s->worst)
+				s->worst[i] = wi;
 		}
 		part[2 * b] = sum;
 		part[2 * b + 1] = count;

@@ -30,9 +30,11 @@ typedef struct {
 	double skin; /* Verlet skin (m) */
 
 	/* Neighbour list (CSR over mobile spheres), rebuilt on demand. */
-	size_t *nb_start;  /* [n+1] */
-	int32_t *nb;       /* neighbour indices */
-	uint8_t *nb_shift; /* periodic image of each: 13 + sum_k 3^k s_k, s_k in -1..1 */
+	size_t *nb_start;    /* [n+1] */
+	int32_t *nb;         /* neighbour indices */
+	uint8_t *nb_shift;   /* periodic image of each: 13 + sum_k 3^k s_k, s_k in -1..1 */
+	double shift[27][3]; /* the displacement of each periodic image */
+	double *xr;          /* [n][4] scratch: positions and radii together */
 	size_t nb_cap;
 	double *x_built; /* positions when the list was built */
 	double *r_built;
@@ -50,6 +52,8 @@ typedef struct {
 	size_t wall_slots;
 	int stale;
 	long builds;
+	double *worst; /* [n] if not NULL: each mobile sphere's largest relative
+	                * overlap, filled by soft_forces */
 } soft_system;
 
 /* Allocate the per-sphere work arrays for n spheres (x, r, mobile are the

@@ -25,7 +25,6 @@ namespace
 typedef CGAL::Simple_cartesian<double> Kernel;
 typedef Kernel::Point_3 Point;
 typedef Kernel::Triangle_3 Triangle;
-typedef Kernel::Sphere_3 Sphere;
 typedef std::vector<Triangle>::const_iterator TriangleIt;
 typedef CGAL::AABB_triangle_primitive<Kernel, TriangleIt> Primitive;
 typedef CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>> Tree;
@@ -174,6 +173,24 @@ static Vec pseudo_normal(const surface *s, size_t t, const Vec &q)
 	return s->face_normal[t];
 }
 
+// Signed distance from x given its closest point q on triangle t.
+static double signed_distance(const surface *s, size_t t, const Vec &q, const double p[3],
+                              double normal[3])
+{
+	Vec x{p[0], p[1], p[2]};
+	Vec d = x - q;
+	double dist = std::sqrt(dot(d, d));
+	double outside = dot(d, pseudo_normal(s, t, q));
+	if (normal) {
+		Vec n = dist > 0 ? (outside > 0 ? (1.0 / dist) * d : (-1.0 / dist) * d)
+		                 : unit(pseudo_normal(s, t, q));
+		normal[0] = n.x;
+		normal[1] = n.y;
+		normal[2] = n.z;
+	}
+	return outside > 0 ? -dist : dist;
+}
+
 extern "C" double surface_distance(const surface *s, const double p[3], double normal[3],
                                    int32_t *hint)
 {
@@ -190,31 +207,43 @@ extern "C" double surface_distance(const surface *s, const double p[3], double n
 	size_t t = (size_t)(pp.second - s->triangles.begin());
 	if (hint)
 		*hint = (int32_t)t;
-	Vec q{pp.first.x(), pp.first.y(), pp.first.z()}, x{p[0], p[1], p[2]};
-	Vec d = x - q;
-	double dist = std::sqrt(dot(d, d));
-	double outside = dot(d, pseudo_normal(s, t, q));
-	double sd = outside > 0 ? -dist : dist;
-	if (normal) {
-		Vec n = dist > 0 ? (outside > 0 ? (1.0 / dist) * d : (-1.0 / dist) * d)
-		                 : unit(pseudo_normal(s, t, q));
-		normal[0] = n.x;
-		normal[1] = n.y;
-		normal[2] = n.z;
+	return signed_distance(s, t, Vec{pp.first.x(), pp.first.y(), pp.first.z()}, p, normal);
+}
+
+extern "C" double surface_distance_among(const surface *s, const double p[3], const int32_t *tri,
+                                         size_t n)
+{
+	if (n == 0)
+		return INFINITY;
+	Point query(p[0], p[1], p[2]), bq(0, 0, 0);
+	double best = INFINITY;
+	size_t bt = 0;
+	Kernel::Construct_projected_point_3 project;
+	for (size_t k = 0; k < n; k++) {
+		Point q = project(s->triangles[tri[k]], query);
+		double d2 = CGAL::squared_distance(query, q);
+		if (d2 < best) {
+			best = d2;
+			bt = (size_t)tri[k];
+			bq = q;
+		}
 	}
-	return sd;
+	return signed_distance(s, bt, Vec{bq.x(), bq.y(), bq.z()}, p, NULL);
 }
 
 extern "C" size_t surface_near(const surface *s, const double p[3], double radius, int32_t *out,
                                size_t max_out)
 {
 	std::vector<Primitive::Id> hits;
-	Sphere ball(Point(p[0], p[1], p[2]), radius * radius);
-	s->tree.all_intersected_primitives(ball, std::back_inserter(hits));
+	CGAL::Bbox_3 box(p[0] - radius, p[1] - radius, p[2] - radius, p[0] + radius, p[1] + radius,
+	                 p[2] + radius);
+	s->tree.all_intersected_primitives(box, std::back_inserter(hits));
+	Point c(p[0], p[1], p[2]);
 	std::vector<int32_t> ids;
 	ids.reserve(hits.size());
 	for (const Primitive::Id &h : hits)
-		ids.push_back((int32_t)(h - s->triangles.begin()));
+		if (CGAL::squared_distance(c, *h) <= radius * radius)
+			ids.push_back((int32_t)(h - s->triangles.begin()));
 	std::sort(ids.begin(), ids.end());
 	for (size_t k = 0; k < ids.size() && k < max_out; k++)
 		out[k] = ids[k];

@@ -30,6 +30,11 @@ void surface_free(surface *s);
  * close to p that speeds up the search; it receives the closest triangle. */
 double surface_distance(const surface *s, const double p[3], double normal[3], int32_t *hint);
 
+/* The signed distance from p as surface_distance(), searching only the n
+ * triangles listed (which must include p's closest one, e.g. those
+ * surface_near() found within a radius larger than the distance). */
+double surface_distance_among(const surface *s, const double p[3], const int32_t *tri, size_t n);
+
 /* The triangles within `radius` of p, in increasing order: up to max_out
  * are stored in out; the return value is their number. */
 size_t surface_near(const surface *s, const double p[3], double radius, int32_t *out,

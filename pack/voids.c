@@ -1,12 +1,19 @@
-/* Void filling (see voids.h). The room at a point p is
- *     c(p) = min( min_j |p - x_j| - r_j ,  s(p) )
- * (distance to the nearest sphere surface or to the boundary). It is
- * sampled on a lattice of spacing rmin/2 inside every zone cell shallower
- * than `depth`; lattice points with c >= rmin / (1 + squeeze) are visited
- * from the roomiest down and a sphere goes in wherever the room is still
- * there once the spheres already inserted are counted. A lattice point
- * lies within rmin/2 sqrt(3)/2 of the void's centre, so the sphere
- * inserted there touches about four neighbours after relaxation. */
+/* Void filling along the boundary (see voids.h).
+ *
+ * The voids the cut leaves lie against the boundary, so candidates are
+ * spheres tangent to it: at a point q of a boundary triangle with outward
+ * normal n, the sphere of radius rho centred at q - rho n stays clear of a
+ * sphere (x_j, r_j) iff |a - rho n| >= rho + r_j with a = q - x_j, i.e.
+ *     rho <= (|a|^2 - r_j^2) / (2 (a.n + r_j))      when a.n + r_j > 0
+ * (no bound otherwise). The room rho(q) is the least bound over the
+ * spheres near q. Points q on a lattice of spacing rmin/2 over every
+ * triangle are visited from the roomiest down; a sphere goes in where the
+ * room, counting the spheres inserted so far, still holds a sphere of
+ * rmin, with a radius drawn from the distribution but no larger than the
+ * room. At the roomiest point of a void the sphere touches the boundary
+ * and, typically, three neighbours. Near an edge of the boundary a
+ * candidate could cross the adjacent face: its depth is checked against
+ * the whole boundary before it goes in. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,115 +25,144 @@
 #include "pack/voids.h"
 
 typedef struct {
-	double c, lo, hi; /* room, bounds of the depth */
-	double p[3];
-	uint64_t key; /* lattice point number: a total order for ties */
+	double room;
+	double q[3], n[3]; /* boundary point and outward normal */
+	uint64_t key;      /* triangle and lattice point: a total order for ties */
 } candidate;
 
 static int cmp_candidate(const void *x, const void *y)
 {
 	const candidate *a = x, *b = y;
-	if (a->c != b->c)
-		return a->c > b->c ? -1 : 1;
+	if (a->room != b->room)
+		return a->room > b->room ? -1 : 1;
 	return (a->key > b->key) - (a->key < b->key);
 }
 
-/* Room left by the spheres of g (points x, radii r) around p, capped. */
-static double room(const cells *g, const double *x, const double *r, const double p[3], double cap)
+/* The room at q against sphere (x, r). */
+static double bound(const double q[3], const double n[3], const double *x, double r)
+{
+	double a[3];
+	v3_sub(a, q, x);
+	double an = v3_dot(a, n) + r;
+	if (an <= 0)
+		return INFINITY;
+	return (v3_dot(a, a) - r * r) / (2 * an);
+}
+
+/* The room at q against the spheres of g (points x, radii r), capped; once
+ * it falls below `enough` the search stops (the point is of no use). The
+ * cell of q comes first, as its spheres are the likeliest to bound it. */
+static double room(const cells *g, const double *x, const double *r, const double q[3],
+                   const double n[3], double cap, double enough)
 {
 	int c0[3];
-	cells_coord(g, p, c0);
+	cells_coord(g, q, c0);
 	double c = cap;
-	for (int dz = -1; dz <= 1; dz++)
-		for (int dy = -1; dy <= 1; dy++)
-			for (int dx = -1; dx <= 1; dx++) {
-				int c1[3] = {c0[0] + dx, c0[1] + dy, c0[2] + dz}, out = 0;
-				for (int k = 0; k < 3; k++)
-					out |= c1[k] < 0 || c1[k] >= g->dim[k];
-				if (out)
-					continue;
-				size_t id = cells_index(g, c1);
-				for (size_t q = g->start[id]; q < g->start[id + 1]; q++) {
-					size_t j = (size_t)g->item[q];
-					double d[3];
-					v3_sub(d, p, x + 3 * j);
-					c = fmin(c, v3_norm(d) - r[j]);
-				}
-			}
+	for (int o = 0; o < 27; o++) {
+		int k = (o + 13) % 27; /* 13 is the cell itself */
+		int c1[3] = {c0[0] + k % 3 - 1, c0[1] + k / 3 % 3 - 1, c0[2] + k / 9 - 1}, out = 0;
+		for (int a = 0; a < 3; a++)
+			out |= c1[a] < 0 || c1[a] >= g->dim[a];
+		if (out)
+			continue;
+		size_t id = cells_index(g, c1);
+		for (size_t q2 = g->start[id]; q2 < g->start[id + 1]; q2++) {
+			size_t j = (size_t)g->item[q2];
+			c = fmin(c, bound(q, n, x + 3 * j, r[j]));
+		}
+		if (c < enough)
+			return c;
+	}
 	return c;
 }
 
-/* Candidates in zone cell `cell`, appended to *out. */
-static void scan_cell(const zones *z, size_t cell, int m, const cells *g, const double *x,
-                      const double *r, const surface *surf, double cmin, double cap,
-                      candidate **out, size_t *n, size_t *capn)
+/* Lattice points of triangle t with room >= cmin, appended to *out. */
+static void scan_triangle(const dem_geometry *geo, size_t t, double h, const cells *g,
+                          const double *x, const double *r, double cmin, double cap,
+                          candidate **out, size_t *n, size_t *capn)
 {
-	size_t ijk[3] = {cell % (size_t)z->dim[0], cell / (size_t)z->dim[0] % (size_t)z->dim[1],
-	                 cell / ((size_t)z->dim[0] * (size_t)z->dim[1])};
-	double h = z->edge / m;
-	for (int q = 0; q < m * m * m; q++) {
-		int o[3] = {q % m, q / m % m, q / (m * m)};
-		candidate cd;
-		for (int k = 0; k < 3; k++)
-			cd.p[k] = z->lo[k] + (double)ijk[k] * z->edge + (o[k] + 0.5) * h;
-		cd.c = room(g, x, r, cd.p, cap);
-		if (cd.c < cmin)
-			continue;
-		cd.lo = z->lb[cell];
-		cd.hi = z->ub[cell];
-		if (cd.lo < cap) {
-			int32_t hint = z->hint[cell];
-			cd.lo = cd.hi = surface_distance(surf, cd.p, NULL, &hint);
-			cd.c = fmin(cd.c, cd.lo);
-			if (cd.c < cmin)
-				continue;
+	const int32_t *v = geo->tri + 3 * t;
+	const double *p[3] = {geo->vert + 3 * v[0], geo->vert + 3 * v[1], geo->vert + 3 * v[2]};
+	/* Lattice axes: along the longest edge (a -> b) and across it. */
+	int k0 = 0;
+	double best = -1;
+	for (int k = 0; k < 3; k++) {
+		double e[3];
+		v3_sub(e, p[(k + 1) % 3], p[k]);
+		if (v3_dot(e, e) > best) {
+			best = v3_dot(e, e);
+			k0 = k;
 		}
-		cd.key = (uint64_t)cell * (uint64_t)(m * m * m) + (uint64_t)q;
-		if (*n == *capn) {
-			*capn = *capn ? 2 * *capn : 64;
-			*out = xrealloc(*out, *capn * sizeof **out);
-		}
-		(*out)[(*n)++] = cd;
 	}
+	const double *a = p[k0], *b = p[(k0 + 1) % 3], *c = p[(k0 + 2) % 3];
+	double e[3], f[3], nrm[3], u[3], w[3];
+	v3_sub(e, b, a);
+	v3_sub(f, c, a);
+	v3_cross(nrm, e, f);
+	double area2 = v3_norm(nrm);
+	if (!(area2 > 0))
+		return;
+	v3_scale(nrm, nrm, 1 / area2);
+	double len = v3_norm(e);
+	v3_scale(u, e, 1 / len);
+	v3_cross(w, nrm, u); /* in-plane, across the edge, towards c */
+	double cu = v3_dot(f, u), cw = v3_dot(f, w);
+	long nu = (long)ceil(len / h), nw = (long)ceil(cw / h);
+	for (long j = 0; j < nw; j++)
+		for (long i = 0; i < nu; i++) {
+			double su = (i + 0.5) * h, sw = (j + 0.5) * h;
+			/* inside the triangle: below the edges a-c and b-c */
+			if (sw * cu > su * cw || sw * (len - cu) > (len - su) * cw)
+				continue;
+			candidate cd;
+			v3_copy(cd.q, a);
+			v3_axpy(cd.q, u, su);
+			v3_axpy(cd.q, w, sw);
+			v3_copy(cd.n, nrm);
+			cd.room = room(g, x, r, cd.q, cd.n, cap, cmin);
+			if (cd.room < cmin)
+				continue;
+			cd.key = ((uint64_t)t << 32) | (uint64_t)(j * nu + i);
+			if (*n == *capn) {
+				*capn = *capn ? 2 * *capn : 64;
+				*out = xrealloc(*out, *capn * sizeof **out);
+			}
+			(*out)[(*n)++] = cd;
+		}
 }
 
-size_t voids_fill(spheres *S, const surface *surf, const zones *z, const psd *d, double depth,
-                  double squeeze, uint64_t seed)
+size_t voids_fill(spheres *S, const surface *surf, const dem_geometry *geo, const psd *d,
+                  uint64_t seed)
 {
 	double rmax = d->rmax;
 	for (size_t i = 0; i < S->n; i++)
 		rmax = fmax(rmax, S->r[i]);
-	double cmin = d->rmin / (1 + squeeze), cap = rmax;
-	/* The spheres that can bound the room of a lattice point: a point lies
-	 * at most a zone cell's diagonal deeper than `depth`. */
-	double reach = depth + sqrt(3.0) * z->edge + rmax + cap;
-	size_t m0 = 0, *idx = xmalloc(S->n * sizeof *idx);
+	double cmin = d->rmin, cap = rmax, h = 0.5 * d->rmin;
+	/* The spheres that can bound a tangent sphere of radius <= cap. */
+	size_t m0 = 0, *idx = xmalloc(S->n * sizeof *idx + 1);
 	for (size_t i = 0; i < S->n; i++)
-		if (S->lo[i] < reach)
+		if (S->lo[i] < 2 * cap + rmax)
 			idx[m0++] = i;
-	double *x = xmalloc(3 * m0 * sizeof *x), *r = xmalloc(m0 * sizeof *r);
+	double *x = xmalloc(3 * m0 * sizeof *x + 1), *r = xmalloc(m0 * sizeof *r + 1);
 	for (size_t k = 0; k < m0; k++) {
 		v3_copy(x + 3 * k, S->x + 3 * idx[k]);
 		r[k] = S->r[idx[k]];
 	}
 	free(idx);
 	cells g;
-	cells_build(&g, x, m0, rmax + cap, NULL);
-	int m = (int)ceil(z->edge / (0.5 * d->rmin));
-	size_t ncell = (size_t)z->dim[0] * (size_t)z->dim[1] * (size_t)z->dim[2];
+	cells_build(&g, x, m0, 2 * cap + rmax, NULL);
 	candidate *all = NULL;
-	size_t nall = 0;
+	size_t nall = 0, ntri = geo->ntri;
 #pragma omp parallel
 	{
 		candidate *mine = NULL;
 		size_t n = 0, capn = 0;
 #pragma omp for schedule(dynamic, 16) nowait
-		for (size_t c = 0; c < ncell; c++)
-			if (z->ub[c] >= cmin && z->lb[c] < depth)
-				scan_cell(z, c, m, &g, x, r, surf, cmin, cap, &mine, &n, &capn);
+		for (size_t t = 0; t < ntri; t++)
+			scan_triangle(geo, t, h, &g, x, r, cmin, cap, &mine, &n, &capn);
 #pragma omp critical
 		{
-			all = xrealloc(all, (nall + n) * sizeof *all);
+			all = xrealloc(all, (nall + n) * sizeof *all + 1);
 			memcpy(all + nall, mine, n * sizeof *mine);
 			nall += n;
 		}
@@ -137,39 +173,74 @@ size_t voids_fill(spheres *S, const surface *surf, const zones *z, const psd *d,
 	free(r);
 	qsort(all, nall, sizeof *all, cmp_candidate);
 
-	/* Greedy insertion, checking each point against the spheres inserted
-	 * so far (kept in their own cell list, rebuilt as it grows). */
+	/* Greedy insertion against the spheres inserted so far, kept in a
+	 * linked-cell grid over the boundary's bounding box. */
 	rng gen;
 	rng_seed_stream(&gen, seed, 0x766f6964);
+	double edge = 2 * cap + rmax;
+	int dim[3];
+	size_t ngrid = 1;
+	for (int k = 0; k < 3; k++) {
+		dim[k] = (int)ceil((geo->bbox_max[k] - geo->bbox_min[k]) / edge) + 1;
+		ngrid *= (size_t)dim[k];
+	}
+	long *head = xmalloc(ngrid * sizeof *head), *next = NULL;
+	for (size_t k = 0; k < ngrid; k++)
+		head[k] = -1;
 	size_t first = S->n, inserted = 0;
-	cells ins = {0};
-	size_t ins_built = 0;
 	for (size_t k = 0; k < nall; k++) {
 		candidate *cd = &all[k];
-		double room_ins =
-		    ins_built ? room(&ins, S->x + 3 * first, S->r + first, cd->p, cap) : cap;
-		for (size_t j = first + ins_built; j < S->n; j++) {
-			double dd[3];
-			v3_sub(dd, cd->p, S->x + 3 * j);
-			room_ins = fmin(room_ins, v3_norm(dd) - S->r[j]);
+		int c[3];
+		for (int q = 0; q < 3; q++) {
+			c[q] = (int)floor((cd->q[q] - geo->bbox_min[q]) / edge);
+			c[q] = c[q] < 0 ? 0 : c[q] >= dim[q] ? dim[q] - 1 : c[q];
 		}
-		cd->c = fmin(cd->c, room_ins);
-		if (cd->c < cmin)
+		for (int dz = -1; dz <= 1; dz++)
+			for (int dy = -1; dy <= 1; dy++)
+				for (int dx = -1; dx <= 1; dx++) {
+					int cc[3] = {c[0] + dx, c[1] + dy, c[2] + dz}, out = 0;
+					for (int q = 0; q < 3; q++)
+						out |= cc[q] < 0 || cc[q] >= dim[q];
+					if (out)
+						continue;
+					size_t id =
+					    ((size_t)cc[2] * (size_t)dim[1] + (size_t)cc[1]) *
+					        (size_t)dim[0] +
+					    (size_t)cc[0];
+					for (long j = head[id]; j >= 0; j = next[j]) {
+						size_t i = first + (size_t)j;
+						cd->room =
+						    fmin(cd->room, bound(cd->q, cd->n, S->x + 3 * i,
+						                         S->r[i]));
+					}
+				}
+		if (cd->room < cmin)
 			continue;
 		double rad = psd_sample(d, &gen);
-		for (int t = 0; t < 20 && rad > (1 + squeeze) * cd->c; t++)
+		for (int t = 0; t < 20 && rad > cd->room; t++)
 			rad = psd_sample(d, &gen);
-		rad = fmax(d->rmin, fmin(rad, (1 + squeeze) * cd->c));
-		spheres_push(S, cd->p, rad, cd->lo, cd->hi);
-		inserted++;
-		if (S->n - first >= 2 * ins_built + 64) {
-			cells_free(&ins);
-			cells_build(&ins, S->x + 3 * first, S->n - first, rmax + cap, NULL);
-			ins_built = S->n - first;
+		rad = fmax(cmin, fmin(rad, cd->room));
+		double p[3];
+		v3_copy(p, cd->q);
+		v3_axpy(p, cd->n, -rad);
+		int32_t hint = -1;
+		double s = surface_distance(surf, p, NULL, &hint);
+		if (s < rad * (1 - 1e-9))
+			continue;
+		spheres_push(S, p, rad, s, s);
+		next = xrealloc(next, (inserted + 1) * sizeof *next);
+		for (int q = 0; q < 3; q++) {
+			c[q] = (int)floor((p[q] - geo->bbox_min[q]) / edge);
+			c[q] = c[q] < 0 ? 0 : c[q] >= dim[q] ? dim[q] - 1 : c[q];
 		}
+		size_t id =
+		    ((size_t)c[2] * (size_t)dim[1] + (size_t)c[1]) * (size_t)dim[0] + (size_t)c[0];
+		next[inserted] = head[id];
+		head[id] = (long)inserted;
+		inserted++;
 	}
-	if (ins_built)
-		cells_free(&ins);
+	free(head);
+	free(next);
 	free(all);
 	return inserted;
 }
