@@ -189,10 +189,7 @@ void options_parse(pack_options *o, int argc, char **argv)
 	o->output = pos[0];
 }
 
-void options_free(pack_options *o)
-{
-	cfg_free(o->file);
-}
+void options_free(pack_options *o) { cfg_free(o->file); }
 
 int options_geometry(const pack_options *o, geometry_spec *g)
 {

@@ -23,10 +23,7 @@
 
 #define TRUNC 3.0
 
-static double phi(double z)
-{
-	return 0.5 * erfc(-z / M_SQRT2);
-}
+static double phi(double z) { return 0.5 * erfc(-z / M_SQRT2); }
 
 void psd_uniform(psd *d, double rmin, double rmax)
 {

@@ -63,10 +63,7 @@ void soft_free(soft_system *s)
 	memset(s, 0, sizeof *s);
 }
 
-static int periodic(const soft_system *s)
-{
-	return s->box[0] > 0;
-}
+static int periodic(const soft_system *s) { return s->box[0] > 0; }
 
 void soft_delta(const soft_system *s, size_t i, size_t j, double d[3])
 {
@@ -76,10 +73,7 @@ void soft_delta(const soft_system *s, size_t i, size_t j, double d[3])
 			d[k] -= s->box[k] * nearbyint(d[k] / s->box[k]);
 }
 
-static int is_mobile(const soft_system *s, size_t i)
-{
-	return !s->mobile || s->mobile[i];
-}
+static int is_mobile(const soft_system *s, size_t i) { return !s->mobile || s->mobile[i]; }
 
 /* x_j - x_i through the periodic image with the given code (13: none). */
 static inline void image_delta(const soft_system *s, size_t i, size_t j, int code, double d[3])

@@ -32,22 +32,10 @@ typedef CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>> Tree;
 struct Vec {
 	double x, y, z;
 };
-Vec operator-(const Vec &a, const Vec &b)
-{
-	return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-Vec operator+(const Vec &a, const Vec &b)
-{
-	return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-Vec operator*(double s, const Vec &a)
-{
-	return {s * a.x, s * a.y, s * a.z};
-}
-double dot(const Vec &a, const Vec &b)
-{
-	return a.x * b.x + a.y * b.y + a.z * b.z;
-}
+Vec operator-(const Vec &a, const Vec &b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+Vec operator+(const Vec &a, const Vec &b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+Vec operator*(double s, const Vec &a) { return {s * a.x, s * a.y, s * a.z}; }
+double dot(const Vec &a, const Vec &b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 Vec cross(const Vec &a, const Vec &b)
 {
 	return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
@@ -134,10 +122,7 @@ extern "C" surface *surface_new(const double *vert, size_t nvert, const int32_t 
 	return s;
 }
 
-extern "C" void surface_free(surface *s)
-{
-	delete s;
-}
+extern "C" void surface_free(surface *s) { delete s; }
 
 // Barycentric coordinates of q in triangle t (q lies on it).
 static void barycentric(const surface *s, size_t t, const Vec &q, double l[3])
