@@ -68,7 +68,8 @@ int psd_grading(psd *d, cfg *c)
 	}
 	int rc = 0;
 	if (ns < 2)
-		rc = cfg_error(c, "sieve", "%zu sizes: expected at least 2 sieve sizes (m)", ns);
+		rc = cfg_error(c, "sieve", "%zu value%s: expected at least 2 sieve sizes (m)", ns,
+		               ns == 1 ? "" : "s");
 	else if (np != ns)
 		rc = cfg_error(c, "passing", "%zu values: expected one per sieve size (%zu)", np,
 		               ns);

@@ -45,10 +45,11 @@ static int parse_line(const char *path, long lineno, char *line, double v[4])
 			               lineno);
 		p = end;
 	}
-	while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n')
-		p++;
-	if (*p)
+	p += strspn(p, " \t\r\n");
+	if (*p) {
+		p[strcspn(p, "\r\n")] = '\0';
 		return err_set("%s: line %ld: unexpected '%.20s' after 'x y z r'", path, lineno, p);
+	}
 	if (!(v[3] > 0))
 		return err_set("%s: line %ld: radius %g: expected a positive radius (m)", path,
 		               lineno, v[3]);

@@ -123,15 +123,13 @@ static int build_adjacency(const trimesh *m, const char *source, int32_t *nb, ui
 	}
 	free(e);
 	if (open)
-		return err_set(
-		    "%s: the boundary is not a closed surface: %zu edges belong to only one "
-		    "triangle (an open surface encloses no volume to fill)",
-		    source, open);
+		return err_set("%s: the boundary is not a closed surface: %zu edge%s to only one "
+		               "triangle (an open surface encloses no volume to fill)",
+		               source, open, open == 1 ? " belongs" : "s belong");
 	if (nonmanifold)
-		return err_set(
-		    "%s: the boundary is not a manifold surface: %zu edges are shared by "
-		    "more than two triangles",
-		    source, nonmanifold);
+		return err_set("%s: the boundary is not a manifold surface: %zu edge%s shared by "
+		               "more than two triangles",
+		               source, nonmanifold, nonmanifold == 1 ? " is" : "s are");
 	return 0;
 }
 

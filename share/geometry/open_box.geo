@@ -1,0 +1,32 @@
+// Test fixture: five faces of a 20 mm cube, the top left open. pack must
+// reject it: an open surface encloses no volume.
+Point(1) = {-0.01, -0.01, -0.01};
+Point(2) = {0.01, -0.01, -0.01};
+Point(3) = {0.01, 0.01, -0.01};
+Point(4) = {-0.01, 0.01, -0.01};
+Point(5) = {-0.01, -0.01, 0.01};
+Point(6) = {0.01, -0.01, 0.01};
+Point(7) = {0.01, 0.01, 0.01};
+Point(8) = {-0.01, 0.01, 0.01};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Line(5) = {5, 6};
+Line(6) = {6, 7};
+Line(7) = {7, 8};
+Line(8) = {8, 5};
+Line(9) = {1, 5};
+Line(10) = {2, 6};
+Line(11) = {3, 7};
+Line(12) = {4, 8};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Curve Loop(2) = {1, 10, -5, -9};
+Plane Surface(2) = {2};
+Curve Loop(3) = {2, 11, -6, -10};
+Plane Surface(3) = {3};
+Curve Loop(4) = {3, 12, -7, -11};
+Plane Surface(4) = {4};
+Curve Loop(5) = {4, 9, -8, -12};
+Plane Surface(5) = {5};

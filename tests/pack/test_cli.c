@@ -1,0 +1,244 @@
+/* The pack program end to end on small specimens: every bad input gives one
+ * message, a non-zero exit and no output file; every geometry source gives
+ * a valid assembly; the same seed gives the same spheres whatever the
+ * thread count; x y z r export and import round-trip; a --config file is
+ * the same as the options it holds. */
+#include "tests/pack/run.h"
+
+#include "lib/err.h"
+#include "pack/geometry.h"
+#include "pack/surface.h"
+
+#define SMALL "--shape box --length 0.012 --width 0.012 --height 0.012"
+
+static const char *out_path(void) { return check_tmp("cli_out.h5"); }
+
+static void write_file(const char *path, const char *text)
+{
+	FILE *f = fopen(path, "w");
+	fputs(text, f);
+	fclose(f);
+}
+
+/* pack <args> OUT must fail with status `status` and exactly `message` on
+ * stderr (or a message starting with it when prefix), leaving no file. */
+static void refused(int status, const char *message, int prefix, const char *args)
+{
+	const char *out = out_path();
+	char tmp[1100];
+	snprintf(tmp, sizeof tmp, "%s.tmp", out);
+	remove(out);
+	run_result r = run_pack("%s %s", args, out);
+	CHECK(r.status == status);
+	if (prefix)
+		CHECK(strncmp(r.err, message, strlen(message)) == 0);
+	else
+		CHECK_STR(r.err, message);
+	if (r.status != status ||
+	    (prefix ? strncmp(r.err, message, strlen(message)) != 0 : strcmp(r.err, message) != 0))
+		fprintf(stderr, "  for: pack %s\n  got status %d: %s", args, r.status, r.err);
+	CHECK(!run_exists(out));
+	CHECK(!run_exists(tmp));
+	run_free(&r);
+}
+
+static void test_bad_input(void)
+{
+	refused(1, "pack: --rmin 0.002 is larger than --rmax 0.0015: expected rmin <= rmax (m)\n",
+	        0, "--rmin 0.002 --rmax 0.0015");
+	refused(2, "pack: --rmin -0.001: expected a number in [1e-09, 1000] (m)\n", 0,
+	        "--rmin -0.001");
+	refused(2, "pack: --diameter -0.05: expected a number in [1e-09, 1000] (m)\n", 0,
+	        "--diameter -0.05");
+	refused(1,
+	        "pack: spheres of radius up to 0.012 m do not fit in the specimen: expected the "
+	        "largest diameter below its smallest extent (0.02 m)\n",
+	        0, "--diameter 0.02 --height 0.04 --rmin 0.01 --rmax 0.012");
+	refused(1,
+	        "pack: share/geometry/open_box.geo: the boundary is not a closed surface: 24 edges "
+	        "belong to only one triangle (an open surface encloses no volume to fill)\n",
+	        0, "--geometry share/geometry/open_box.geo");
+	refused(1, "pack: no/such/specimen.step: cannot open: No such file or directory\n", 0,
+	        "--geometry no/such/specimen.step");
+	const char *garbage = check_tmp("garbage.geo");
+	write_file(garbage, "this is not a geometry;\n");
+	char args[2048], msg[2048];
+	snprintf(args, sizeof args, "--geometry %s", garbage);
+	snprintf(msg, sizeof msg, "pack: %s: '%s', line 1: ", garbage, garbage);
+	refused(1, msg, 1, args);
+	refused(1, "pack: --count 3: too few spheres: they would need radii up to ", 1,
+	        "--count 3");
+	refused(2, "pack: --count 2000000000: expected an integer in [0, 1e+09]\n", 0,
+	        "--count 2000000000");
+	refused(1, "pack: --count 1000 and --mean-radius 0.001: expected one of them, not both\n",
+	        0, "--count 1000 --mean-radius 0.001");
+	refused(1, "pack: --dist weibull: expected uniform, fuzz, lognormal or grading\n", 0,
+	        "--dist weibull");
+	refused(1, "pack: --shape sphere: expected cylinder, disc or box (or --geometry FILE)\n", 0,
+	        "--shape sphere");
+	refused(1,
+	        "pack: --dist grading: expected --grading FILE.json (sieve sizes and fractions "
+	        "passing)\n",
+	        0, "--dist grading");
+	const char *mix = check_tmp("mix.json");
+	write_file(mix, "{\"sieve\": [0.001, 0.004], \"passing\": [0, 0.9]}");
+	snprintf(args, sizeof args, "--dist grading --grading %s", mix);
+	snprintf(msg, sizeof msg,
+	         "pack: %s: key 'passing': last value 0.9: expected 1 (everything passes the "
+	         "largest sieve)\n",
+	         mix);
+	refused(1, msg, 0, args);
+	const char *list = check_tmp("bad_list.txt");
+	write_file(list, "0 0 0 0.001\n0 0 0.001\n");
+	snprintf(args, sizeof args, "--import %s", list);
+	snprintf(msg, sizeof msg, "pack: %s: line 2: expected four numbers 'x y z r' (m)\n", list);
+	refused(1, msg, 0, args);
+	write_file(list, "0 0 0 0.001\n0.5 0 0 0.001\n");
+	snprintf(msg, sizeof msg, "pack: %s: sphere 2 at (0.5, 0, 0) m lies outside the specimen\n",
+	         list);
+	refused(1, msg, 0, args);
+	const char *config = check_tmp("bad_config.json");
+	write_file(config, "{\"diamter\": 0.05}");
+	snprintf(args, sizeof args, "--config %s", config);
+	snprintf(msg, sizeof msg,
+	         "pack: %s: key 'diamter': unknown key (misspelt, or not used by this program)\n",
+	         config);
+	refused(1, msg, 0, args);
+	write_file(config, "{\"rmax\": -1}");
+	snprintf(msg, sizeof msg, "pack: %s: key 'rmax': value -1: expected", config);
+	refused(1, msg, 1, args);
+	run_result r = run_pack("--quiet " SMALL " no/such/dir/out.h5");
+	CHECK(r.status == 1);
+	CHECK(strncmp(r.err, "pack: no/such/dir/out.h5", 24) == 0);
+	run_free(&r);
+}
+
+/* Every centre lies inside the specimen, at least a radius less 1 % deep,
+ * and no pair overlaps by 1 % of the smaller radius. */
+static void check_valid(const char *path, const char *what)
+{
+	dem_assembly a;
+	if (assembly_read(path, &a)) {
+		CHECK(0);
+		fprintf(stderr, "%s: %s\n", what, err_msg());
+		return;
+	}
+	CHECK(a.n > 50);
+	surface *s = surface_new(a.geom.vert, a.geom.nvert, a.geom.tri, a.geom.ntri);
+	double worst = 0;
+	for (size_t i = 0; i < a.n; i++)
+		worst =
+		    fmax(worst, (a.r[i] - surface_distance(s, a.x + 3 * i, NULL, NULL)) / a.r[i]);
+	CHECK(worst < 0.01);
+	CHECK(run_max_overlap(&a) < 0.01);
+	CHECK(a.report.solid_fraction > 0.5);
+	if (worst >= 0.01 || a.report.solid_fraction <= 0.5)
+		fprintf(stderr, "  %s: boundary %g, solid fraction %g\n", what, worst,
+		        a.report.solid_fraction);
+	surface_free(s);
+	assembly_free(&a);
+}
+
+static void test_geometry_sources(void)
+{
+	static const char *sources[][2] = {
+	    {"cylinder", "--diameter 0.016 --height 0.02"},
+	    {"disc", "--shape disc --diameter 0.02 --thickness 0.01"},
+	    {"box", SMALL},
+	    {".geo", "--geometry share/geometry/disc_brazilian.geo --mean-radius 0.0015"},
+	    {".brep", "--geometry share/geometry/box_20mm.brep --mean-radius 0.0015"},
+	    {".step", "--geometry share/geometry/cylinder_20x40_mm.step --mean-radius 0.0015"},
+	    {".msh", "--geometry share/geometry/cylinder_20x40.msh --mean-radius 0.0015"},
+	};
+	for (size_t k = 0; k < sizeof sources / sizeof sources[0]; k++) {
+		run_result r = run_pack("--quiet %s %s", sources[k][1], out_path());
+		CHECK(r.status == 0);
+		if (r.status)
+			fprintf(stderr, "  %s: %s", sources[k][0], r.err);
+		run_free(&r);
+		check_valid(out_path(), sources[k][0]);
+	}
+}
+
+static int same_spheres(const char *p, const char *q)
+{
+	dem_assembly a, b;
+	if (assembly_read(p, &a))
+		return 0;
+	if (assembly_read(q, &b)) {
+		assembly_free(&a);
+		return 0;
+	}
+	int same = a.n == b.n && memcmp(a.x, b.x, 3 * a.n * sizeof *a.x) == 0 &&
+	           memcmp(a.r, b.r, a.n * sizeof *a.r) == 0;
+	assembly_free(&a);
+	assembly_free(&b);
+	return same;
+}
+
+static void test_threads(void)
+{
+	const char *one = check_tmp("cli_t1.h5"), *two = check_tmp("cli_t2.h5");
+	run_result r1 = run_pack("--quiet --diameter 0.016 --height 0.02 --threads 1 %s", one);
+	run_result r2 = run_pack("--quiet --diameter 0.016 --height 0.02 --threads 2 %s", two);
+	CHECK(r1.status == 0 && r2.status == 0);
+	CHECK(same_spheres(one, two));
+	run_free(&r1);
+	run_free(&r2);
+	run_result r3 = run_pack("--quiet --diameter 0.016 --height 0.02 --seed 2 %s", two);
+	CHECK(r3.status == 0);
+	CHECK(!same_spheres(one, two));
+	run_free(&r3);
+}
+
+static void test_export_import(void)
+{
+	const char *a = check_tmp("cli_a.h5"), *b = check_tmp("cli_b.h5");
+	const char *txt = check_tmp("cli_a.txt");
+	run_result r = run_pack("--quiet " SMALL " --export %s %s", txt, a);
+	CHECK(r.status == 0);
+	run_free(&r);
+	r = run_pack(SMALL " --import %s %s", txt, b);
+	CHECK(r.status == 0);
+	CHECK_CONTAINS(r.out, "pack: ");
+	run_free(&r);
+	CHECK(same_spheres(a, b));
+	dem_assembly x, y;
+	CHECK(assembly_read(a, &x) == 0 && assembly_read(b, &y) == 0);
+	CHECK_NEAR(x.report.solid_fraction, y.report.solid_fraction, 1e-15);
+	CHECK_NEAR(x.report.coordination, y.report.coordination, 1e-15);
+	assembly_free(&x);
+	assembly_free(&y);
+}
+
+static void test_config(void)
+{
+	const char *cli = check_tmp("cli_c1.h5"), *file = check_tmp("cli_c2.h5");
+	const char *config = check_tmp("cli_config.json");
+	write_file(config, "{\"shape\": \"box\", \"length\": 0.012, \"width\": 0.012,"
+	                   " \"height\": 0.012, \"dist\": \"lognormal\", \"radius\": 0.0008,"
+	                   " \"sigma\": 0.2, \"seed\": 7}");
+	run_result r1 = run_pack("--quiet " SMALL " --dist lognormal --radius 0.0008 --sigma 0.2 "
+	                         "--seed 7 %s",
+	                         cli);
+	run_result r2 = run_pack("--quiet --config %s %s", config, file);
+	CHECK(r1.status == 0 && r2.status == 0);
+	CHECK(same_spheres(cli, file));
+	run_free(&r1);
+	run_free(&r2);
+	/* The command line wins over the file. */
+	r2 = run_pack("--quiet --config %s --seed 8 %s", config, file);
+	CHECK(r2.status == 0);
+	CHECK(!same_spheres(cli, file));
+	run_free(&r2);
+}
+
+int main(void)
+{
+	test_bad_input();
+	test_geometry_sources();
+	test_threads();
+	test_export_import();
+	test_config();
+	return check_done();
+}

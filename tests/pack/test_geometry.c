@@ -1,0 +1,225 @@
+/* Specimen geometry: every source (built-in cylinder, disc, box; .geo,
+ * .brep, .step in millimetres, .msh volume mesh) gives a closed, outward
+ * triangulation whose volume, area and signed distances match the shape's
+ * own formulas; open and unreadable files are refused with one clear
+ * message. */
+#include "tests/check.h"
+
+#include "lib/err.h"
+#include "lib/rng.h"
+#include "pack/geometry.h"
+#include "pack/surface.h"
+#include "pack/trimesh.h"
+
+#define GEO "share/geometry/"
+
+/* Chord error of the built-in circles: R (1 - cos(pi / 160)). */
+static double chord(double r) { return r * (1 - cos(M_PI / 160)); }
+
+static double mesh_volume(const dem_geometry *g)
+{
+	trimesh m = {g->nvert, g->ntri, g->vert, g->tri};
+	double v, a, lo[3], hi[3];
+	trimesh_measure(&m, &v, &a, lo, hi);
+	return v;
+}
+
+/* Signed distance to a z-axis cylinder of radius R and height H centred on
+ * the origin (positive inside). */
+static double cylinder_depth(const double p[3], double R, double H)
+{
+	double rho = sqrt(p[0] * p[0] + p[1] * p[1]), dr = R - rho, dz = 0.5 * H - fabs(p[2]);
+	if (dr >= 0 && dz >= 0)
+		return fmin(dr, dz);
+	if (dr < 0 && dz < 0)
+		return -sqrt(dr * dr + dz * dz);
+	return fmin(dr, dz);
+}
+
+/* Random points around a cylinder: the surface's signed distance agrees
+ * with the exact one within the chord error. */
+static void check_cylinder_distances(const dem_geometry *g, double R, double H)
+{
+	surface *s = surface_new(g->vert, g->nvert, g->tri, g->ntri);
+	CHECK(s != NULL);
+	rng r;
+	rng_seed(&r, 5);
+	double worst = 0;
+	int sign_ok = 1;
+	for (int k = 0; k < 20000; k++) {
+		double p[3] = {rng_range(&r, -0.6 * H, 0.6 * H), rng_range(&r, -0.6 * H, 0.6 * H),
+		               rng_range(&r, -0.6 * H, 0.6 * H)};
+		p[0] *= 2 * R / H;
+		p[1] *= 2 * R / H;
+		double exact = cylinder_depth(p, R, H), got = surface_distance(s, p, NULL, NULL);
+		worst = fmax(worst, fabs(got - exact));
+		if (fabs(exact) > 2 * chord(R) && (got > 0) != (exact > 0))
+			sign_ok = 0;
+	}
+	CHECK(sign_ok);
+	CHECK_NEAR(worst, 0, 2 * chord(R) + 1e-12);
+	/* The outward normal at the middle of the lateral face points along x. */
+	double p[3] = {0.9 * R, 0, 0}, n[3];
+	CHECK_NEAR(surface_distance(s, p, n, NULL), 0.1 * R, chord(R));
+	CHECK_NEAR(n[0], 1, 1e-3);
+	surface_free(s);
+}
+
+static void test_builtin_cylinder(void)
+{
+	geometry_spec gs = {SHAPE_CYLINDER, 0.05, 0.1, {0, 0, 0}, NULL, 1};
+	dem_geometry g;
+	CHECK(geometry_build(&gs, &g) == 0);
+	CHECK_STR(g.shape, "cylinder");
+	CHECK_REL(g.volume, M_PI * 0.025 * 0.025 * 0.1, 1e-15);
+	CHECK_REL(mesh_volume(&g), g.volume, 3e-4);
+	CHECK_REL(g.area, 2 * M_PI * 0.025 * (0.1 + 0.025), 3e-4);
+	CHECK_NEAR(g.bbox_min[2], -0.05, 1e-15);
+	CHECK_NEAR(g.bbox_max[0], 0.025, 1e-15);
+	CHECK(g.axis[2] == 1 && g.diameter == 0.05 && g.height == 0.1);
+	CHECK_NEAR(geometry_inner_volume(&g, 0.005), M_PI * 0.02 * 0.02 * 0.09, 1e-18);
+	check_cylinder_distances(&g, 0.025, 0.1);
+	free(g.vert);
+	free(g.tri);
+}
+
+static void test_builtin_disc_and_box(void)
+{
+	geometry_spec disc = {SHAPE_DISC, 0.0378, 0.0219, {0, 0, 0}, NULL, 1};
+	dem_geometry g;
+	CHECK(geometry_build(&disc, &g) == 0);
+	CHECK_STR(g.shape, "disc");
+	CHECK_REL(mesh_volume(&g), M_PI * 0.0189 * 0.0189 * 0.0219, 3e-4);
+	check_cylinder_distances(&g, 0.0189, 0.0219);
+	free(g.vert);
+	free(g.tri);
+
+	geometry_spec box = {SHAPE_BOX, 0, 0, {0.02, 0.03, 0.04}, NULL, 1};
+	CHECK(geometry_build(&box, &g) == 0);
+	CHECK_STR(g.shape, "box");
+	CHECK(g.ntri == 12);
+	CHECK_REL(g.volume, 0.02 * 0.03 * 0.04, 1e-15);
+	CHECK_REL(mesh_volume(&g), g.volume, 1e-12);
+	CHECK_REL(g.area, 2 * (0.02 * 0.03 + 0.02 * 0.04 + 0.03 * 0.04), 1e-12);
+	CHECK_NEAR(geometry_inner_volume(&g, 0.005), 0.01 * 0.02 * 0.03, 1e-18);
+	surface *s = surface_new(g.vert, g.nvert, g.tri, g.ntri);
+	double p[3] = {0.001, 0.002, 0.003}, corner[3] = {0.011, 0.016, 0.021};
+	CHECK_NEAR(surface_distance(s, p, NULL, NULL), 0.009, 1e-15);
+	CHECK_NEAR(surface_distance(s, corner, NULL, NULL), -sqrt(3e-6), 1e-15);
+	surface_free(s);
+	free(g.vert);
+	free(g.tri);
+}
+
+static void test_files(void)
+{
+	struct {
+		const char *file;
+		double volume, tol;
+	} cases[] = {
+	    {GEO "cylinder_50x100.geo", M_PI * 0.025 * 0.025 * 0.1, 1e-3},
+	    {GEO "box_20mm.brep", 8e-6, 1e-12},
+	    {GEO "cylinder_20x40_mm.step", M_PI * 0.01 * 0.01 * 0.04, 1e-3},
+	    {GEO "cylinder_20x40.msh", M_PI * 0.01 * 0.01 * 0.04, 0.03},
+	};
+	for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+		geometry_spec gs = {SHAPE_FILE, 0, 0, {0, 0, 0}, cases[k].file, 1};
+		dem_geometry g;
+		int rc = geometry_build(&gs, &g);
+		CHECK(rc == 0);
+		if (rc) {
+			fprintf(stderr, "%s\n", err_msg());
+			continue;
+		}
+		CHECK_STR(g.shape, "file");
+		CHECK_STR(g.source, cases[k].file);
+		CHECK_REL(g.volume, cases[k].volume, cases[k].tol);
+		CHECK_REL(mesh_volume(&g), g.volume, 1e-12);
+		CHECK(geometry_inner_volume(&g, 0.001) < 0);
+		free(g.vert);
+		free(g.tri);
+	}
+	/* --scale multiplies the coordinates of unit-less formats. */
+	geometry_spec gs = {SHAPE_FILE, 0, 0, {0, 0, 0}, GEO "box_20mm.brep", 0.5};
+	dem_geometry g;
+	CHECK(geometry_build(&gs, &g) == 0);
+	CHECK_REL(g.volume, 1e-6, 1e-12);
+	free(g.vert);
+	free(g.tri);
+}
+
+static void test_bad_files(void)
+{
+	dem_geometry g;
+	geometry_spec open = {SHAPE_FILE, 0, 0, {0, 0, 0}, GEO "open_box.geo", 1};
+	CHECK(geometry_build(&open, &g) == -1);
+	CHECK_STR(err_msg(), GEO "open_box.geo: the boundary is not a closed surface: 24 edges "
+	                         "belong to only one triangle (an open surface encloses no volume "
+	                         "to fill)");
+	geometry_spec missing = {SHAPE_FILE, 0, 0, {0, 0, 0}, "no/such/file.step", 1};
+	CHECK(geometry_build(&missing, &g) == -1);
+	CHECK_STR(err_msg(), "no/such/file.step: cannot open: No such file or directory");
+	const char *bad = check_tmp("garbage.geo");
+	FILE *f = fopen(bad, "w");
+	fputs("this is not a geometry;\n", f);
+	fclose(f);
+	geometry_spec garbage = {SHAPE_FILE, 0, 0, {0, 0, 0}, bad, 1};
+	CHECK(geometry_build(&garbage, &g) == -1);
+	CHECK_CONTAINS(err_msg(), "garbage.geo");
+	CHECK_CONTAINS(err_msg(), "line 1");
+}
+
+/* A cube with every other triangle flipped and a smaller cube inside it
+ * (a cavity): orientation makes the outer normals point out and the
+ * cavity's point into the cavity, so the volume is the difference. */
+static void test_orientation(void)
+{
+	static const double unit[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+	                                  {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+	static const int32_t faces[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7},
+	                                     {0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5},
+	                                     {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+	trimesh m = {16, 24, malloc(48 * sizeof(double)), malloc(72 * sizeof(int32_t))};
+	for (int c = 0; c < 2; c++)
+		for (int v = 0; v < 8; v++)
+			for (int k = 0; k < 3; k++)
+				m.vert[3 * (8 * c + v) + k] =
+				    c ? 0.25 + 0.5 * unit[v][k] : unit[v][k];
+	for (int c = 0; c < 2; c++)
+		for (int t = 0; t < 12; t++) {
+			int32_t *o = m.tri + 3 * (12 * c + t);
+			int flip = t % 2;
+			o[0] = 8 * c + faces[t][0];
+			o[1] = 8 * c + faces[t][flip ? 2 : 1];
+			o[2] = 8 * c + faces[t][flip ? 1 : 2];
+		}
+	CHECK(trimesh_close(&m, "cubes") == 0);
+	double v, a, lo[3], hi[3];
+	trimesh_measure(&m, &v, &a, lo, hi);
+	CHECK_NEAR(v, 1 - 0.125, 1e-15);
+	CHECK_NEAR(a, 6 + 1.5, 1e-15);
+	/* A triangle across the outer cube leaves one of its edges open... */
+	m.tri = realloc(m.tri, 78 * sizeof(int32_t));
+	int32_t extra[6] = {0, 1, 6, 0, 6, 1};
+	memcpy(m.tri + 72, extra, sizeof extra);
+	m.ntri = 25;
+	CHECK(trimesh_close(&m, "cubes") == -1);
+	CHECK_STR(err_msg(), "cubes: the boundary is not a closed surface: 1 edge belongs to only "
+	                     "one triangle (an open surface encloses no volume to fill)");
+	/* ...and its reverse closes it, but two edges then have four triangles. */
+	m.ntri = 26;
+	CHECK(trimesh_close(&m, "cubes") == -1);
+	CHECK_STR(err_msg(), "cubes: the boundary is not a manifold surface: 2 edges are shared by "
+	                     "more than two triangles");
+	trimesh_free(&m);
+}
+
+int main(void)
+{
+	test_builtin_cylinder();
+	test_builtin_disc_and_box();
+	test_files();
+	test_bad_files();
+	test_orientation();
+	return check_done();
+}
