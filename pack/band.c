@@ -52,6 +52,8 @@ static void relax(soft_system *sys, const uint8_t *mobile, const band_params *p,
 			sys->r[k] = r0[k] * lambda[k];
 		}
 		fire_forces(&st, sys);
+		if (p->prog)
+			progress_update(p->prog, (double)st.iter, "wall band");
 	}
 	res->iter = st.iter;
 	res->overlap = st.stats.overlap_max;

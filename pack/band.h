@@ -5,6 +5,7 @@
 #define PACK_BAND_H
 
 #include "lib/assembly.h"
+#include "lib/progress.h"
 #include "pack/spheres.h"
 #include "pack/surface.h"
 
@@ -13,7 +14,8 @@ typedef struct {
 	               * boundary move (the band plus its mobile buffer) */
 	double otol;  /* stop when the largest relative overlap is below */
 	long max_iter;
-	double skin; /* m, Verlet skin */
+	double skin;    /* m, Verlet skin */
+	progress *prog; /* shows the iterations (may be NULL) */
 } band_params;
 
 typedef struct {

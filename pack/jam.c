@@ -12,6 +12,7 @@
  * is the same as compressing the box; at the end the cell is scaled so
  * that the radii are exactly the sampled ones. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -76,7 +77,7 @@ static void spatial_sort(double *x, size_t n, const double box[3])
  * (shrink when p > target). Stops when the solid fraction changed by less
  * than STALL over WINDOW iterations, or after max_iter. */
 static void settle(fire_state *st, soft_system *s, const double *r0, double *grow, double target,
-                   long max_iter)
+                   long max_iter, progress *prog)
 {
 	long start = st->iter, mark = st->iter;
 	double mark_grow = *grow;
@@ -87,6 +88,12 @@ static void settle(fire_state *st, soft_system *s, const double *r0, double *gro
 		for (size_t i = 0; i < s->n; i++)
 			s->r[i] = r0[i] * *grow;
 		fire_forces(st, s);
+		if (prog) {
+			char detail[64];
+			snprintf(detail, sizeof detail, "periodic cell: solid fraction %.4f",
+			         PHI_START * *grow * *grow * *grow);
+			progress_update(prog, (double)st->iter, detail);
+		}
 		if (st->iter - mark >= WINDOW) {
 			double dphi = 3 * PHI_START * fabs(*grow - mark_grow) / mark_grow;
 			if (dphi < STALL)
@@ -98,7 +105,7 @@ static void settle(fire_state *st, soft_system *s, const double *r0, double *gro
 }
 
 void jam_make(jam_cell *c, const psd *d, size_t n, const double shape[3], uint64_t seed,
-              double otol)
+              double otol, progress *prog)
 {
 	memset(c, 0, sizeof *c);
 	c->n = n;
@@ -129,10 +136,10 @@ void jam_make(jam_cell *c, const psd *d, size_t n, const double shape[3], uint64
 	fire_state st;
 	fire_start(&st, &s);
 	double grow = 1, p = P_SQUEEZE;
-	settle(&st, &s, r0, &grow, p, SQUEEZE_ITER);
+	settle(&st, &s, r0, &grow, p, SQUEEZE_ITER, prog);
 	while (st.stats.overlap_max >= otol && st.iter < MAX_ITER) {
 		p *= 0.5;
-		settle(&st, &s, r0, &grow, p, RELEASE_ITER);
+		settle(&st, &s, r0, &grow, p, RELEASE_ITER, prog);
 	}
 	c->iter = st.iter;
 	fire_end(&st);

@@ -7,6 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "lib/progress.h"
 #include "pack/psd.h"
 
 typedef struct {
@@ -20,9 +21,9 @@ typedef struct {
 
 /* n spheres sampled from d (random stream `seed`), in a periodic box whose
  * edges are in the ratio `shape`, jammed with a largest overlap below otol
- * (relative to the smaller radius). */
+ * (relative to the smaller radius). prog (may be NULL) shows the iterations. */
 void jam_make(jam_cell *c, const psd *d, size_t n, const double shape[3], uint64_t seed,
-              double otol);
+              double otol, progress *prog);
 void jam_free(jam_cell *c);
 
 #endif

@@ -25,6 +25,7 @@
 
 static const double PHI_RCP = 0.64, CELL_OTOL = 0.005, BAND_OTOL = 0.005, PRUNE_LIMIT = 0.009;
 static const long BAND_ITER = 200, REFILL_ITER = 150;
+static const double COUNT_TOL = 0.003; /* on the size scale: 1 % on the count */
 
 double packer_count_scale(const psd *d, double volume, long count)
 {
@@ -49,46 +50,33 @@ static void cell_shape(const psd *d, const dem_geometry *g, long cell_max, doubl
 	*n = (size_t)cell_max;
 }
 
-void packer_run(spheres *S, psd *d, const dem_geometry *g, const surface *surf, const zones *z,
-                const packer_params *params, packer_stats *st)
+/* Multiply the cell's lengths, and the distribution's sizes, by s. */
+static void scale_cell(jam_cell *c, psd *d, double s)
 {
-	memset(st, 0, sizeof *st);
-	double t0 = timer_now();
-	double shape[3];
-	size_t n;
-	cell_shape(d, g, params->cell_max, shape, &n);
-	jam_cell c;
-	jam_make(&c, d, n, shape, params->seed, CELL_OTOL);
-	if (params->count > 0) {
-		/* Refine the sizes' scale with the cell's own solid fraction. */
-		double vs = 0;
-		for (size_t i = 0; i < c.n; i++)
-			vs += 4.0 / 3.0 * M_PI * c.r[i] * c.r[i] * c.r[i];
-		double expect = c.phi * g->volume / (vs / (double)c.n);
-		double s = cbrt(expect / (double)params->count);
-		for (size_t i = 0; i < 3 * c.n; i++)
-			c.x[i] *= s;
-		for (size_t i = 0; i < c.n; i++)
-			c.r[i] *= s;
-		for (int k = 0; k < 3; k++)
-			c.box[k] *= s;
-		psd_scale(d, s);
-	}
-	st->cell_n = c.n;
-	st->cell_phi = c.phi;
-	st->cell_iter = c.iter;
-	double t1 = timer_now();
-	st->time_cell = t1 - t0;
+	for (size_t i = 0; i < 3 * c->n; i++)
+		c->x[i] *= s;
+	for (size_t i = 0; i < c->n; i++)
+		c->r[i] *= s;
+	for (int k = 0; k < 3; k++)
+		c->box[k] *= s;
+	psd_scale(d, s);
+}
 
-	tile_fill(S, &c, surf, z, g->bbox_min, g->bbox_max, params->keep);
+/* Tile the cell over the specimen and repair the wall band. */
+static void fill(spheres *S, const jam_cell *c, const psd *d, const dem_geometry *g,
+                 const surface *surf, const zones *z, const packer_params *params, packer_stats *st)
+{
+	S->n = 0;
+	tile_fill(S, c, surf, z, g->bbox_min, g->bbox_max, params->keep);
 	st->tiled = S->n;
 	double rmean = 0, rmax = 0;
-	for (size_t i = 0; i < c.n; i++) {
-		rmean += c.r[i] / (double)c.n;
-		rmax = fmax(rmax, c.r[i]);
+	for (size_t i = 0; i < c->n; i++) {
+		rmean += c->r[i] / (double)c->n;
+		rmax = fmax(rmax, c->r[i]);
 	}
-	jam_free(&c);
-	band_params bp = {params->band * 2 * rmean, BAND_OTOL, BAND_ITER, 0.2 * rmean};
+	progress prog;
+	progress_start(&prog, "iterations", BAND_ITER + REFILL_ITER);
+	band_params bp = {params->band * 2 * rmean, BAND_OTOL, BAND_ITER, 0.2 * rmean, &prog};
 	band_result br;
 	band_relax(S, surf, g, &bp, &br);
 	st->band_mobile = br.mobile;
@@ -99,5 +87,41 @@ void packer_run(spheres *S, psd *d, const dem_geometry *g, const surface *surf, 
 	st->band_iter += br.iter;
 	st->band_shrink = br.shrink;
 	st->pruned = prune_overlaps(S, surf, bp.width + 2 * rmax + bp.skin, PRUNE_LIMIT);
+	progress_end(&prog);
+}
+
+void packer_run(spheres *S, psd *d, const dem_geometry *g, const surface *surf, const zones *z,
+                const packer_params *params, packer_stats *st)
+{
+	memset(st, 0, sizeof *st);
+	double t0 = timer_now();
+	double shape[3];
+	size_t n;
+	cell_shape(d, g, params->cell_max, shape, &n);
+	jam_cell c;
+	progress prog;
+	progress_start(&prog, "iterations", 0);
+	jam_make(&c, d, n, shape, params->seed, CELL_OTOL, &prog);
+	progress_end(&prog);
+	st->cell_n = c.n;
+	st->cell_phi = c.phi;
+	st->cell_iter = c.iter;
+	double vs = 0;
+	for (size_t i = 0; i < c.n; i++)
+		vs += 4.0 / 3.0 * M_PI * c.r[i] * c.r[i] * c.r[i];
+	if (params->count > 0) /* the cell's own solid fraction refines the scale */
+		scale_cell(&c, d,
+		           cbrt(c.phi * g->volume / (vs / (double)c.n) / (double)params->count));
+	double t1 = timer_now();
+	st->time_cell = t1 - t0;
+	fill(S, &c, d, g, surf, z, params, st);
+	/* The wall band loses and gains spheres: one more pass at the scale
+	 * that corrects the count. */
+	double s = cbrt((double)S->n / (double)params->count);
+	if (params->count > 0 && fabs(s - 1) > COUNT_TOL) {
+		scale_cell(&c, d, s);
+		fill(S, &c, d, g, surf, z, params, st);
+	}
+	jam_free(&c);
 	st->time_fill = timer_now() - t1;
 }

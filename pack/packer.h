@@ -34,8 +34,9 @@ typedef struct {
  * volume at the solid fraction of a random close packing. */
 double packer_count_scale(const psd *d, double volume, long count);
 
-/* Fill S; d is rescaled in place when params->count > 0 refines the
- * first estimate of the sizes. */
+/* Fill S; with params->count > 0, d is rescaled in place so that the
+ * assembly holds count spheres within about 1 % (a second tiling pass when
+ * the first misses). */
 void packer_run(spheres *S, psd *d, const dem_geometry *g, const surface *surf, const zones *z,
                 const packer_params *params, packer_stats *st);
 

@@ -84,24 +84,27 @@ static void inner_volumes(const dem_geometry *g, const surface *surf, const zone
 		for (size_t c = blk * 256; c < end; c++) {
 			if (z->ub[c] < 0 || z->lb[c] >= wmax)
 				continue;
-			size_t ijk[3] = {c % (size_t)z->dim[0], c / (size_t)z->dim[0] % (size_t)z->dim[1],
+			size_t ijk[3] = {c % (size_t)z->dim[0],
+			                 c / (size_t)z->dim[0] % (size_t)z->dim[1],
 			                 c / ((size_t)z->dim[0] * (size_t)z->dim[1])};
 			double centre[3];
 			for (int d = 0; d < 3; d++)
 				centre[d] = z->lo[d] + ((double)ijk[d] + 0.5) * z->edge;
 			int32_t near[NEAR_MAX];
-			size_t nnear = surface_near(surf, centre, sqrt(3.0) * z->edge + wmax, near,
-			                            NEAR_MAX);
+			size_t nnear =
+			    surface_near(surf, centre, sqrt(3.0) * z->edge + wmax, near, NEAR_MAX);
 			rng g;
 			rng_seed_stream(&g, 0x70726f6265ULL, c);
 			for (int q = 0; q < PROBES * PROBES * PROBES; q++) {
 				int o[3] = {q % PROBES, q / PROBES % PROBES, q / (PROBES * PROBES)};
 				double p[3];
 				for (int d = 0; d < 3; d++)
-					p[d] = z->lo[d] + (double)ijk[d] * z->edge + (o[d] + rng_uniform(&g)) * h;
+					p[d] = z->lo[d] + (double)ijk[d] * z->edge +
+					       (o[d] + rng_uniform(&g)) * h;
 				int32_t hint = z->hint[c];
-				double s = nnear <= NEAR_MAX ? surface_distance_among(surf, p, near, nnear)
-				                             : surface_distance(surf, p, NULL, &hint);
+				double s = nnear <= NEAR_MAX
+				               ? surface_distance_among(surf, p, near, nnear)
+				               : surface_distance(surf, p, NULL, &hint);
 				if (s < 0 || s >= wmax)
 					continue;
 				size_t b = (size_t)(s / dw);
