@@ -25,13 +25,15 @@
 #include "lib/vec3.h"
 #include "pack/band.h"
 #include "pack/fire.h"
+#include "pack/morton.h"
+#include "pack/par.h"
 
 static const double SHRINK = 0.05, REGROW = 1e-3;
 
 /* FIRE with a radius factor per mobile sphere (see the top of the file). */
-static void relax(soft_system *sys, const uint8_t *mobile, const band_params *p, band_result *res)
+static void relax(soft_system *sys, const band_params *p, band_result *res)
 {
-	size_t m = sys->n;
+	size_t m = sys->nmobile;
 	double *r0 = xmalloc(m * sizeof *r0 + 1), *lambda = xmalloc(m * sizeof *lambda + 1);
 	memcpy(r0, sys->r, m * sizeof *r0);
 	for (size_t k = 0; k < m; k++)
@@ -41,9 +43,8 @@ static void relax(soft_system *sys, const uint8_t *mobile, const band_params *p,
 	fire_start(&st, sys);
 	while (st.iter < p->max_iter) {
 		fire_move(&st, sys);
+#pragma omp parallel for schedule(static) if (m >= PAR_MIN)
 		for (size_t k = 0; k < m; k++) {
-			if (!mobile[k])
-				continue;
 			double o = sys->worst[k];
 			if (o > p->otol)
 				lambda[k] *= 1 - SHRINK * (o - p->otol);
@@ -59,9 +60,8 @@ static void relax(soft_system *sys, const uint8_t *mobile, const band_params *p,
 	res->overlap = st.stats.overlap_max;
 	res->shrink = 0;
 	for (size_t k = 0; k < m; k++)
-		if (mobile[k])
-			res->shrink += 1 - lambda[k];
-	res->shrink /= res->mobile ? (double)res->mobile : 1;
+		res->shrink += 1 - lambda[k];
+	res->shrink /= m ? (double)m : 1;
 	fire_end(&st);
 	free(sys->worst);
 	sys->worst = NULL;
@@ -75,22 +75,39 @@ void band_relax(spheres *S, const surface *surf, const dem_geometry *g, const ba
 	double rmax = 0;
 	for (size_t i = 0; i < S->n; i++)
 		rmax = fmax(rmax, S->r[i]);
+	/* The moving spheres first, then the fixed ones within reach of them,
+	 * each group along a Morton curve. */
 	double reach = p->width + 2 * rmax + p->skin;
-	size_t *idx = xmalloc(S->n * sizeof *idx + 1), m = 0;
-	for (size_t i = 0; i < S->n; i++)
-		if (S->lo[i] < reach)
-			idx[m++] = i;
+	size_t *idx = xmalloc(S->n * sizeof *idx + 1), m = 0, nm = 0;
+	for (int pass = 0; pass < 2; pass++) {
+		size_t first = m;
+		for (size_t i = 0; i < S->n; i++) {
+			int moves = S->hi[i] < p->width;
+			if (pass == 0 ? moves : !moves && S->lo[i] < reach)
+				idx[m++] = i;
+		}
+		double *xg = xmalloc(3 * (m - first) * sizeof *xg + 1);
+		size_t *order = xmalloc((m - first) * sizeof *order + 1),
+		       *copy = xmalloc((m - first) * sizeof *copy + 1);
+		for (size_t k = first; k < m; k++)
+			v3_copy(xg + 3 * (k - first), S->x + 3 * idx[k]);
+		morton_order(xg, m - first, g->bbox_min, g->bbox_max, order);
+		for (size_t k = 0; k < m - first; k++)
+			copy[k] = idx[first + order[k]];
+		memcpy(idx + first, copy, (m - first) * sizeof *copy);
+		free(xg);
+		free(order);
+		free(copy);
+		if (pass == 0)
+			nm = m;
+	}
 	double *x = xmalloc(3 * m * sizeof *x + 1), *r = xmalloc(m * sizeof *r + 1);
-	uint8_t *mobile = xmalloc(m + 1);
 	soft_system sys;
-	soft_init(&sys, m, x, r, mobile);
-	res->mobile = 0;
+	soft_init(&sys, m, nm, x, r);
 	for (size_t k = 0; k < m; k++) {
 		size_t i = idx[k];
 		v3_copy(x + 3 * k, S->x + 3 * i);
 		r[k] = S->r[i];
-		mobile[k] = S->hi[i] < p->width;
-		res->mobile += mobile[k];
 		sys.wall_s0[k] = S->lo[i];
 	}
 	memcpy(sys.wall_xq, x, 3 * m * sizeof *x);
@@ -98,18 +115,15 @@ void band_relax(spheres *S, const surface *surf, const dem_geometry *g, const ba
 	sys.wall_vert = g->vert;
 	sys.wall_tri = g->tri;
 	sys.skin = p->skin;
+	res->mobile = nm;
 	res->involved = m;
-	relax(&sys, mobile, p, res);
-	for (size_t k = 0; k < m; k++)
-		if (mobile[k])
-			S->r[idx[k]] = r[k];
-	for (size_t k = 0; k < m; k++) {
+	relax(&sys, p, res);
+	for (size_t k = 0; k < nm; k++) {
 		size_t i = idx[k];
-		if (!mobile[k])
-			continue;
 		double d[3];
 		v3_sub(d, x + 3 * k, S->x + 3 * i);
 		v3_copy(S->x + 3 * i, x + 3 * k);
+		S->r[i] = r[k];
 		S->lo[i] -= v3_norm(d); /* still bounds: the depth is 1-Lipschitz */
 		S->hi[i] += v3_norm(d);
 	}
@@ -117,5 +131,4 @@ void band_relax(spheres *S, const surface *surf, const dem_geometry *g, const ba
 	free(idx);
 	free(x);
 	free(r);
-	free(mobile);
 }

@@ -15,6 +15,7 @@
 
 #include "lib/err.h"
 #include "pack/fire.h"
+#include "pack/par.h"
 
 #define BLOCK 4096
 
@@ -22,32 +23,41 @@ enum { N_DELAY = 5 };
 static const double F_INC = 1.1, F_DEC = 0.5, ALPHA0 = 0.1, F_ALPHA = 0.99;
 static const double DT_START = 0.05, DT_MAX = 0.25, DT_MIN = 0.002;
 
-/* sum over k of a[k] b[k], in fixed blocks. */
-static double dot(const double *a, const double *b, size_t n)
+/* Over fixed blocks of BLOCK components: f.v, or with kick, first v += dt f
+ * and then |f|^2 and |v|^2. Blocks make the sums the same whatever the
+ * number of threads. */
+static void sums(double *v, const double *f, size_t n, double dt, int kick, double out[3])
 {
 	size_t nblock = (n + BLOCK - 1) / BLOCK;
-	double part[64], *p = nblock <= 64 ? part : xmalloc(nblock * sizeof *p);
-#pragma omp parallel for schedule(static)
+	double part[3 * 64], *p = nblock <= 64 ? part : xmalloc(3 * nblock * sizeof *p);
+#pragma omp parallel for schedule(static) if (n >= 3 * PAR_MIN)
 	for (size_t blk = 0; blk < nblock; blk++) {
-		double acc = 0;
+		double fv = 0, ff = 0, vv = 0;
 		size_t end = (blk + 1) * BLOCK < n ? (blk + 1) * BLOCK : n;
-		for (size_t k = blk * BLOCK; k < end; k++)
-			acc += a[k] * b[k];
-		p[blk] = acc;
+		for (size_t k = blk * BLOCK; k < end; k++) {
+			if (kick)
+				v[k] += dt * f[k];
+			fv += f[k] * v[k];
+			ff += f[k] * f[k];
+			vv += v[k] * v[k];
+		}
+		p[3 * blk] = fv;
+		p[3 * blk + 1] = ff;
+		p[3 * blk + 2] = vv;
 	}
-	double sum = 0;
+	out[0] = out[1] = out[2] = 0;
 	for (size_t blk = 0; blk < nblock; blk++)
-		sum += p[blk];
+		for (int k = 0; k < 3; k++)
+			out[k] += p[3 * blk + k];
 	if (p != part)
 		free(p);
-	return sum;
 }
 
 void fire_start(fire_state *st, soft_system *s)
 {
 	memset(st, 0, sizeof *st);
-	st->v = xcalloc(3 * s->n + 1, sizeof *st->v);
-	st->f = xcalloc(3 * s->n + 1, sizeof *st->f);
+	st->v = xcalloc(3 * s->nmobile + 1, sizeof *st->v);
+	st->f = xcalloc(3 * s->nmobile + 1, sizeof *st->f);
 	st->dt = DT_START;
 	st->alpha = ALPHA0;
 	soft_update(s, 0);
@@ -56,9 +66,10 @@ void fire_start(fire_state *st, soft_system *s)
 
 void fire_move(fire_state *st, soft_system *s)
 {
-	size_t n = 3 * s->n;
-	double *v = st->v, *f = st->f, *x = s->x;
-	if (dot(f, v, n) > 0) {
+	size_t n = 3 * s->nmobile;
+	double *v = st->v, *f = st->f, *x = s->x, sm[3];
+	sums(v, f, n, 0, 0, sm);
+	if (sm[0] > 0) {
 		if (++st->npos > N_DELAY) {
 			st->dt = fmin(st->dt * F_INC, DT_MAX);
 			st->alpha *= F_ALPHA;
@@ -68,19 +79,16 @@ void fire_move(fire_state *st, soft_system *s)
 		st->dt = fmax(st->dt * F_DEC, DT_MIN);
 		st->alpha = ALPHA0;
 		double back = 0.5 * st->dt;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= 3 * PAR_MIN)
 		for (size_t k = 0; k < n; k++) {
 			x[k] -= back * v[k];
 			v[k] = 0;
 		}
 	}
 	double dt = st->dt, alpha = st->alpha;
-#pragma omp parallel for schedule(static)
-	for (size_t k = 0; k < n; k++)
-		v[k] += dt * f[k];
-	double ff = dot(f, f, n), vv = dot(v, v, n);
-	double mix = ff > 0 ? alpha * sqrt(vv / ff) : 0;
-#pragma omp parallel for schedule(static)
+	sums(v, f, n, dt, 1, sm);
+	double mix = sm[1] > 0 ? alpha * sqrt(sm[2] / sm[1]) : 0;
+#pragma omp parallel for schedule(static) if (n >= 3 * PAR_MIN)
 	for (size_t k = 0; k < n; k++) {
 		v[k] = (1 - alpha) * v[k] + mix * f[k];
 		x[k] += dt * v[k];

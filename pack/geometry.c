@@ -16,6 +16,7 @@
 #include <errno.h>
 #include <gmshc.h>
 #include <math.h>
+#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -338,7 +339,7 @@ int geometry_build(const geometry_spec *s, dem_geometry *g)
 {
 	memset(g, 0, sizeof *g);
 	const char *what = s->kind == SHAPE_FILE ? s->file : "built-in shape";
-	int ierr;
+	int ierr, threads = omp_get_max_threads();
 	gmshInitialize(0, NULL, 0, &ierr);
 	gmshOptionSetNumber("General.Terminal", 0, &ierr);
 	gmshOptionSetNumber("General.NumThreads", 1, &ierr);
@@ -353,6 +354,8 @@ int geometry_build(const geometry_spec *s, dem_geometry *g)
 	}
 	gmshLoggerStop(&ierr);
 	gmshFinalize(&ierr);
+	/* gmsh sets the OpenMP thread count of the whole process: restore it. */
+	omp_set_num_threads(threads);
 	if (rc || trimesh_close(&m, what)) {
 		trimesh_free(&m);
 		return -1;

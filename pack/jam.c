@@ -18,8 +18,10 @@
 
 #include "lib/err.h"
 #include "lib/rng.h"
+#include "lib/vec3.h"
 #include "pack/fire.h"
 #include "pack/jam.h"
+#include "pack/morton.h"
 
 static const double PHI_START = 0.50, P_SQUEEZE = 0.4, RATE = 1e-3;
 static const long WINDOW = 50, SQUEEZE_ITER = 20000, RELEASE_ITER = 5000, MAX_ITER = 60000;
@@ -31,44 +33,6 @@ static double sphere_volume(const double *r, size_t n)
 	for (size_t i = 0; i < n; i++)
 		v += 4.0 / 3.0 * M_PI * r[i] * r[i] * r[i];
 	return v;
-}
-
-typedef struct {
-	uint64_t key;
-	size_t i;
-} sort_key;
-
-static int cmp_key(const void *a, const void *b)
-{
-	const sort_key *u = a, *v = b;
-	if (u->key != v->key)
-		return u->key < v->key ? -1 : 1;
-	return (u->i > v->i) - (u->i < v->i);
-}
-
-/* Reorder points in [0, box) along a Morton (Z-order) curve of 2^10 cells
- * per edge, so that neighbours sit close in memory. */
-static void spatial_sort(double *x, size_t n, const double box[3])
-{
-	sort_key *k = xmalloc(n * sizeof *k + 1);
-	for (size_t i = 0; i < n; i++) {
-		uint64_t key = 0;
-		for (int d = 0; d < 3; d++) {
-			uint64_t c = (uint64_t)(x[3 * i + d] / box[d] * 1024);
-			c = c > 1023 ? 1023 : c;
-			for (int b = 0; b < 10; b++)
-				key |= ((c >> b) & 1) << (3 * b + d);
-		}
-		k[i].key = key;
-		k[i].i = i;
-	}
-	qsort(k, n, sizeof *k, cmp_key);
-	double *y = xmalloc(3 * n * sizeof *y + 1);
-	for (size_t i = 0; i < n; i++)
-		memcpy(y + 3 * i, x + 3 * k[i].i, 3 * sizeof *y);
-	memcpy(x, y, 3 * n * sizeof *y);
-	free(y);
-	free(k);
 }
 
 /* Pressure-controlled growth: p = (sum over each sphere's contacts of the
@@ -123,14 +87,22 @@ void jam_make(jam_cell *c, const psd *d, size_t n, const double shape[3], uint64
 	for (size_t i = 0; i < n; i++)
 		for (int k = 0; k < 3; k++)
 			c->x[3 * i + k] = c->box[k] * rng_uniform(&g);
-	spatial_sort(c->x, n, c->box);
+	/* Along a Morton curve, so that neighbours sit near in memory. */
+	double zero[3] = {0, 0, 0}, *xs = xmalloc(3 * n * sizeof *xs + 1);
+	size_t *order = xmalloc(n * sizeof *order + 1);
+	morton_order(c->x, n, zero, c->box, order);
+	for (size_t i = 0; i < n; i++)
+		v3_copy(xs + 3 * i, c->x + 3 * order[i]);
+	memcpy(c->x, xs, 3 * n * sizeof *xs);
+	free(xs);
+	free(order);
 	memcpy(c->r, r0, n * sizeof *r0);
 	double rmean = 0;
 	for (size_t i = 0; i < n; i++)
 		rmean += r0[i] / (double)n;
 
 	soft_system s;
-	soft_init(&s, n, c->x, c->r, NULL);
+	soft_init(&s, n, n, c->x, c->r);
 	memcpy(s.box, c->box, sizeof s.box);
 	s.skin = 0.4 * rmean;
 	fire_state st;

@@ -24,7 +24,7 @@
 #include "pack/voids.h"
 
 static const double PHI_RCP = 0.64, CELL_OTOL = 0.005, BAND_OTOL = 0.005, PRUNE_LIMIT = 0.009;
-static const long BAND_ITER = 200, REFILL_ITER = 150;
+static const long BAND_ITER = 300, REFILL_ITER = 60;
 static const double COUNT_TOL = 0.003; /* on the size scale: 1 % on the count */
 
 double packer_count_scale(const psd *d, double volume, long count)

@@ -77,7 +77,7 @@ size_t prune_overlaps(spheres *S, const surface *surf, double depth, double limi
 			int32_t hint = -1;
 			s[k] = surface_distance(surf, x + 3 * k, NULL, &hint);
 		}
-	soft_init(&p.sys, m, x, r, NULL);
+	soft_init(&p.sys, m, m, x, r);
 	p.sys.skin = 1e-9 * rmax;
 	soft_rebuild(&p.sys);
 	p.s = s;

@@ -169,7 +169,7 @@ static void contacts(dem_assembly *a, const double *s, double beta)
 	for (size_t i = 0; i < n; i++)
 		rmax = fmax(rmax, a->r[i]);
 	soft_system sys;
-	soft_init(&sys, n, a->x, a->r, NULL);
+	soft_init(&sys, n, n, a->x, a->r);
 	sys.skin = 2 * beta * rmax + 1e-12 * rmax;
 	soft_rebuild(&sys);
 	double wc = REPORT_CORE_DEPTH * 2 * rep->mean_radius;

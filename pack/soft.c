@@ -18,16 +18,17 @@
 #include "lib/err.h"
 #include "lib/vec3.h"
 #include "pack/cells.h"
+#include "pack/par.h"
 #include "pack/soft.h"
 #include "pack/trimesh.h"
 
-void soft_init(soft_system *s, size_t n, double *x, double *r, uint8_t *mobile)
+void soft_init(soft_system *s, size_t n, size_t nmobile, double *x, double *r)
 {
 	memset(s, 0, sizeof *s);
 	s->n = n;
 	s->x = x;
 	s->r = r;
-	s->mobile = mobile;
+	s->nmobile = nmobile;
 	s->nb_start = xcalloc(n + 1, sizeof *s->nb_start);
 	s->xr = xmalloc(4 * n * sizeof *s->xr + 1);
 	s->x_built = xmalloc(3 * n * sizeof *s->x_built + 1);
@@ -35,12 +36,11 @@ void soft_init(soft_system *s, size_t n, double *x, double *r, uint8_t *mobile)
 	s->wall_s0 = xmalloc(n * sizeof *s->wall_s0 + 1);
 	s->wall_xq = xmalloc(3 * n * sizeof *s->wall_xq + 1);
 	s->wall_hint = xmalloc(n * sizeof *s->wall_hint + 1);
-	s->wall_slot = xmalloc(n * sizeof *s->wall_slot + 1);
+	s->wall_margin = xcalloc(n + 1, sizeof *s->wall_margin);
 	s->wall_count = xcalloc(n + 1, 1);
 	for (size_t i = 0; i < n; i++) {
 		s->wall_s0[i] = -INFINITY;
 		s->wall_hint[i] = -1;
-		s->wall_slot[i] = -1;
 	}
 	memcpy(s->wall_xq, x, 3 * n * sizeof *x);
 	s->stale = 1;
@@ -57,7 +57,7 @@ void soft_free(soft_system *s)
 	free(s->wall_s0);
 	free(s->wall_xq);
 	free(s->wall_hint);
-	free(s->wall_slot);
+	free(s->wall_margin);
 	free(s->wall_count);
 	free(s->wall_pool);
 	memset(s, 0, sizeof *s);
@@ -73,7 +73,7 @@ void soft_delta(const soft_system *s, size_t i, size_t j, double d[3])
 			d[k] -= s->box[k] * nearbyint(d[k] / s->box[k]);
 }
 
-static int is_mobile(const soft_system *s, size_t i) { return !s->mobile || s->mobile[i]; }
+static int is_mobile(const soft_system *s, size_t i) { return i < s->nmobile; }
 
 /* x_j - x_i through the periodic image with the given code (13: none). */
 static inline void image_delta(const soft_system *s, size_t i, size_t j, int code, double d[3])
@@ -180,21 +180,6 @@ static size_t scan_neighbours(const soft_system *s, const cells *g, const double
 	return count;
 }
 
-/* Is sphere i within r + skin of the boundary? Queried only when the
- * bound carried from the last query does not rule it out. */
-static void wall_probe(soft_system *s, size_t i)
-{
-	double d[3];
-	v3_sub(d, s->x + 3 * i, s->wall_xq + 3 * i);
-	double reach = s->r[i] + s->skin;
-	s->wall_slot[i] = -1;
-	if (s->wall_s0[i] - v3_norm(d) > reach)
-		return;
-	v3_copy(s->wall_xq + 3 * i, s->x + 3 * i);
-	s->wall_s0[i] = surface_distance(s->wall, s->x + 3 * i, NULL, &s->wall_hint[i]);
-	s->wall_slot[i] = s->wall_s0[i] <= reach ? 0 : -1;
-}
-
 /* Distance from p to the triangle k (pack/trimesh.h) and the closest point. */
 static double triangle_distance(const soft_system *s, int32_t k, const double p[3], double q[3])
 {
@@ -206,51 +191,51 @@ static double triangle_distance(const soft_system *s, int32_t k, const double p[
 	return v3_norm(d);
 }
 
-/* The triangles near each sphere flagged by wall_probe (the WALL_MAX
- * closest if more are near). Slots are numbered in sphere order. */
-static void wall_collect(soft_system *s)
+/* The boundary triangles sphere i may touch before the next build. A query
+ * at x_q lists the triangles within r + skin + WALL_MARGIN (the WALL_MAX
+ * closest, the margin shrinking to what they cover if there are more);
+ * the list serves every build while the sphere stays within the margin of
+ * x_q. Without a list, the depth bound s_q - |x - x_q| tells whether the
+ * sphere can reach the boundary at all. */
+static void wall_update(soft_system *s, size_t i)
 {
-	size_t slots = 0, n = s->n;
-	for (size_t i = 0; i < n; i++)
-		if (s->wall_slot[i] == 0 && is_mobile(s, i))
-			s->wall_slot[i] = (int32_t)slots++;
-		else
-			s->wall_slot[i] = -1;
-	if (slots > s->wall_slots) {
-		free(s->wall_pool);
-		s->wall_pool = xmalloc(slots * WALL_MAX * sizeof *s->wall_pool);
-		s->wall_slots = slots;
+	double d[3];
+	v3_sub(d, s->x + 3 * i, s->wall_xq + 3 * i);
+	double moved = v3_norm(d), reach = s->r[i] + s->skin;
+	if (s->wall_count[i] && moved <= s->wall_margin[i])
+		return;
+	s->wall_count[i] = 0;
+	if (s->wall_s0[i] - moved > reach)
+		return;
+	v3_copy(s->wall_xq + 3 * i, s->x + 3 * i);
+	s->wall_s0[i] = surface_distance(s->wall, s->x + 3 * i, NULL, &s->wall_hint[i]);
+	if (s->wall_s0[i] > reach + WALL_MARGIN * s->skin)
+		return;
+	enum { CAP = 4 * WALL_MAX };
+	int32_t buf[CAP];
+	double dist[CAP], q[3], margin = WALL_MARGIN * s->skin;
+	size_t m = surface_near(s->wall, s->x + 3 * i, reach + margin, buf, CAP);
+	m = m < CAP ? m : CAP;
+	for (size_t k = 0; k < m; k++)
+		dist[k] = triangle_distance(s, buf[k], s->x + 3 * i, q);
+	while (m > WALL_MAX) { /* drop the farthest; the list covers less */
+		size_t far = 0;
+		for (size_t k = 1; k < m; k++)
+			far = dist[k] > dist[far] ? k : far;
+		margin = fmin(margin, dist[far] - reach);
+		buf[far] = buf[m - 1];
+		dist[far] = dist[m - 1];
+		m--;
 	}
-#pragma omp parallel for schedule(dynamic, 64)
-	for (size_t i = 0; i < n; i++) {
-		s->wall_count[i] = 0;
-		if (s->wall_slot[i] < 0)
-			continue;
-		int32_t buf[4 * WALL_MAX], *out = s->wall_pool + (size_t)s->wall_slot[i] * WALL_MAX;
-		size_t m =
-		    surface_near(s->wall, s->x + 3 * i, s->r[i] + s->skin, buf, 4 * WALL_MAX);
-		if (m > 4 * WALL_MAX)
-			m = 4 * WALL_MAX;
-		while (m > WALL_MAX) { /* drop the farthest */
-			size_t far = 0;
-			double dfar = -1, q[3];
-			for (size_t k = 0; k < m; k++) {
-				double dk = triangle_distance(s, buf[k], s->x + 3 * i, q);
-				if (dk > dfar) {
-					dfar = dk;
-					far = k;
-				}
-			}
-			memmove(buf + far, buf + far + 1, (m - far - 1) * sizeof *buf);
-			m--;
-		}
-		memcpy(out, buf, m * sizeof *buf);
-		s->wall_count[i] = (uint8_t)m;
-	}
+	memcpy(s->wall_pool + i * WALL_MAX, buf, m * sizeof *buf);
+	s->wall_count[i] = (uint8_t)m;
+	s->wall_margin[i] = margin;
 }
 
 void soft_rebuild(soft_system *s)
 {
+	if (s->wall && !s->wall_pool)
+		s->wall_pool = xmalloc(s->nmobile * WALL_MAX * sizeof *s->wall_pool + 1);
 	for (int code = 0; code < 27; code++)
 		for (int k = 0; k < 3; k++)
 			s->shift[code][k] = s->box[k] * (double)(code /
@@ -279,14 +264,14 @@ void soft_rebuild(soft_system *s)
 	enum { CHUNK = 512 };
 	size_t nchunk = (n + CHUNK - 1) / CHUNK;
 	nbuf *buf = xcalloc(nchunk + 1, sizeof *buf);
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for schedule(dynamic, 1) if (n >= PAR_MIN)
 	for (size_t c = 0; c < nchunk; c++) {
 		size_t end = (c + 1) * CHUNK < n ? (c + 1) * CHUNK : n;
 		for (size_t i = c * CHUNK; i < end; i++) {
 			s->nb_start[i + 1] =
 			    is_mobile(s, i) ? scan_neighbours(s, &g, xs, i, &buf[c]) : 0;
 			if (s->wall && is_mobile(s, i))
-				wall_probe(s, i);
+				wall_update(s, i);
 		}
 	}
 	s->nb_start[0] = 0;
@@ -299,7 +284,7 @@ void soft_rebuild(soft_system *s)
 		s->nb = xmalloc(s->nb_cap * sizeof *s->nb);
 		s->nb_shift = xmalloc(s->nb_cap);
 	}
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= PAR_MIN)
 	for (size_t c = 0; c < nchunk; c++) {
 		size_t at = s->nb_start[c * CHUNK];
 		memcpy(s->nb + at, buf[c].j, buf[c].n * sizeof *buf[c].j);
@@ -309,11 +294,13 @@ void soft_rebuild(soft_system *s)
 	}
 	free(buf);
 	free(xs);
-	if (s->wall)
-		wall_collect(s);
 	cells_free(&g);
 	memcpy(s->x_built, s->x, 3 * n * sizeof *s->x);
 	memcpy(s->r_built, s->r, n * sizeof *s->r);
+	for (size_t i = 0; i < n; i++) {
+		v3_copy(s->xr + 4 * i, s->x + 3 * i);
+		s->xr[4 * i + 3] = s->r[i];
+	}
 	s->stale = 0;
 	s->builds++;
 }
@@ -325,11 +312,9 @@ void soft_update(soft_system *s, int force)
 		return;
 	}
 	double move = 0, grow = 0;
-	size_t n = s->n;
-#pragma omp parallel for reduction(max : move, grow) schedule(static)
+	size_t n = s->nmobile;
+#pragma omp parallel for reduction(max : move, grow) schedule(static) if (n >= PAR_MIN)
 	for (size_t i = 0; i < n; i++) {
-		if (!is_mobile(s, i))
-			continue;
 		double d[3];
 		v3_sub(d, s->x + 3 * i, s->x_built + 3 * i);
 		move = fmax(move, v3_dot(d, d));
@@ -343,22 +328,23 @@ void soft_update(soft_system *s, int force)
 
 void soft_forces(soft_system *s, double *f, soft_stats *out)
 {
-	size_t n = s->n, nblock = (n + FORCE_BLOCK - 1) / FORCE_BLOCK;
+	size_t n = s->nmobile, nblock = (n + FORCE_BLOCK - 1) / FORCE_BLOCK;
 	double *part = xcalloc(2 * nblock + 1, sizeof *part), *xr = s->xr;
 	double worst = 0, fmx = 0;
-	/* Position and radius side by side: one cache line per neighbour. */
-#pragma omp parallel for schedule(static)
+	/* Position and radius side by side: one cache line per neighbour (the
+	 * fixed spheres' were laid out at the last build). */
+#pragma omp parallel for schedule(static) if (n >= PAR_MIN)
 	for (size_t i = 0; i < n; i++) {
 		v3_copy(xr + 4 * i, s->x + 3 * i);
 		xr[4 * i + 3] = s->r[i];
 	}
-#pragma omp parallel for reduction(max : worst, fmx) schedule(static)
+#pragma omp parallel for reduction(max : worst, fmx) schedule(static) if (n >= PAR_MIN)
 	for (size_t b = 0; b < nblock; b++) {
 		double sum = 0, count = 0;
 		size_t end = (b + 1) * FORCE_BLOCK < n ? (b + 1) * FORCE_BLOCK : n;
 		for (size_t i = b * FORCE_BLOCK; i < end; i++) {
 			double fi[3] = {0, 0, 0}, wi = 0;
-			if (is_mobile(s, i)) {
+			{
 				const double *pi = xr + 4 * i;
 				double ri = pi[3];
 				for (size_t q = s->nb_start[i]; q < s->nb_start[i + 1]; q++) {
@@ -382,8 +368,7 @@ void soft_forces(soft_system *s, double *f, soft_stats *out)
 				}
 				if (s->wall_count[i]) {
 					/* Push the centre away from its closest boundary point. */
-					const int32_t *tl =
-					    s->wall_pool + (size_t)s->wall_slot[i] * WALL_MAX;
+					const int32_t *tl = s->wall_pool + i * WALL_MAX;
 					double q[3] = {0, 0, 0}, qk[3], dmin = INFINITY;
 					for (int k = 0; k < s->wall_count[i]; k++) {
 						double dk =

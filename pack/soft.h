@@ -16,13 +16,14 @@
 
 #include "pack/surface.h"
 
-#define WALL_MAX 48 /* boundary triangles kept per sphere */
+#define WALL_MAX 48   /* boundary triangles kept per sphere */
+#define WALL_MARGIN 5 /* skins a sphere may move before its triangles are listed again */
 
 typedef struct {
 	size_t n;
 	double *x;               /* [n][3] m */
 	double *r;               /* [n] m */
-	uint8_t *mobile;         /* [n] 1 if the sphere moves; NULL: all move */
+	size_t nmobile;          /* spheres 0 .. nmobile-1 move, the others are fixed */
 	double box[3];           /* periodic cell lengths (m); all 0: not periodic */
 	const surface *wall;     /* boundary to stay inside, or NULL; then */
 	const double *wall_vert; /* its triangulation (pack/trimesh.h) */
@@ -38,27 +39,26 @@ typedef struct {
 	size_t nb_cap;
 	double *x_built; /* positions when the list was built */
 	double *r_built;
-	/* The boundary triangles within r + skin of each sphere near it, found
-	 * at the last build: wall_slot[i] >= 0 indexes WALL_MAX entries of
-	 * wall_pool, wall_count[i] of them used. wall_s0 is a lower bound of
-	 * the signed distance at wall_xq; a caller that knows one may store it
-	 * (with wall_xq = the position) to spare the first query. */
+	/* Boundary triangles near each moving sphere (see wall_update in
+	 * soft.c): wall_count[i] of them at wall_pool + i WALL_MAX, valid while
+	 * the sphere is within wall_margin[i] of wall_xq[i]; wall_s0[i] is a
+	 * lower bound of the signed distance at wall_xq[i]. A caller that knows
+	 * one may store it (with wall_xq = the position) to spare a query. */
 	double *wall_s0;
 	double *wall_xq; /* [n][3] */
+	double *wall_margin;
 	int32_t *wall_hint;
-	int32_t *wall_slot;
 	uint8_t *wall_count;
 	int32_t *wall_pool;
-	size_t wall_slots;
 	int stale;
 	long builds;
 	double *worst; /* [n] if not NULL: each mobile sphere's largest relative
 	                * overlap, filled by soft_forces */
 } soft_system;
 
-/* Allocate the per-sphere work arrays for n spheres (x, r, mobile are the
- * caller's). */
-void soft_init(soft_system *s, size_t n, double *x, double *r, uint8_t *mobile);
+/* Allocate the per-sphere work arrays for n spheres, the first nmobile of
+ * which move (x and r are the caller's). */
+void soft_init(soft_system *s, size_t n, size_t nmobile, double *x, double *r);
 void soft_free(soft_system *s);
 
 /* Rebuild the neighbour list now (periodic positions are wrapped into the
@@ -75,7 +75,7 @@ typedef struct {
 	double fmax;         /* max_i |F_i| / r_i */
 } soft_stats;
 
-/* Forces on the mobile spheres (f, [n][3]; 0 for fixed ones). */
+/* Forces on the mobile spheres (f, [nmobile][3]). */
 void soft_forces(soft_system *s, double *f, soft_stats *st);
 
 /* Minimum-image separation x_j - x_i. */

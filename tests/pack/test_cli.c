@@ -176,16 +176,17 @@ static int same_spheres(const char *p, const char *q)
 	return same;
 }
 
+/* A specimen large enough for every parallel loop to use the threads. */
 static void test_threads(void)
 {
 	const char *one = check_tmp("cli_t1.h5"), *two = check_tmp("cli_t2.h5");
-	run_result r1 = run_pack("--quiet --diameter 0.016 --height 0.02 --threads 1 %s", one);
-	run_result r2 = run_pack("--quiet --diameter 0.016 --height 0.02 --threads 2 %s", two);
+	run_result r1 = run_pack("--quiet --diameter 0.03 --height 0.04 --threads 1 %s", one);
+	run_result r2 = run_pack("--quiet --diameter 0.03 --height 0.04 --threads 2 %s", two);
 	CHECK(r1.status == 0 && r2.status == 0);
 	CHECK(same_spheres(one, two));
 	run_free(&r1);
 	run_free(&r2);
-	run_result r3 = run_pack("--quiet --diameter 0.016 --height 0.02 --seed 2 %s", two);
+	run_result r3 = run_pack("--quiet --diameter 0.03 --height 0.04 --seed 2 %s", two);
 	CHECK(r3.status == 0);
 	CHECK(!same_spheres(one, two));
 	run_free(&r3);
