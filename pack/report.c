@@ -26,9 +26,9 @@
 #include "lib/err.h"
 #include "lib/rng.h"
 #include "lib/vec3.h"
+#include "pack/cells.h"
 #include "pack/geometry.h"
 #include "pack/report.h"
-#include "pack/soft.h"
 
 static double cap_volume(double r, double t0, double t1)
 {
@@ -40,21 +40,55 @@ static double cap_volume(double r, double t0, double t1)
 }
 
 /* Depth of every centre: exact where it matters (shallower than `limit`
- * plus its radius), else the zone's lower bound. */
+ * plus its radius), else the zone's lower bound. The exact ones are taken
+ * zone cell by zone cell among the triangles near the cell. */
 static double *depths(const dem_assembly *a, const surface *surf, const zones *z, double limit)
 {
-	double *s = xmalloc(a->n * sizeof *s + 1);
-	size_t n = a->n;
-#pragma omp parallel for schedule(dynamic, 512)
+	size_t n = a->n, ncell = (size_t)z->dim[0] * (size_t)z->dim[1] * (size_t)z->dim[2];
+	double *s = xmalloc(n * sizeof *s + 1), rmax = 0;
+	size_t *cell = xmalloc(n * sizeof *cell + 1), *start = xcalloc(ncell + 1, sizeof *start);
+	size_t *item = xmalloc(n * sizeof *item + 1);
 	for (size_t i = 0; i < n; i++) {
-		size_t c = zones_cell(z, a->x + 3 * i);
-		if (z->lb[c] >= limit + a->r[i]) {
-			s[i] = z->lb[c];
+		cell[i] = zones_cell(z, a->x + 3 * i);
+		start[cell[i] + 1]++;
+		rmax = fmax(rmax, a->r[i]);
+	}
+	for (size_t c = 0; c < ncell; c++)
+		start[c + 1] += start[c];
+	size_t *fill = xmalloc(ncell * sizeof *fill + 1);
+	memcpy(fill, start, ncell * sizeof *fill);
+	for (size_t i = 0; i < n; i++)
+		item[fill[cell[i]]++] = i;
+	free(fill);
+	enum { NEAR_MAX = 256 };
+#pragma omp parallel for schedule(dynamic, 64)
+	for (size_t c = 0; c < ncell; c++) {
+		if (start[c] == start[c + 1])
+			continue;
+		if (z->lb[c] >= limit + rmax) {
+			for (size_t q = start[c]; q < start[c + 1]; q++)
+				s[item[q]] = z->lb[c];
 			continue;
 		}
-		int32_t hint = z->hint[c];
-		s[i] = surface_distance(surf, a->x + 3 * i, NULL, &hint);
+		double centre[3];
+		zones_centre(z, c, centre);
+		int32_t near[NEAR_MAX];
+		size_t nnear =
+		    surface_near(surf, centre, sqrt(3.0) * z->edge + limit + rmax, near, NEAR_MAX);
+		for (size_t q = start[c]; q < start[c + 1]; q++) {
+			size_t i = item[q];
+			int32_t hint = z->hint[c];
+			if (z->lb[c] >= limit + a->r[i])
+				s[i] = z->lb[c];
+			else if (nnear <= NEAR_MAX)
+				s[i] = surface_distance_among(surf, a->x + 3 * i, near, nnear);
+			else
+				s[i] = surface_distance(surf, a->x + 3 * i, NULL, &hint);
+		}
 	}
+	free(cell);
+	free(start);
+	free(item);
 	return s;
 }
 
@@ -84,12 +118,8 @@ static void inner_volumes(const dem_geometry *g, const surface *surf, const zone
 		for (size_t c = blk * 256; c < end; c++) {
 			if (z->ub[c] < 0 || z->lb[c] >= wmax)
 				continue;
-			size_t ijk[3] = {c % (size_t)z->dim[0],
-			                 c / (size_t)z->dim[0] % (size_t)z->dim[1],
-			                 c / ((size_t)z->dim[0] * (size_t)z->dim[1])};
 			double centre[3];
-			for (int d = 0; d < 3; d++)
-				centre[d] = z->lo[d] + ((double)ijk[d] + 0.5) * z->edge;
+			zones_centre(z, c, centre);
 			int32_t near[NEAR_MAX];
 			size_t nnear =
 			    surface_near(surf, centre, sqrt(3.0) * z->edge + wmax, near, NEAR_MAX);
@@ -99,8 +129,8 @@ static void inner_volumes(const dem_geometry *g, const surface *surf, const zone
 				int o[3] = {q % PROBES, q / PROBES % PROBES, q / (PROBES * PROBES)};
 				double p[3];
 				for (int d = 0; d < 3; d++)
-					p[d] = z->lo[d] + (double)ijk[d] * z->edge +
-					       (o[d] + rng_uniform(&g)) * h;
+					p[d] =
+					    centre[d] + (o[d] + rng_uniform(&g) - 0.5 * PROBES) * h;
 				int32_t hint = z->hint[c];
 				double s = nnear <= NEAR_MAX
 				               ? surface_distance_among(surf, p, near, nnear)
@@ -160,7 +190,9 @@ static void profile(dem_assembly *a, const double *s, const surface *surf, const
 	rep->wall_deficit = dmean > 0 ? deficit / dmean : 0;
 }
 
-/* Coordination, fabric and overlaps from one neighbour list. */
+/* Coordination, fabric and overlaps: every pair once, found through a
+ * cell grid; sums by fixed blocks of spheres so that they do not depend on
+ * the number of threads (the maxima reduce exactly in any order). */
 static void contacts(dem_assembly *a, const double *s, double beta)
 {
 	dem_report *rep = &a->report;
@@ -168,56 +200,68 @@ static void contacts(dem_assembly *a, const double *s, double beta)
 	double rmax = 0;
 	for (size_t i = 0; i < n; i++)
 		rmax = fmax(rmax, a->r[i]);
-	soft_system sys;
-	soft_init(&sys, n, n, a->x, a->r);
-	sys.skin = 2 * beta * rmax + 1e-12 * rmax;
-	soft_rebuild(&sys);
+	cells g;
+	cells_build(&g, a->x, n, 2 * (1 + beta) * rmax, NULL);
 	double wc = REPORT_CORE_DEPTH * 2 * rep->mean_radius;
-	/* Per sphere, over its partners j > i: bonds, fabric (6), overlap sum,
-	 * overlapping pairs; the maxima reduce exactly in any order. */
-	enum { BONDS, F_XX, F_YY, F_ZZ, F_XY, F_XZ, F_YZ, NCORE, OV_SUM, OV_N, NSUM };
-	double *part = xcalloc(NSUM * n + 1, sizeof *part);
+	enum { BONDS, F_XX, F_YY, F_ZZ, F_XY, F_XZ, F_YZ, NCORE, OV_SUM, OV_N, NSUM, BLOCK = 1024 };
+	size_t nblock = (n + BLOCK - 1) / BLOCK;
+	double *part = xcalloc(NSUM * nblock + 1, sizeof *part);
 	double ov_max = 0, wall_max = 0;
-#pragma omp parallel for schedule(static) reduction(max : ov_max, wall_max)
-	for (size_t i = 0; i < n; i++) {
-		double *p = part + NSUM * i, ri = a->r[i];
-		if (s[i] < ri)
-			wall_max = fmax(wall_max, (ri - s[i]) / ri);
-		for (size_t q = sys.nb_start[i]; q < sys.nb_start[i + 1]; q++) {
-			size_t j = (size_t)sys.nb[q];
-			if (j < i)
-				continue;
-			double d[3];
-			soft_delta(&sys, i, j, d);
-			double dist = v3_norm(d), sum = ri + a->r[j];
-			if (dist > (1 + beta) * sum)
-				continue;
-			p[BONDS] += 1;
-			if (dist < sum) {
-				double rel = (sum - dist) / fmin(ri, a->r[j]);
-				p[OV_SUM] += rel;
-				p[OV_N] += 1;
-				ov_max = fmax(ov_max, rel);
-			}
-			if (s[i] >= wc && s[j] >= wc && dist > 0) {
-				double u[3];
-				v3_scale(u, d, 1 / dist);
-				p[F_XX] += u[0] * u[0];
-				p[F_YY] += u[1] * u[1];
-				p[F_ZZ] += u[2] * u[2];
-				p[F_XY] += u[0] * u[1];
-				p[F_XZ] += u[0] * u[2];
-				p[F_YZ] += u[1] * u[2];
-				p[NCORE] += 1;
+#pragma omp parallel for schedule(dynamic, 4) reduction(max : ov_max, wall_max)
+	for (size_t b = 0; b < nblock; b++) {
+		double *p = part + NSUM * b;
+		size_t end = (b + 1) * BLOCK < n ? (b + 1) * BLOCK : n;
+		for (size_t i = b * BLOCK; i < end; i++) {
+			double ri = a->r[i];
+			if (s[i] < ri)
+				wall_max = fmax(wall_max, (ri - s[i]) / ri);
+			int c0[3];
+			cells_coord(&g, a->x + 3 * i, c0);
+			for (int o = 0; o < 27; o++) {
+				int c[3] = {c0[0] + o % 3 - 1, c0[1] + o / 3 % 3 - 1,
+				            c0[2] + o / 9 - 1};
+				if (c[0] < 0 || c[1] < 0 || c[2] < 0 || c[0] >= g.dim[0] ||
+				    c[1] >= g.dim[1] || c[2] >= g.dim[2])
+					continue;
+				size_t id = cells_index(&g, c);
+				for (size_t q = g.start[id]; q < g.start[id + 1]; q++) {
+					size_t j = (size_t)g.item[q];
+					if (j <= i)
+						continue;
+					double d[3];
+					v3_sub(d, a->x + 3 * j, a->x + 3 * i);
+					double sum = ri + a->r[j], dd = v3_dot(d, d);
+					if (dd > (1 + beta) * (1 + beta) * sum * sum)
+						continue;
+					double dist = sqrt(dd);
+					p[BONDS] += 1;
+					if (dist < sum) {
+						double rel = (sum - dist) / fmin(ri, a->r[j]);
+						p[OV_SUM] += rel;
+						p[OV_N] += 1;
+						ov_max = fmax(ov_max, rel);
+					}
+					if (s[i] >= wc && s[j] >= wc && dist > 0) {
+						double u[3];
+						v3_scale(u, d, 1 / dist);
+						p[F_XX] += u[0] * u[0];
+						p[F_YY] += u[1] * u[1];
+						p[F_ZZ] += u[2] * u[2];
+						p[F_XY] += u[0] * u[1];
+						p[F_XZ] += u[0] * u[2];
+						p[F_YZ] += u[1] * u[2];
+						p[NCORE] += 1;
+					}
+				}
 			}
 		}
 	}
+	cells_free(&g);
 	double tot[NSUM] = {0};
-	for (size_t i = 0; i < n; i++)
+	for (size_t b = 0; b < nblock; b++)
 		for (int k = 0; k < NSUM; k++)
-			tot[k] += part[NSUM * i + k];
+			tot[k] += part[NSUM * b + k];
 	free(part);
-	soft_free(&sys);
 	rep->beta = beta;
 	rep->coordination = n ? 2 * tot[BONDS] / (double)n : 0;
 	rep->alpha = rep->coordination > 0 ? 40 * (1 - rep->solid_fraction) / rep->coordination : 0;

@@ -117,3 +117,11 @@ size_t zones_cell(const zones *z, const double p[3])
 	}
 	return ((size_t)c[2] * (size_t)z->dim[1] + (size_t)c[1]) * (size_t)z->dim[0] + (size_t)c[0];
 }
+
+void zones_centre(const zones *z, size_t c, double centre[3])
+{
+	size_t ijk[3] = {c % (size_t)z->dim[0], c / (size_t)z->dim[0] % (size_t)z->dim[1],
+	                 c / ((size_t)z->dim[0] * (size_t)z->dim[1])};
+	for (int k = 0; k < 3; k++)
+		centre[k] = z->lo[k] + ((double)ijk[k] + 0.5) * z->edge;
+}

@@ -26,7 +26,8 @@ void zones_build(zones *z, const surface *s, const double bmin[3], const double 
                  double edge, double depth);
 void zones_free(zones *z);
 
-/* The cell holding p (clamped to the grid). */
+/* The cell holding p (clamped to the grid), and the centre of cell c. */
 size_t zones_cell(const zones *z, const double p[3]);
+void zones_centre(const zones *z, size_t c, double centre[3]);
 
 #endif
