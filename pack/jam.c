@@ -24,7 +24,7 @@
 #include "pack/morton.h"
 
 static const double PHI_START = 0.50, P_SQUEEZE = 0.4, RATE = 1e-3;
-static const long WINDOW = 50, SQUEEZE_ITER = 20000, RELEASE_ITER = 5000, MAX_ITER = 60000;
+static const long WINDOW = 50, SQUEEZE_ITER = 1500, RELEASE_ITER = 200, MAX_ITER = 60000;
 static const double STALL = 1e-4;
 
 static double sphere_volume(const double *r, size_t n)

@@ -63,8 +63,23 @@ static void import_spheres(const pack_options *o, double *x, double *r, size_t n
 	free(r);
 }
 
+/* OpenMP threads spin while they wait for the next parallel loop unless
+ * told otherwise; on cores shared with other work a spinning thread holds
+ * the core its partner needs, and the FIRE loops, which meet at a barrier
+ * a few times per iteration, run several times slower. The policy is read
+ * when the OpenMP runtime starts, so pack restarts itself once with
+ * passive waiting unless the environment already chose a policy. */
+static void wait_passively(char **argv)
+{
+	if (getenv("OMP_WAIT_POLICY"))
+		return;
+	setenv("OMP_WAIT_POLICY", "passive", 1);
+	execv("/proc/self/exe", argv);
+}
+
 int main(int argc, char **argv)
 {
+	wait_passively(argv);
 	pack_options o;
 	options_parse(&o, argc, argv);
 	afile_install_signal_cleanup();

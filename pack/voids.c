@@ -6,7 +6,7 @@
  * sphere (x_j, r_j) iff |a - rho n| >= rho + r_j with a = q - x_j, i.e.
  *     rho <= (|a|^2 - r_j^2) / (2 (a.n + r_j))      when a.n + r_j > 0
  * (no bound otherwise). The room rho(q) is the least bound over the
- * spheres near q. Points q on a lattice of spacing rmin/2 over every
+ * spheres near q. Points q on a lattice of spacing 0.6 rmin over every
  * triangle are visited from the roomiest down; a sphere goes in where the
  * room, counting the spheres inserted so far, still holds a sphere of
  * rmin, with a radius drawn from the distribution but no larger than the
@@ -137,7 +137,7 @@ size_t voids_fill(spheres *S, const surface *surf, const dem_geometry *geo, cons
 	double rmax = d->rmax;
 	for (size_t i = 0; i < S->n; i++)
 		rmax = fmax(rmax, S->r[i]);
-	double cmin = d->rmin, cap = rmax, h = 0.5 * d->rmin;
+	double cmin = d->rmin, cap = rmax, h = 0.6 * d->rmin;
 	/* The spheres that can bound a tangent sphere of radius <= cap. */
 	size_t m0 = 0, *idx = xmalloc(S->n * sizeof *idx + 1);
 	for (size_t i = 0; i < S->n; i++)
