@@ -1,15 +1,17 @@
 /* The packing pipeline (see packer.h).
  *
- * The periodic cell is the specimen's bounding box when that holds at most
- * cell_max spheres (no copy is repeated), else a cube of cell_max spheres;
- * an edge is never shorter than 8 r_max, so no sphere meets two images of
- * another. Tolerances: the cell and the band stop at a largest overlap of
- * 0.5 % of the smaller radius; pruning removes what still exceeds 0.9 %, so
- * the assembly stays below the 1 % a bond's reference length tolerates.
- * Voids are filled only within half a mean diameter of the boundary, where
- * the cut left them: deeper, the room a sphere of r_min finds is the cage
- * of a rattler of the jammed cell, and filling it would add small spheres
- * the size distribution does not have. */
+ * The periodic cell holds half as many spheres as the specimen, at least
+ * CELL_MIN and at most cell_max (its cost grows with its size; a large
+ * specimen repeats it, which periodicity makes seamless); when the
+ * specimen's bounding box holds fewer, the cell is that box. An edge is
+ * never shorter than 8 r_max, so no sphere meets two images of another.
+ * Tolerances: the cell and the band stop at a largest overlap of 0.5 % of
+ * the smaller radius; pruning removes what still exceeds 0.9 %, so the
+ * assembly stays below the 1 % a bond's reference length tolerates. Voids
+ * are filled only against the boundary, where the cut left them: deeper,
+ * the room a sphere of r_min finds is the cage of a rattler of the jammed
+ * cell, and filling it would add small spheres the size distribution does
+ * not have. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,6 +27,7 @@
 
 static const double PHI_RCP = 0.64, CELL_OTOL = 0.005, BAND_OTOL = 0.005, PRUNE_LIMIT = 0.009;
 static const long BAND_ITER = 300, REFILL_ITER = 60;
+static const double CELL_MIN = 1000;
 static const double COUNT_TOL = 0.003; /* on the size scale: 1 % on the count */
 
 double packer_count_scale(const psd *d, double volume, long count)
@@ -41,13 +44,15 @@ static void cell_shape(const psd *d, const dem_geometry *g, long cell_max, doubl
 		shape[k] = fmax(g->bbox_max[k] - g->bbox_min[k], edge_min);
 		vb *= shape[k];
 	}
-	double nb = PHI_RCP * vb / v;
-	if (nb <= (double)cell_max) {
+	double nb = PHI_RCP * vb / v,
+	       want = fmin(fmax(0.5 * PHI_RCP * g->volume / v, CELL_MIN), (double)cell_max);
+	want = fmax(want, PHI_RCP * pow(edge_min, 3) / v);
+	if (nb <= want) {
 		*n = (size_t)ceil(nb);
 		return;
 	}
 	shape[0] = shape[1] = shape[2] = 1;
-	*n = (size_t)cell_max;
+	*n = (size_t)ceil(want);
 }
 
 /* Multiply the cell's lengths, and the distribution's sizes, by s. */

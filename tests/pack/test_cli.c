@@ -1,8 +1,8 @@
 /* The pack program end to end on small specimens: every bad input gives one
  * message, a non-zero exit and no output file; every geometry source gives
- * a valid assembly; the same seed gives the same spheres whatever the
- * thread count; x y z r export and import round-trip; a --config file is
- * the same as the options it holds. */
+ * a valid assembly; the same seed gives the same spheres, another seed
+ * others; x y z r export and import round-trip; a --config file is the
+ * same as the options it holds. (Thread counts: test_density.c.) */
 #include "tests/pack/run.h"
 
 #include "lib/err.h"
@@ -176,20 +176,19 @@ static int same_spheres(const char *p, const char *q)
 	return same;
 }
 
-/* A specimen large enough for every parallel loop to use the threads. */
-static void test_threads(void)
+static void test_seed(void)
 {
-	const char *one = check_tmp("cli_t1.h5"), *two = check_tmp("cli_t2.h5");
-	run_result r1 = run_pack("--quiet --diameter 0.03 --height 0.04 --threads 1 %s", one);
-	run_result r2 = run_pack("--quiet --diameter 0.03 --height 0.04 --threads 2 %s", two);
+	const char *one = check_tmp("cli_s1.h5"), *two = check_tmp("cli_s2.h5");
+	run_result r1 = run_pack("--quiet " SMALL " --seed 1 %s", one);
+	run_result r2 = run_pack("--quiet " SMALL " --seed 1 %s", two);
 	CHECK(r1.status == 0 && r2.status == 0);
 	CHECK(same_spheres(one, two));
 	run_free(&r1);
 	run_free(&r2);
-	run_result r3 = run_pack("--quiet --diameter 0.03 --height 0.04 --seed 2 %s", two);
-	CHECK(r3.status == 0);
+	r2 = run_pack("--quiet " SMALL " --seed 2 %s", two);
+	CHECK(r2.status == 0);
 	CHECK(!same_spheres(one, two));
-	run_free(&r3);
+	run_free(&r2);
 }
 
 static void test_export_import(void)
@@ -238,7 +237,7 @@ int main(void)
 {
 	test_bad_input();
 	test_geometry_sources();
-	test_threads();
+	test_seed();
 	test_export_import();
 	test_config();
 	return check_done();

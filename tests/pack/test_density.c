@@ -5,7 +5,10 @@
  *   total solid fraction >= 0.62, core (deeper than 2 mean diameters)
  *   >= 0.64 (Monte Carlo), wall deficit delta* <= 0.15 mean diameters,
  *   core fabric anisotropy < 0.05, largest overlap < 1 % of the smaller
- *   radius, every sphere inside. */
+ *   radius, every sphere inside.
+ * The case is large enough for every parallel loop to run on threads: it
+ * is packed on two threads and again on one, and the spheres must be the
+ * same to the bit. */
 #include "tests/pack/run.h"
 
 #include "lib/err.h"
