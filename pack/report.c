@@ -292,7 +292,8 @@ static void size_distribution(dem_assembly *a, const psd *target)
 	dem_report *rep = &a->report;
 	size_t n = a->n, m = REPORT_PSD_POINTS;
 	double *r = xmalloc(n * sizeof *r + 1), *cumv = xmalloc((n + 1) * sizeof *cumv);
-	memcpy(r, a->r, n * sizeof *r);
+	if (n)
+		memcpy(r, a->r, n * sizeof *r);
 	qsort(r, n, sizeof *r, cmp_double);
 	cumv[0] = 0;
 	for (size_t i = 0; i < n; i++)

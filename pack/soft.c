@@ -287,8 +287,10 @@ void soft_rebuild(soft_system *s)
 #pragma omp parallel for schedule(static) if (n >= PAR_MIN)
 	for (size_t c = 0; c < nchunk; c++) {
 		size_t at = s->nb_start[c * CHUNK];
-		memcpy(s->nb + at, buf[c].j, buf[c].n * sizeof *buf[c].j);
-		memcpy(s->nb_shift + at, buf[c].shift, buf[c].n);
+		if (buf[c].n) {
+			memcpy(s->nb + at, buf[c].j, buf[c].n * sizeof *buf[c].j);
+			memcpy(s->nb_shift + at, buf[c].shift, buf[c].n);
+		}
 		free(buf[c].j);
 		free(buf[c].shift);
 	}

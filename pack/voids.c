@@ -162,16 +162,19 @@ size_t voids_fill(spheres *S, const surface *surf, const dem_geometry *geo, cons
 			scan_triangle(geo, t, h, &g, x, r, cmin, cap, &mine, &n, &capn);
 #pragma omp critical
 		{
-			all = xrealloc(all, (nall + n) * sizeof *all + 1);
-			memcpy(all + nall, mine, n * sizeof *mine);
-			nall += n;
+			if (n) {
+				all = xrealloc(all, (nall + n) * sizeof *all);
+				memcpy(all + nall, mine, n * sizeof *mine);
+				nall += n;
+			}
 		}
 		free(mine);
 	}
 	cells_free(&g);
 	free(x);
 	free(r);
-	qsort(all, nall, sizeof *all, cmp_candidate);
+	if (nall)
+		qsort(all, nall, sizeof *all, cmp_candidate);
 
 	/* Greedy insertion against the spheres inserted so far, kept in a
 	 * linked-cell grid over the boundary's bounding box. */
