@@ -15,8 +15,11 @@
  * multiplies lambda_i by 1 - SHRINK (o - tol); below half the tolerance
  * lambda_i regrows by the factor 1 + REGROW, up to 1. Crowded spots then
  * resolve locally within a few hundred iterations while the rest of the
- * band keeps its sizes; the radii that stay reduced are reported with the
- * achieved size distribution. */
+ * band keeps its sizes. Radii start shrinking only after `shrink_after`
+ * iterations, once FIRE has pushed the spheres cut by the boundary inside:
+ * shrinking from the start would shrink those instead of moving them. A later relaxation starts
+ * from the factors the previous one left (the drawn radius is kept with each sphere); the radii
+ * that stay reduced are counted and show in the achieved distribution. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -31,13 +34,12 @@
 static const double SHRINK = 0.05, REGROW = 1e-3;
 
 /* FIRE with a radius factor per mobile sphere (see the top of the file). */
-static void relax(soft_system *sys, const band_params *p, band_result *res)
+static void relax(soft_system *sys, const double *r0, const band_params *p, band_result *res)
 {
 	size_t m = sys->nmobile;
-	double *r0 = xmalloc(m * sizeof *r0 + 1), *lambda = xmalloc(m * sizeof *lambda + 1);
-	memcpy(r0, sys->r, m * sizeof *r0);
+	double *lambda = xmalloc(m * sizeof *lambda + 1);
 	for (size_t k = 0; k < m; k++)
-		lambda[k] = 1;
+		lambda[k] = sys->r[k] / r0[k];
 	sys->worst = xcalloc(m + 1, sizeof *sys->worst);
 	fire_state st;
 	fire_start(&st, sys);
@@ -45,7 +47,7 @@ static void relax(soft_system *sys, const band_params *p, band_result *res)
 		fire_move(&st, sys);
 #pragma omp parallel for schedule(static) if (m >= PAR_MIN)
 		for (size_t k = 0; k < m; k++) {
-			double o = sys->worst[k];
+			double o = st.iter > p->shrink_after ? sys->worst[k] : 0;
 			if (o > p->otol)
 				lambda[k] *= 1 - SHRINK * (o - p->otol);
 			else if (o < 0.5 * p->otol)
@@ -58,14 +60,18 @@ static void relax(soft_system *sys, const band_params *p, band_result *res)
 	}
 	res->iter = st.iter;
 	res->overlap = st.stats.overlap_max;
-	res->shrink = 0;
+	res->shrunk = 0;
+	res->shrink_mean = res->shrink_max = 0;
 	for (size_t k = 0; k < m; k++)
-		res->shrink += 1 - lambda[k];
-	res->shrink /= m ? (double)m : 1;
+		if (lambda[k] < 1) {
+			res->shrunk++;
+			res->shrink_mean += 1 - lambda[k];
+			res->shrink_max = fmax(res->shrink_max, 1 - lambda[k]);
+		}
+	res->shrink_mean /= res->shrunk ? (double)res->shrunk : 1;
 	fire_end(&st);
 	free(sys->worst);
 	sys->worst = NULL;
-	free(r0);
 	free(lambda);
 }
 
@@ -102,12 +108,15 @@ void band_relax(spheres *S, const surface *surf, const dem_geometry *g, const ba
 			nm = m;
 	}
 	double *x = xmalloc(3 * m * sizeof *x + 1), *r = xmalloc(m * sizeof *r + 1);
+	double *r0 = xmalloc(nm * sizeof *r0 + 1);
 	soft_system sys;
 	soft_init(&sys, m, nm, x, r);
 	for (size_t k = 0; k < m; k++) {
 		size_t i = idx[k];
 		v3_copy(x + 3 * k, S->x + 3 * i);
 		r[k] = S->r[i];
+		if (k < nm)
+			r0[k] = S->r0[i];
 		sys.wall_s0[k] = S->lo[i];
 	}
 	memcpy(sys.wall_xq, x, 3 * m * sizeof *x);
@@ -117,7 +126,7 @@ void band_relax(spheres *S, const surface *surf, const dem_geometry *g, const ba
 	sys.skin = p->skin;
 	res->mobile = nm;
 	res->involved = m;
-	relax(&sys, p, res);
+	relax(&sys, r0, p, res);
 	for (size_t k = 0; k < nm; k++) {
 		size_t i = idx[k];
 		double d[3];
@@ -131,4 +140,5 @@ void band_relax(spheres *S, const surface *surf, const dem_geometry *g, const ba
 	free(idx);
 	free(x);
 	free(r);
+	free(r0);
 }

@@ -14,15 +14,17 @@ typedef struct {
 	               * boundary move (the band plus its mobile buffer) */
 	double otol;  /* stop when the largest relative overlap is below */
 	long max_iter;
-	double skin;    /* m, Verlet skin */
-	progress *prog; /* shows the iterations (may be NULL) */
+	long shrink_after; /* iterations before radii may shrink */
+	double skin;       /* m, Verlet skin */
+	progress *prog;    /* shows the iterations (may be NULL) */
 } band_params;
 
 typedef struct {
 	size_t mobile, involved; /* spheres moved; spheres in the computation */
 	long iter;
-	double overlap; /* largest relative overlap at the end */
-	double shrink;  /* mean relative radius reduction of the moved spheres */
+	double overlap;                 /* largest relative overlap at the end */
+	size_t shrunk;                  /* moved spheres left smaller than drawn */
+	double shrink_mean, shrink_max; /* their relative radius reduction */
 } band_result;
 
 /* surf is the search tree over g's boundary triangles. */

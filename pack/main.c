@@ -152,10 +152,15 @@ int main(int argc, char **argv)
 		if (!o.import_path)
 			printf("  packing          periodic cell of %zu spheres at %.4f (%ld "
 			       "iterations), "
-			       "%zu tiled;\n                   wall band: %zu moved (radii %.2f %% "
-			       "smaller on average), %zu inserted, %zu removed (%ld iterations)\n",
+			       "%zu tiled\n"
+			       "  wall band        %zu moved (%ld iterations), %zu inserted, %zu "
+			       "removed;\n"
+			       "                   %zu left smaller than drawn, by %.2f %% on "
+			       "average, "
+			       "%.1f %% at most\n",
 			       st.cell_n, st.cell_phi, st.cell_iter, st.tiled, st.band_mobile,
-			       100 * st.band_shrink, st.inserted, st.pruned, st.band_iter);
+			       st.band_iter, st.inserted, st.pruned, st.shrunk,
+			       100 * st.shrink_mean, 100 * st.shrink_max);
 	}
 	free(S.lo);
 	free(S.hi);

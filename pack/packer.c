@@ -26,9 +26,10 @@
 #include "pack/voids.h"
 
 static const double PHI_RCP = 0.64, CELL_OTOL = 0.005, BAND_OTOL = 0.005, PRUNE_LIMIT = 0.009;
-static const long BAND_ITER = 300, REFILL_ITER = 60;
+static const long BAND_ITER = 300, REFILL_ITER = 60, SHRINK_AFTER = 100;
 static const double CELL_MIN = 1000;
 static const double COUNT_TOL = 0.003; /* on the size scale: 1 % on the count */
+static const int COUNT_PASSES = 3;
 
 double packer_count_scale(const psd *d, double volume, long count)
 {
@@ -81,16 +82,20 @@ static void fill(spheres *S, const jam_cell *c, const psd *d, const dem_geometry
 	}
 	progress prog;
 	progress_start(&prog, "iterations", BAND_ITER + REFILL_ITER);
-	band_params bp = {params->band * 2 * rmean, BAND_OTOL, BAND_ITER, 0.2 * rmean, &prog};
+	band_params bp = {
+	    params->band * 2 * rmean, BAND_OTOL, BAND_ITER, SHRINK_AFTER, 0.2 * rmean, &prog};
 	band_result br;
 	band_relax(S, surf, g, &bp, &br);
 	st->band_mobile = br.mobile;
 	st->band_iter = br.iter;
 	st->inserted = voids_fill(S, surf, g, d, params->seed);
 	bp.max_iter = REFILL_ITER;
+	bp.shrink_after = 0;
 	band_relax(S, surf, g, &bp, &br);
 	st->band_iter += br.iter;
-	st->band_shrink = br.shrink;
+	st->shrunk = br.shrunk;
+	st->shrink_mean = br.shrink_mean;
+	st->shrink_max = br.shrink_max;
 	st->pruned = prune_overlaps(S, surf, bp.width + 2 * rmax + bp.skin, PRUNE_LIMIT);
 	progress_end(&prog);
 }
@@ -120,10 +125,12 @@ void packer_run(spheres *S, psd *d, const dem_geometry *g, const surface *surf, 
 	double t1 = timer_now();
 	st->time_cell = t1 - t0;
 	fill(S, &c, d, g, surf, z, params, st);
-	/* The wall band loses and gains spheres: one more pass at the scale
-	 * that corrects the count. */
-	double s = cbrt((double)S->n / (double)params->count);
-	if (params->count > 0 && fabs(s - 1) > COUNT_TOL) {
+	/* The wall band loses and gains spheres: up to COUNT_PASSES - 1 more
+	 * passes, each at the scale that corrects the last count. */
+	for (int pass = 1; params->count > 0 && pass < COUNT_PASSES; pass++) {
+		double s = cbrt((double)S->n / (double)params->count);
+		if (fabs(s - 1) <= COUNT_TOL)
+			break;
 		scale_cell(&c, d, s);
 		fill(S, &c, d, g, surf, z, params, st);
 	}

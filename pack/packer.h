@@ -26,7 +26,8 @@ typedef struct {
 	double cell_phi;
 	long cell_iter, band_iter;
 	size_t tiled, band_mobile, inserted, pruned;
-	double band_shrink; /* mean relative radius reduction in the band */
+	size_t shrunk;                  /* wall-band spheres left smaller than drawn */
+	double shrink_mean, shrink_max; /* their relative radius reduction */
 	double time_cell, time_fill;
 } packer_stats;
 
@@ -35,8 +36,8 @@ typedef struct {
 double packer_count_scale(const psd *d, double volume, long count);
 
 /* Fill S; with params->count > 0, d is rescaled in place so that the
- * assembly holds count spheres within about 1 % (a second tiling pass when
- * the first misses). */
+ * assembly holds count spheres within about 1 % (up to two more tiling
+ * passes when the first misses). */
 void packer_run(spheres *S, psd *d, const dem_geometry *g, const surface *surf, const zones *z,
                 const packer_params *params, packer_stats *st);
 

@@ -10,6 +10,7 @@ typedef struct {
 	size_t n, cap;
 	double *x;  /* [n][3] m */
 	double *r;  /* [n] m */
+	double *r0; /* [n] m, the radius drawn for it (the wall band may shrink r) */
 	double *lo; /* [n] m, lower bound of the depth */
 	double *hi; /* [n] m, upper bound of the depth */
 } spheres;
