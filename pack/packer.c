@@ -26,7 +26,7 @@
 #include "pack/voids.h"
 
 static const double PHI_RCP = 0.64, CELL_OTOL = 0.005, BAND_OTOL = 0.005, PRUNE_LIMIT = 0.009;
-static const long BAND_ITER = 300, REFILL_ITER = 60, SHRINK_AFTER = 100;
+static const long BAND_ITER = 300, REFILL_ITER = 60, SHRINK_AFTER = 50;
 static const double CELL_MIN = 1000;
 static const double COUNT_TOL = 0.003; /* on the size scale: 1 % on the count */
 static const int COUNT_PASSES = 3;
