@@ -150,18 +150,9 @@ int main(int argc, char **argv)
 	if (!o.quiet) {
 		report_print(&a, stdout);
 		if (!o.import_path)
-			printf("  packing          periodic cell of %zu spheres at %.4f (%ld "
-			       "iterations), "
-			       "%zu tiled\n"
-			       "  wall band        %zu moved (%ld iterations), %zu inserted, %zu "
-			       "removed;\n"
-			       "                   %zu left smaller than drawn, by %.2f %% on "
-			       "average, "
-			       "%.1f %% at most\n",
-			       st.cell_n, st.cell_phi, st.cell_iter, st.tiled, st.band_mobile,
-			       st.band_iter, st.inserted, st.pruned, st.shrunk,
-			       100 * st.shrink_mean, 100 * st.shrink_max);
+			packer_print(&st, stdout);
 	}
+	free(S.r0);
 	free(S.lo);
 	free(S.hi);
 	assembly_free(&a);

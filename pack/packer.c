@@ -13,6 +13,7 @@
  * cell, and filling it would add small spheres the size distribution does
  * not have. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -136,4 +137,18 @@ void packer_run(spheres *S, psd *d, const dem_geometry *g, const surface *surf, 
 	}
 	jam_free(&c);
 	st->time_fill = timer_now() - t1;
+}
+
+void packer_print(const packer_stats *st, FILE *out)
+{
+	fprintf(out,
+	        "  packing          periodic cell of %zu spheres at %.4f (%ld iterations), %zu "
+	        "tiled\n",
+	        st->cell_n, st->cell_phi, st->cell_iter, st->tiled);
+	fprintf(out, "  wall band        %zu moved (%ld iterations), %zu inserted, %zu removed;\n",
+	        st->band_mobile, st->band_iter, st->inserted, st->pruned);
+	fprintf(out,
+	        "                   %zu left smaller than drawn, by %.2f %% on average, %.1f "
+	        "%% at most\n",
+	        st->shrunk, 100 * st->shrink_mean, 100 * st->shrink_max);
 }

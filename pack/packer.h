@@ -5,6 +5,7 @@
 #define PACK_PACKER_H
 
 #include <stdint.h>
+#include <stdio.h>
 
 #include "lib/assembly.h"
 #include "lib/progress.h"
@@ -40,5 +41,8 @@ double packer_count_scale(const psd *d, double volume, long count);
  * passes when the first misses). */
 void packer_run(spheres *S, psd *d, const dem_geometry *g, const surface *surf, const zones *z,
                 const packer_params *params, packer_stats *st);
+
+/* The lines pack prints about how the assembly was made. */
+void packer_print(const packer_stats *st, FILE *out);
 
 #endif
