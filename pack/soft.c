@@ -117,7 +117,7 @@ static void nbuf_push(nbuf *b, int32_t j, uint8_t shift)
  * periodic image each was seen through, to b; xs holds (x, y, z, r) of
  * the spheres in cell order. Returns their number. */
 static size_t scan_neighbours(const soft_system *s, const cells *g, const double *xs, size_t i,
-                              nbuf *b)
+                              double rmax, nbuf *b)
 {
 	int c0[3], lo[3], hi[3];
 	cells_coord(g, s->x + 3 * i, c0);
@@ -132,6 +132,15 @@ static size_t scan_neighbours(const soft_system *s, const cells *g, const double
 	}
 	int small = periodic(s) && (g->dim[0] < 3 || g->dim[1] < 3 || g->dim[2] < 3);
 	const double *xi = s->x + 3 * i, reach = s->r[i] + s->skin;
+	/* A cell farther from x_i than r_i + skin + r_max holds no neighbour:
+	 * for the small spheres of a wide distribution most corner cells. */
+	double far2 = (reach + rmax) * (reach + rmax), gap[3][3];
+	for (int k = 0; k < 3; k++)
+		for (int o = 0; o < 3; o++) {
+			double a = g->lo[k] + (c0[k] + o - 1) * g->edge[k], e = a + g->edge[k];
+			double t = xi[k] < a ? a - xi[k] : xi[k] > e ? xi[k] - e : 0;
+			gap[k][o] = t * t;
+		}
 	size_t count = 0;
 	for (int cz = lo[2]; cz <= hi[2]; cz++) {
 		int wz = cz < 0 ? cz + g->dim[2] : cz >= g->dim[2] ? cz - g->dim[2] : cz;
@@ -151,6 +160,10 @@ static size_t scan_neighbours(const soft_system *s, const cells *g, const double
 						sh[k] = sk * s->box[k];
 					}
 				}
+				if (!small && gap[0][cx - c0[0] + 1] + gap[1][cy - c0[1] + 1] +
+				                      gap[2][cz - c0[2] + 1] >=
+				                  far2)
+					continue;
 				size_t id = ((size_t)wz * (size_t)g->dim[1] + (size_t)wy) *
 				                (size_t)g->dim[0] +
 				            (size_t)wx;
@@ -269,7 +282,7 @@ void soft_rebuild(soft_system *s)
 		size_t end = (c + 1) * CHUNK < n ? (c + 1) * CHUNK : n;
 		for (size_t i = c * CHUNK; i < end; i++) {
 			s->nb_start[i + 1] =
-			    is_mobile(s, i) ? scan_neighbours(s, &g, xs, i, &buf[c]) : 0;
+			    is_mobile(s, i) ? scan_neighbours(s, &g, xs, i, rmax, &buf[c]) : 0;
 			if (s->wall && is_mobile(s, i))
 				wall_update(s, i);
 		}
