@@ -374,3 +374,25 @@ int h5_append(hid_t loc, const char *name, hid_t type, const void *data, size_t 
 		               name);
 	return 0;
 }
+
+int h5_truncate(hid_t loc, const char *name, size_t rows)
+{
+	hid_t d = H5Dopen2(loc, name, H5P_DEFAULT);
+	if (d < 0)
+		return err_set("%s: dataset '%s': missing", h5_name(loc), name);
+	hid_t s = H5Dget_space(d);
+	hsize_t dims[2] = {0, 0};
+	int rank = H5Sget_simple_extent_ndims(s);
+	H5Sget_simple_extent_dims(s, dims, NULL);
+	H5Sclose(s);
+	herr_t rc = -1;
+	if (rank >= 1 && dims[0] >= rows) {
+		dims[0] = rows;
+		rc = H5Dset_extent(d, dims);
+	}
+	H5Dclose(d);
+	if (rc < 0)
+		return err_set("%s: dataset '%s': cannot keep %zu rows (it has %llu)", h5_name(loc),
+		               name, rows, (unsigned long long)dims[0]);
+	return 0;
+}

@@ -54,5 +54,7 @@ int h5_read_n(hid_t loc, const char *name, hid_t type, void **data, size_t rows,
 /* Extendible rank-1/2 datasets for tables that grow (history, cracks). */
 int h5_create_ext(hid_t loc, const char *name, hid_t type, size_t cols, const char *unit);
 int h5_append(hid_t loc, const char *name, hid_t type, const void *data, size_t rows, size_t cols);
+/* Keep the first rows rows of an extendible dataset (error if it has fewer). */
+int h5_truncate(hid_t loc, const char *name, size_t rows);
 
 #endif

@@ -1,8 +1,10 @@
+#include <errno.h>
 #include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "lib/afile.h"
 #include "lib/err.h"
 #include "lib/h5.h"
 #include "lib/runfile.h"
@@ -85,6 +87,82 @@ run_writer *run_create(const char *path, const dem_provenance *prov, const dem_a
 		     h5_create_ext(k, "fs", H5T_NATIVE_DOUBLE, 0, "N");
 		H5Gclose(k);
 	}
+	if (rc) {
+		run_abort(w);
+		return NULL;
+	}
+	return w;
+}
+
+static const char *const crack_columns[] = {"t", "strain_axial", "step",   "i",  "j", "mode",
+                                            "x", "normal",       "radius", "fn", "fs"};
+
+static int copy_file(const char *from, const char *to)
+{
+	FILE *in = fopen(from, "rb");
+	if (!in)
+		return err_set("%s: cannot open: %s", from, strerror(errno));
+	FILE *out = fopen(to, "wb");
+	if (!out) {
+		fclose(in);
+		return err_set("%s: cannot create: %s", to, strerror(errno));
+	}
+	char buf[1 << 16];
+	size_t got;
+	int rc = 0;
+	while (!rc && (got = fread(buf, 1, sizeof buf, in)) > 0)
+		rc = fwrite(buf, 1, got, out) != got;
+	rc = rc || ferror(in);
+	fclose(in);
+	if (fclose(out) || rc)
+		return err_set("%s: cannot copy to %s (disk full?)", from, to);
+	return 0;
+}
+
+run_writer *run_reopen(const char *path, size_t history_rows, size_t crack_rows)
+{
+	run_writer *w = xcalloc(1, sizeof *w);
+	snprintf(w->path, sizeof w->path, "%s", path);
+	if (afile_begin(path, w->tmp, sizeof w->tmp)) {
+		free(w);
+		return NULL;
+	}
+	if (copy_file(path, w->tmp)) {
+		afile_discard(w->tmp);
+		free(w);
+		return NULL;
+	}
+	w->file = h5_open(w->tmp, RUN_FORMAT, 1);
+	if (w->file < 0) {
+		afile_discard(w->tmp);
+		free(w);
+		return NULL;
+	}
+	hid_t h = h5_open_group(w->file, "history");
+	char *order = h >= 0 ? h5_read_attr_str(h, "columns") : NULL;
+	int rc = order ? 0 : -1;
+	if (order) {
+		int n = order[0] ? 1 : 0;
+		for (char *p = order; *p; p++)
+			n += *p == ',';
+		w->ncols = n;
+		w->names = xcalloc((size_t)n, sizeof *w->names);
+		w->buffer = xmalloc((size_t)n * HISTORY_BUFFER_ROWS * sizeof *w->buffer);
+		char *save = NULL, *tok = strtok_r(order, ",", &save);
+		for (int c = 0; tok; c++, tok = strtok_r(NULL, ",", &save)) {
+			w->names[c] = xstrdup(tok);
+			rc = rc || h5_truncate(h, tok, history_rows);
+		}
+	}
+	free(order);
+	if (h >= 0)
+		H5Gclose(h);
+	hid_t k = rc ? -1 : h5_open_group(w->file, "cracks");
+	for (size_t c = 0; k >= 0 && !rc && c < sizeof crack_columns / sizeof *crack_columns; c++)
+		rc = h5_truncate(k, crack_columns[c], crack_rows);
+	if (k >= 0)
+		H5Gclose(k);
+	rc = rc || k < 0 || h5_attr_str(w->file, "status", "running");
 	if (rc) {
 		run_abort(w);
 		return NULL;

@@ -66,6 +66,11 @@ typedef struct run_writer run_writer;
  * history of the given columns. */
 run_writer *run_create(const char *path, const dem_provenance *prov, const dem_assembly *a,
                        const run_column *cols, int ncols);
+/* Continue an existing run file (solve --restart): copy it to "<path>.tmp",
+ * keep the first history_rows rows of its history and crack_rows rows of its
+ * crack log, and set its status to "running". The original stays untouched
+ * until run_finish renames the copy over it. */
+run_writer *run_reopen(const char *path, size_t history_rows, size_t crack_rows);
 int run_write_bonds(run_writer *w, const dem_bonds *b);
 /* Append one row (ncols values). Rows are buffered; run_flush writes them. */
 int run_history(run_writer *w, const double *row);

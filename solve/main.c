@@ -1,22 +1,97 @@
 #include <stdio.h>
+#include <string.h>
 
 #include "lib/afile.h"
+#include "lib/assembly.h"
 #include "lib/cli.h"
 #include "lib/err.h"
+#include "lib/progress.h"
+#include "solve/case.h"
+#include "solve/run.h"
 
 int main(int argc, char **argv)
 {
-	static const cli_spec spec = {
-	    .usage = "solve [options] CASE.json",
-	    .summary = "Run a bonded discrete-element simulation of a laboratory test on "
-	               "an\nassembly and write the history, snapshots and crack log to a run file.",
-	    .opts = NULL,
-	    .nopts = 0,
-	    .min_pos = 1,
+	const char *assembly = NULL, *output = "run.h5", *restart = NULL, *report = NULL;
+	long threads = 0, max_steps = 0;
+	double max_wall = 0;
+	int quiet = 0, show_progress = 0;
+	const cli_opt opts[] = {
+	    {"assembly", CLI_STR, &assembly, "FILE", "",
+	     "assembly file, instead of the case's \"assembly\"", 0, 0},
+	    {"output", CLI_STR, &output, "FILE", "", "run file to write", 0, 0},
+	    {"threads", CLI_INT, &threads, "N", "",
+	     "OpenMP threads (0: the case's \"threads\", else all cores); results do not depend "
+	     "on it",
+	     0, 1024},
+	    {"restart", CLI_STR, &restart, "RUN.h5", "",
+	     "continue the run in RUN.h5 from its last checkpoint (no CASE)", 0, 0},
+	    {"max-steps", CLI_INT, &max_steps, "N", "steps",
+	     "stop after N steps of this invocation, checkpointed and restartable (0: no limit)", 0,
+	     1e15},
+	    {"max-wall", CLI_NUM, &max_wall, "S", "s",
+	     "stop after S seconds of wall time, checkpointed and restartable (0: no limit)", 0,
+	     1e12},
+	    {"report", CLI_STR, &report, "FILE", "", "write the run report as JSON to FILE", 0, 0},
+	    {"progress", CLI_FLAG, &show_progress, NULL, "",
+	     "show the progress line even when stderr is not a terminal", 0, 0},
+	    {"quiet", CLI_FLAG, &quiet, NULL, "", "print nothing but errors", 0, 0},
+	};
+	static const char summary[] =
+	    "Run a bonded discrete-element simulation of a laboratory test on an assembly and\n"
+	    "write the history, snapshots, crack log and checkpoints to a run file. The case\n"
+	    "file (JSON) names the assembly, the material and the loading program; its keys\n"
+	    "are described in share/doc/solve.md.\n\n"
+	    "Exit status: 0 complete or stopped by a stop rule, 1 error or diagnosed failure\n"
+	    "(the run file is kept, its status says why), 2 usage, 3 interrupted by a signal\n"
+	    "or a budget (continue with --restart).";
+	const cli_spec spec = {
+	    .usage = "solve [options] CASE.json | solve --restart RUN.h5 [options]",
+	    .summary = summary,
+	    .epilog =
+	        "Example:\n  solve --assembly runs/demo/assembly.h5 --output runs/demo/run.h5 "
+	        "share/cases/demo-ucs.json",
+	    .opts = opts,
+	    .nopts = (int)(sizeof opts / sizeof opts[0]),
+	    .min_pos = 0,
 	    .max_pos = 1,
 	};
 	char *pos[1];
-	cli_parse(&spec, argc, argv, pos);
+	int npos = cli_parse(&spec, argc, argv, pos);
 	afile_install_signal_cleanup();
-	fatal("%s: not implemented yet", pos[0]);
+	if (show_progress)
+		progress_force(1);
+	if (quiet)
+		progress_force(0);
+	run_opts o = {.output = output,
+	              .restart = restart,
+	              .max_steps = max_steps,
+	              .max_wall = max_wall,
+	              .report = report,
+	              .quiet = quiet};
+	if (restart) {
+		if (npos)
+			fatal("--restart continues the run stored in %s: give no case file",
+			      restart);
+		if (assembly || strcmp(output, "run.h5") != 0)
+			fatal("--restart continues in %s with its own assembly: --assembly and "
+			      "--output "
+			      "do not apply",
+			      restart);
+		o.output = restart;
+		return run_restart(&o, (int)threads);
+	}
+	if (npos != 1)
+		fatal("missing CASE.json (usage: %s; see --help)", spec.usage);
+	dem_case cs;
+	if (case_load(pos[0], assembly, &cs))
+		fatal(NULL);
+	if (threads > 0)
+		cs.threads = (int)threads;
+	dem_assembly a;
+	if (assembly_read(cs.assembly, &a))
+		fatal(NULL);
+	int code = run_case(&cs, &a, &o);
+	assembly_free(&a);
+	case_free(&cs);
+	return code;
 }

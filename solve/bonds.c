@@ -1,0 +1,288 @@
+/* Bonds: formed once at start between spheres within the law's interaction
+ * range (d <= range (r_i + r_j), Eq. 16), kept in one flat array sorted by
+ * (i, j), each computed once per step in batches handed to the law's
+ * force_batch. Forces reach the particles through the CSR gather of step.c.
+ * Bond failures are collected per thread and merged in bond order. */
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lib/err.h"
+#include "solve/cells.h"
+#include "solve/engine.h"
+#include "solve/kinematics.h"
+
+void pairlist_free(pairlist *l)
+{
+	free(l->rec), free(l->f), free(l->k), free(l->off), free(l->ref);
+	memset(l, 0, sizeof *l);
+}
+
+/* The gather index: for each particle the pairs it belongs to, in pair
+ * order, so every particle sums its forces in a fixed order. */
+void pairlist_csr(pairlist *l, size_t np)
+{
+	memset(l->off, 0, (np + 1) * sizeof *l->off);
+	for (size_t b = 0; b < l->n; b++) {
+		l->off[l->rec[b].i + 1]++;
+		l->off[l->rec[b].j + 1]++;
+	}
+	for (size_t p = 0; p < np; p++)
+		l->off[p + 1] += l->off[p];
+	for (size_t b = 0; b < l->n; b++) {
+		/* Pairs are sorted by i, so filling in pair order keeps each list sorted. */
+		l->ref[l->off[l->rec[b].i]++] = (int32_t)(2 * b);
+		l->ref[l->off[l->rec[b].j]++] = (int32_t)(2 * b + 1);
+	}
+	for (size_t p = np; p > 0; p--)
+		l->off[p] = l->off[p - 1];
+	l->off[0] = 0;
+}
+
+static int cmp_i32(const void *a, const void *b)
+{
+	int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+	return (x > y) - (x < y);
+}
+
+int bonds_form(engine *e)
+{
+	particles *P = &e->p;
+	double range = e->law->bond_range(e->lp);
+	cells g = {0};
+	cells_build(&g, P->x, P->n, range * 2 * e->r_max);
+	pairlist *L = &e->bonds;
+	size_t cap = 8 * P->n + 16;
+	L->rec = xmalloc(cap * sizeof *L->rec);
+	int32_t near[27], js[4096];
+	for (size_t i = 0; i < P->n; i++) {
+		int nj = 0, nc = cells_around(&g, g.cell[i], near);
+		for (int c = 0; c < nc; c++)
+			for (int32_t q = g.start[near[c]]; q < g.start[near[c] + 1]; q++) {
+				int32_t j = g.item[q];
+				if ((size_t)j <= i)
+					continue;
+				double d2 = 0;
+				for (int k = 0; k < 3; k++) {
+					double dx = P->x[3 * j + k] - P->x[3 * i + k];
+					d2 += dx * dx;
+				}
+				double reach = range * (P->r[i] + P->r[j]);
+				if (d2 <= reach * reach) {
+					if (nj == (int)(sizeof js / sizeof js[0])) {
+						cells_free(&g);
+						return err_set(
+						    "particle %d has more than %d neighbours "
+						    "within "
+						    "the bond range: overlapping spheres?",
+						    P->orig[i], nj);
+					}
+					js[nj++] = j;
+				}
+			}
+		qsort(js, (size_t)nj, sizeof *js, cmp_i32);
+		for (int q = 0; q < nj; q++) {
+			if (L->n == cap)
+				L->rec = xrealloc(L->rec, (cap *= 2) * sizeof *L->rec);
+			bond *b = &L->rec[L->n++];
+			memset(b, 0, sizeof *b);
+			b->i = (int32_t)i;
+			b->j = js[q];
+			double d2 = 0;
+			for (int k = 0; k < 3; k++) {
+				double dx = P->x[3 * js[q] + k] - P->x[3 * i + k];
+				d2 += dx * dx;
+			}
+			b->d0 = sqrt(d2);
+		}
+	}
+	cells_free(&g);
+	L->cap = L->n;
+	L->rec = xrealloc(L->rec, (L->n ? L->n : 1) * sizeof *L->rec);
+	L->f = xcalloc(6 * L->n + 1, sizeof *L->f);
+	L->off = xmalloc((P->n + 1) * sizeof *L->off);
+	L->ref = xmalloc((2 * L->n + 1) * sizeof *L->ref);
+	pairlist_csr(L, P->n);
+	return 0;
+}
+
+/* The law's pair description of bond b (for init and constants). */
+static law_pair pair_of(const particles *P, const bond *b)
+{
+	return (law_pair){
+	    .ri = P->r[b->i], .rj = P->r[b->j], .mi = P->m[b->i], .mj = P->m[b->j], .d0 = b->d0};
+}
+
+void engine_bond_table(const engine *e, dem_bonds *out)
+{
+	const pairlist *L = &e->bonds;
+	out->n = L->n;
+	out->i = xmalloc((L->n + 1) * sizeof *out->i);
+	out->j = xmalloc((L->n + 1) * sizeof *out->j);
+	out->d0 = xmalloc((L->n + 1) * sizeof *out->d0);
+	out->area = xmalloc((L->n + 1) * sizeof *out->area);
+	out->kn = xmalloc((L->n + 1) * sizeof *out->kn);
+	out->ks = xmalloc((L->n + 1) * sizeof *out->ks);
+	for (size_t b = 0; b < L->n; b++) {
+		law_pair q = pair_of(&e->p, &L->rec[b]);
+		law_const c;
+		e->law->constants(e->lp, &q, &c);
+		int32_t oi = e->p.orig[L->rec[b].i], oj = e->p.orig[L->rec[b].j];
+		out->i[b] = oi < oj ? oi : oj;
+		out->j[b] = oi < oj ? oj : oi;
+		out->d0[b] = L->rec[b].d0;
+		out->area[b] = c.area;
+		out->kn[b] = c.kn;
+		out->ks[b] = c.ks;
+	}
+}
+
+void bonds_init_history(engine *e)
+{
+	for (size_t b = 0; b < e->bonds.n; b++) {
+		law_pair q = pair_of(&e->p, &e->bonds.rec[b]);
+		e->law->init(e->lp, &q, &e->bonds.rec[b]);
+	}
+}
+
+/* A failure as a crack record, with the force the bond carried before it. */
+static void record_crack(engine *e, crack_buf *cb, size_t b, const law_out *o, const double n[3],
+                         double d)
+{
+	if (cb->n == cb->cap) {
+		cb->cap = cb->cap ? 2 * cb->cap : 64;
+		cb->c = xrealloc(cb->c, cb->cap * sizeof *cb->c);
+		cb->bond = xrealloc(cb->bond, cb->cap * sizeof *cb->bond);
+	}
+	const bond *bd = &e->bonds.rec[b];
+	const particles *P = &e->p;
+	const double *f = e->bonds.f + 6 * b;
+	double fn = f[0] * n[0] + f[1] * n[1] + f[2] * n[2];
+	double fs[3] = {f[0] - fn * n[0], f[1] - fn * n[1], f[2] - fn * n[2]};
+	int32_t oi = P->orig[bd->i], oj = P->orig[bd->j];
+	double sign = oi < oj ? 1 : -1;
+	double ai = d * P->r[bd->i] / (P->r[bd->i] + P->r[bd->j]);
+	dem_crack *c = &cb->c[cb->n];
+	cb->bond[cb->n++] = (int32_t)b;
+	*c = (dem_crack){.t = e->t,
+	                 .step = e->step,
+	                 .i = oi < oj ? oi : oj,
+	                 .j = oi < oj ? oj : oi,
+	                 .mode = o->failed,
+	                 .radius = fmin(P->r[bd->i], P->r[bd->j]),
+	                 .fn = fn,
+	                 .fs = sqrt(fs[0] * fs[0] + fs[1] * fs[1] + fs[2] * fs[2])};
+	for (int k = 0; k < 3; k++) {
+		c->x[k] = P->x[3 * bd->i + k] + ai * n[k];
+		c->normal[k] = sign * n[k];
+	}
+}
+
+/* Love–Weber sums Σ l ⊗ F_i over a pair (l = x_j - x_i, F_i the force on i). */
+static inline void love_add(double love[9], const double n[3], double d, const double f[6])
+{
+	for (int a = 0; a < 3; a++)
+		for (int c = 0; c < 3; c++)
+			love[3 * a + c] += d * n[a] * f[c];
+}
+
+/* One block of bonds [lo, hi). */
+static void bond_block(engine *e, size_t lo, size_t hi, int measure, pair_sums *s, crack_buf *cb)
+{
+	const particles *P = &e->p;
+	pairlist *L = &e->bonds;
+	law_pair pair[BATCH];
+	law_kin kin[BATCH];
+	law_out out[BATCH];
+	double nrm[BATCH][3], dist[BATCH];
+	memset(s, 0, sizeof *s);
+	for (size_t b0 = lo; b0 < hi; b0 += BATCH) {
+		int nq = (int)(hi - b0 < BATCH ? hi - b0 : BATCH);
+		for (int q = 0; q < nq; q++) {
+			bond *b = &L->rec[b0 + q];
+			pair_kinematics(P->x, P->v, P->w, P->r, P->m, b->i, b->j, b->d0, e->dt,
+			                b->t, &pair[q], &kin[q], nrm[q], &dist[q]);
+			out[q].fn_viscous = out[q].e_damage = out[q].e_friction = 0;
+		}
+		e->law->force_batch(e->lp, nq, pair, &L->rec[b0], kin, out);
+		for (int q = 0; q < nq; q++) {
+			size_t b = b0 + q;
+			if (out[q].failed)
+				record_crack(e, cb, b, &out[q], nrm[q], dist[q]);
+			double *f = L->f + 6 * b;
+			pair_force(&out[q], nrm[q], dist[q], pair[q].ri, pair[q].rj, f);
+			s->e_damage += out[q].e_damage;
+			s->e_friction += out[q].e_friction;
+			s->e_viscous += out[q].fn_viscous * kin[q].vn * e->dt;
+			if (measure) {
+				s->e_elastic += e->law->energy(e->lp, &pair[q], &L->rec[b]);
+				love_add(s->love, nrm[q], dist[q], f);
+				s->count[L->rec[b].state]++;
+			}
+		}
+	}
+}
+
+/* Sum block results in block order. */
+void pair_sums_total(const pair_sums *blk, size_t nb, pair_sums *out)
+{
+	memset(out, 0, sizeof *out);
+	for (size_t k = 0; k < nb; k++) {
+		out->e_damage += blk[k].e_damage;
+		out->e_friction += blk[k].e_friction;
+		out->e_viscous += blk[k].e_viscous;
+		out->e_elastic += blk[k].e_elastic;
+		for (int c = 0; c < 9; c++)
+			out->love[c] += blk[k].love[c];
+		for (int c = 0; c < 5; c++)
+			out->count[c] += blk[k].count[c];
+	}
+}
+
+void bonds_forces(engine *e, int measure)
+{
+	size_t nb = nblocks(e->bonds.n);
+	crack_buf *cb = &e->thread_cracks[omp_get_thread_num()];
+#pragma omp for schedule(static)
+	for (size_t k = 0; k < nb; k++) {
+		size_t hi = (k + 1) * BLOCK < e->bonds.n ? (k + 1) * BLOCK : e->bonds.n;
+		bond_block(e, k * BLOCK, hi, measure, &e->bblock[k], cb);
+	}
+#pragma omp single
+	pair_sums_total(e->bblock, nb, &e->bsum);
+}
+
+/* Move this step's failures from the thread buffers to e->cracks, in bond
+ * order (whatever thread found them). */
+void bonds_collect_cracks(engine *e)
+{
+	crack_buf *cb = &e->cracks;
+	size_t first = cb->n;
+	double strain = engine_strain(e);
+	for (int t = 0; t < e->nthreads; t++) {
+		crack_buf *tc = &e->thread_cracks[t];
+		for (size_t k = 0; k < tc->n; k++) {
+			if (cb->n == cb->cap) {
+				cb->cap = cb->cap ? 2 * cb->cap : 256;
+				cb->c = xrealloc(cb->c, cb->cap * sizeof *cb->c);
+				cb->bond = xrealloc(cb->bond, cb->cap * sizeof *cb->bond);
+			}
+			cb->c[cb->n] = tc->c[k];
+			cb->c[cb->n].strain_axial = strain;
+			cb->bond[cb->n++] = tc->bond[k];
+		}
+		tc->n = 0;
+	}
+	/* Insertion sort of this step's few failures by bond index. */
+	for (size_t k = first + 1; k < cb->n; k++) {
+		int32_t b = cb->bond[k];
+		dem_crack c = cb->c[k];
+		size_t q = k;
+		for (; q > first && cb->bond[q - 1] > b; q--) {
+			cb->bond[q] = cb->bond[q - 1];
+			cb->c[q] = cb->c[q - 1];
+		}
+		cb->bond[q] = b;
+		cb->c[q] = c;
+	}
+}

@@ -1,0 +1,220 @@
+/* The loading program: a sequence of stages, each combining the building
+ * blocks of the lab tests (case.h): platens at a velocity or strain rate,
+ * servo-controlled to a stress or force, held, or absent; end layers moved
+ * Yade-style; the lateral surface free, under a pressure, or held radially.
+ * Reversing a platen velocity unloads; a stage ends on its `until` rule and
+ * the run on its `stop` rule or at the end of the last stage.
+ *
+ * Servo: each moving platen closes at v = g (F_target - F), limited to the
+ * stage's rate times the initial height, with g chosen so that a step
+ * corrects the fraction `gain` of the error through the stiffness of the
+ * touching contacts (g = gain / (Σ K_n Δt)); without contact it approaches
+ * at the limit. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "solve/engine.h"
+
+double engine_strain(const engine *e)
+{
+	double gap = e->pl.z[1] - e->pl.z[0];
+	return (e->height0 - gap) / e->height0;
+}
+
+double engine_stress_of(const engine *e, int k)
+{
+	return e->pl.load[k] / e->area0;
+}
+
+double engine_stress(const engine *e)
+{
+	return 0.5 * (engine_stress_of(e, 0) + engine_stress_of(e, 1));
+}
+
+static const stage *current(const engine *e)
+{
+	return &e->cs->stages[e->stage];
+}
+
+static int uses_platens(int axial)
+{
+	return axial != AXIAL_NONE && axial != AXIAL_LAYERS;
+}
+
+/* Ramp from the stage's starting value to its target. */
+static double ramped(const engine *e, double from, double to)
+{
+	double ramp = current(e)->ramp;
+	double f = ramp > 0 ? (e->t - e->stage_t) / ramp : 1;
+	return f >= 1 ? to : from + (to - from) * f;
+}
+
+static void select_layers(engine *e, double thickness)
+{
+	particles *P = &e->p;
+	double lo = INFINITY, hi = -INFINITY;
+	double *z = e->scratch;
+	for (size_t i = 0; i < P->n; i++) {
+		z[i] = 0;
+		for (int k = 0; k < 3; k++)
+			z[i] += (P->x[3 * i + k] - e->center[k]) * e->axis[k];
+		lo = fmin(lo, z[i] - P->r[i]);
+		hi = fmax(hi, z[i] + P->r[i]);
+	}
+	for (size_t i = 0; i < P->n; i++) {
+		P->flag[i] &= (uint8_t) ~(PF_LAYER_BOTTOM | PF_LAYER_TOP);
+		if (z[i] - P->r[i] <= lo + thickness)
+			P->flag[i] |= PF_LAYER_BOTTOM;
+		else if (z[i] + P->r[i] >= hi - thickness)
+			P->flag[i] |= PF_LAYER_TOP;
+	}
+	e->layers_selected = 1;
+}
+
+void boundary_begin_stage(engine *e)
+{
+	const stage *s = current(e);
+	int was = e->pl.active;
+	e->pl.active = uses_platens(s->axial);
+	if (e->pl.active != was)
+		e->rebuild = 1;
+	e->stage_step = e->step;
+	e->stage_t = e->t;
+	e->stage_strain0 = engine_strain(e);
+	e->stage_stress0 = engine_stress(e);
+	e->stage_pressure0 = e->pressure;
+	e->stage_peak = -INFINITY;
+	e->stage_peak_strain = 0;
+	if (s->axial == AXIAL_LAYERS && !e->layers_selected)
+		select_layers(e, s->thickness > 0 ? s->thickness : 2 * e->r_mean);
+	particles *P = &e->p;
+	for (size_t i = 0; i < P->n; i++)
+		P->flag[i] &= (uint8_t)~PF_CONSTRAINED;
+	if (s->lateral == LATERAL_CONSTRAINT) {
+		surface_update(e);
+		for (size_t k = 0; k < e->surf.n; k++)
+			P->flag[e->surf.idx[k]] |= PF_CONSTRAINED;
+	}
+	if (s->lateral != LATERAL_PRESSURE)
+		e->pressure = 0;
+}
+
+/* Closing speed of the platens (m/s) for velocity-driven stages. */
+static double closing_speed(const engine *e)
+{
+	const stage *s = current(e);
+	return s->axial == AXIAL_VELOCITY ? s->velocity : s->rate * e->height0;
+}
+
+void boundary_prepare(engine *e)
+{
+	const stage *s = current(e);
+	loads *ld = &e->ld;
+	ld->lateral = s->lateral;
+	ld->method = s->method;
+	if (s->lateral == LATERAL_PRESSURE)
+		e->pressure = ramped(e, e->stage_pressure0, s->pressure);
+	ld->pressure = e->pressure;
+	ld->layers = s->axial == AXIAL_LAYERS;
+	if (ld->layers) {
+		double v = closing_speed(e);
+		ld->layer_vel[0] = s->top_only ? 0 : 0.5 * v;
+		ld->layer_vel[1] = s->top_only ? -v : -0.5 * v;
+	} else {
+		ld->layer_vel[0] = ld->layer_vel[1] = 0;
+	}
+}
+
+/* Platen velocities for the next step, then the move. */
+void boundary_finish_step(engine *e)
+{
+	const stage *s = current(e);
+	double vel[2] = {0, 0};
+	switch (s->axial) {
+	case AXIAL_VELOCITY:
+	case AXIAL_STRAIN_RATE:
+	case AXIAL_LAYERS: {
+		double v = closing_speed(e);
+		vel[0] = s->top_only ? 0 : 0.5 * v;
+		vel[1] = s->top_only ? -v : -0.5 * v;
+		break;
+	}
+	case AXIAL_STRESS:
+	case AXIAL_FORCE: {
+		double target = s->axial == AXIAL_STRESS ? s->target * e->area0 : s->target;
+		target = ramped(e, e->stage_stress0 * e->area0, target);
+		double vmax = s->rate * e->height0;
+		for (int k = s->top_only ? 1 : 0; k < 2; k++) {
+			double err = target - e->pl.load[k];
+			double v = e->pl.ksum[k] > 0
+			               ? e->cs->servo_gain * err / (e->pl.ksum[k] * e->dt)
+			               : (err > 0 ? vmax : -vmax);
+			v = v > vmax ? vmax : v < -vmax ? -vmax : v;
+			vel[k] = k == 0 ? v : -v;
+		}
+		break;
+	}
+	default:
+		break;
+	}
+	platens_move(e, vel);
+}
+
+/* value crossed target coming from start */
+static int reached(double value, double start, double target)
+{
+	return start <= target ? value >= target : value <= target;
+}
+
+/* Checks one rule; the elapsed time and steps are counted from t0, s0. */
+static int rule_holds(const engine *e, const stop_rule *r, double strain0, double stress0,
+                      double peak, int armed, double t0, int64_t s0, char *why, size_t n)
+{
+	double strain = engine_strain(e), stress = engine_stress(e);
+	if (!isnan(r->strain_axial) && reached(strain, strain0, r->strain_axial))
+		return snprintf(why, n, "axial strain reached %g", r->strain_axial), 1;
+	if (!isnan(r->stress_axial) && reached(stress, stress0, r->stress_axial))
+		return snprintf(why, n, "axial stress reached %g Pa", r->stress_axial), 1;
+	if (!isnan(r->stress_drop) && armed && peak > 0 && stress < r->stress_drop * peak)
+		return snprintf(why, n, "axial stress fell below %g of the peak %g Pa",
+		                r->stress_drop, peak),
+		       1;
+	if (!isnan(r->time) && e->t - t0 >= r->time * (1 - 1e-12))
+		return snprintf(why, n, "time %g s reached", r->time), 1;
+	if (r->steps && e->step - s0 >= r->steps)
+		return snprintf(why, n, "%ld steps done", r->steps), 1;
+	return 0;
+}
+
+void boundary_track_peak(engine *e)
+{
+	double stress = engine_stress(e), strain = engine_strain(e);
+	if (stress > e->peak) {
+		e->peak = stress;
+		e->peak_strain = strain;
+	}
+	if (stress > e->stage_peak) {
+		e->stage_peak = stress;
+		e->stage_peak_strain = strain;
+	}
+}
+
+int boundary_check(engine *e, char *why, size_t n)
+{
+	if (rule_holds(e, &e->cs->stop, 0, 0, e->peak, e->drop_armed, 0, 0, why, n))
+		return BOUNDARY_STOP;
+	const stage *s = current(e);
+	char reason[256];
+	if (!rule_holds(e, &s->until, e->stage_strain0, e->stage_stress0, e->stage_peak,
+	                e->drop_armed, e->stage_t, e->stage_step, reason, sizeof reason))
+		return BOUNDARY_RUNNING;
+	if (e->stage + 1 == e->cs->nstages) {
+		snprintf(why, n, "end of the loading program (stage %d: %s)", e->stage + 1, reason);
+		return BOUNDARY_COMPLETE;
+	}
+	snprintf(why, n, "stage %d ended: %s", e->stage + 1, reason);
+	e->stage++;
+	boundary_begin_stage(e);
+	return BOUNDARY_NEXT_STAGE;
+}

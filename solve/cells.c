@@ -1,0 +1,80 @@
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lib/err.h"
+#include "solve/cells.h"
+
+void cells_build(cells *g, const double *x, size_t n, double h)
+{
+	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+	for (size_t i = 0; i < n; i++)
+		for (int k = 0; k < 3; k++) {
+			lo[k] = fmin(lo[k], x[3 * i + k]);
+			hi[k] = fmax(hi[k], x[3 * i + k]);
+		}
+	if (n == 0)
+		for (int k = 0; k < 3; k++)
+			lo[k] = hi[k] = 0;
+	/* Coarsen a sparse grid so that cells never outnumber 8 n + 27. */
+	for (;;) {
+		size_t total = 1;
+		for (int k = 0; k < 3; k++) {
+			g->dim[k] = (int)floor((hi[k] - lo[k]) / h) + 1;
+			total *= (size_t)g->dim[k];
+		}
+		if (total <= 8 * n + 27)
+			break;
+		h *= 1.5;
+	}
+	memcpy(g->lo, lo, sizeof lo);
+	g->h = h;
+	g->ncell = (size_t)g->dim[0] * g->dim[1] * g->dim[2];
+	if (g->ncell + 1 > g->cap_cell) {
+		g->cap_cell = g->ncell + 1;
+		free(g->start), free(g->fill);
+		g->start = xmalloc(g->cap_cell * sizeof *g->start);
+		g->fill = xmalloc(g->cap_cell * sizeof *g->fill);
+	}
+	if (n > g->cap_item) {
+		g->cap_item = n;
+		free(g->item), free(g->cell);
+		g->item = xmalloc(n * sizeof *g->item);
+		g->cell = xmalloc(n * sizeof *g->cell);
+	}
+	memset(g->start, 0, (g->ncell + 1) * sizeof *g->start);
+	for (size_t i = 0; i < n; i++) {
+		int c[3];
+		for (int k = 0; k < 3; k++) {
+			c[k] = (int)((x[3 * i + k] - lo[k]) / h);
+			c[k] = c[k] < 0 ? 0 : c[k] >= g->dim[k] ? g->dim[k] - 1 : c[k];
+		}
+		g->cell[i] = c[0] + g->dim[0] * (c[1] + g->dim[1] * c[2]);
+		g->start[g->cell[i] + 1]++;
+	}
+	for (size_t c = 0; c < g->ncell; c++)
+		g->start[c + 1] += g->start[c];
+	/* Stable placement keeps particles of a cell in index order. */
+	memcpy(g->fill, g->start, g->ncell * sizeof *g->fill);
+	for (size_t i = 0; i < n; i++)
+		g->item[g->fill[g->cell[i]]++] = (int32_t)i;
+}
+
+int cells_around(const cells *g, int32_t c, int32_t out[27])
+{
+	int cx = c % g->dim[0], cy = (c / g->dim[0]) % g->dim[1], cz = c / (g->dim[0] * g->dim[1]);
+	int m = 0;
+	for (int z = cz - 1; z <= cz + 1; z++)
+		for (int y = cy - 1; y <= cy + 1; y++)
+			for (int x = cx - 1; x <= cx + 1; x++)
+				if (x >= 0 && y >= 0 && z >= 0 && x < g->dim[0] && y < g->dim[1] &&
+				    z < g->dim[2])
+					out[m++] = x + g->dim[0] * (y + g->dim[1] * z);
+	return m;
+}
+
+void cells_free(cells *g)
+{
+	free(g->start), free(g->item), free(g->cell), free(g->fill);
+	memset(g, 0, sizeof *g);
+}

@@ -1,0 +1,29 @@
+/* A uniform grid of cells over the particles (counting sort by cell), for
+ * the neighbour searches of bond formation and of the Verlet list: every
+ * pair closer than the cell size lies in the same or adjacent cells. */
+#ifndef DEM_CELLS_H
+#define DEM_CELLS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct {
+	double lo[3]; /* m, grid origin */
+	double h;     /* m, cell size */
+	int dim[3];
+	size_t ncell, cap_cell, cap_item;
+	int32_t *start; /* [ncell + 1] */
+	int32_t *item;  /* [n] particles, by cell */
+	int32_t *cell;  /* [n] cell of each particle */
+	int32_t *fill;  /* [ncell] scratch */
+} cells;
+
+/* Sort the n particles at x into cells of size at least h (buffers are
+ * reused between calls). */
+void cells_build(cells *g, const double *x, size_t n, double h);
+void cells_free(cells *g);
+
+/* The cells around cell c (itself included, at most 27); returns how many. */
+int cells_around(const cells *g, int32_t c, int32_t out[27]);
+
+#endif

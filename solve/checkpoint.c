@@ -1,0 +1,390 @@
+/* /checkpoint in run.h5: the evolving engine state, enough to continue bit
+ * for bit (solve --restart). What setup rebuilds deterministically from the
+ * embedded assembly and the configuration (particle order, masses, bond
+ * topology, gauge, frame, time-step bound) is not stored; the particle
+ * order is kept only to check that. Layout in share/doc/solve.md. Datasets
+ * are extendible and overwritten in place, so repeated checkpoints do not
+ * grow the file; the `complete` attribute is 0 while one is being written. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "lib/err.h"
+#include "lib/h5.h"
+#include "solve/checkpoint.h"
+
+typedef struct {
+	const char *name;
+	double *d;
+	int64_t *i;
+	int *n;
+	size_t *z;
+} scalar;
+
+/* Every scalar of the state, by name: the one table for writing and reading. */
+static int scalars(engine *e, scalar *s)
+{
+	scalar t[] = {
+	    {"t", &e->t, 0, 0, 0},
+	    {"dt", &e->dt, 0, 0, 0},
+	    {"dt_crit", &e->dt_crit, 0, 0, 0},
+	    {"stage_t", &e->stage_t, 0, 0, 0},
+	    {"stage_strain0", &e->stage_strain0, 0, 0, 0},
+	    {"stage_stress0", &e->stage_stress0, 0, 0, 0},
+	    {"stage_pressure0", &e->stage_pressure0, 0, 0, 0},
+	    {"stage_peak", &e->stage_peak, 0, 0, 0},
+	    {"stage_peak_strain", &e->stage_peak_strain, 0, 0, 0},
+	    {"peak", &e->peak, 0, 0, 0},
+	    {"peak_strain", &e->peak_strain, 0, 0, 0},
+	    {"pressure", &e->pressure, 0, 0, 0},
+	    {"energy_damped", &e->e_damped, 0, 0, 0},
+	    {"energy_friction", &e->e_friction, 0, 0, 0},
+	    {"energy_fracture", &e->e_fracture, 0, 0, 0},
+	    {"energy_work", &e->e_work, 0, 0, 0},
+	    {"energy_initial", &e->e_initial, 0, 0, 0},
+	    {"energy_kinetic", &e->ke, 0, 0, 0},
+	    {"snapshot_strain", &e->last_snapshot_strain, 0, 0, 0},
+	    {"platen_z0", &e->pl.z[0], 0, 0, 0},
+	    {"platen_z1", &e->pl.z[1], 0, 0, 0},
+	    {"platen_v0", &e->pl.vel[0], 0, 0, 0},
+	    {"platen_v1", &e->pl.vel[1], 0, 0, 0},
+	    {"platen_load0", &e->pl.load[0], 0, 0, 0},
+	    {"platen_load1", &e->pl.load[1], 0, 0, 0},
+	    {"platen_k0", &e->pl.ksum[0], 0, 0, 0},
+	    {"platen_k1", &e->pl.ksum[1], 0, 0, 0},
+	    {"platen_zref0", &e->pl.z_ref[0], 0, 0, 0},
+	    {"platen_zref1", &e->pl.z_ref[1], 0, 0, 0},
+	    {"lateral_area", &e->surf.lateral_area, 0, 0, 0},
+	    {"surface_radius", &e->surf.radius, 0, 0, 0},
+	    {"step", 0, &e->step, 0, 0},
+	    {"stage_step", 0, &e->stage_step, 0, 0},
+	    {"surface_updated", 0, &e->surf.updated, 0, 0},
+	    {"rebuilds", 0, &e->rebuilds, 0, 0},
+	    {"stage", 0, 0, &e->stage, 0},
+	    {"layers_selected", 0, 0, &e->layers_selected, 0},
+	    {"drop_armed", 0, 0, &e->drop_armed, 0},
+	    {"rebuild", 0, 0, &e->rebuild, 0},
+	    {"platens_active", 0, 0, &e->pl.active, 0},
+	    {"history_rows", 0, 0, 0, &e->history_rows},
+	    {"crack_rows", 0, 0, 0, &e->crack_rows},
+	    {"snapshot_strain_next", 0, 0, 0, &e->snapshot_strain_next},
+	    {"surface_n", 0, 0, 0, &e->surf.n},
+	    {"contacts_n", 0, 0, 0, &e->contacts.n},
+	    {"platen_n0", 0, 0, 0, &e->pl.ncand[0]},
+	    {"platen_n1", 0, 0, 0, &e->pl.ncand[1]},
+	};
+	int n = (int)(sizeof t / sizeof t[0]);
+	if (s)
+		memcpy(s, t, sizeof t);
+	return n;
+}
+
+/* Write or overwrite a dataset of rows x cols (cols 0: rank 1). */
+static int put(hid_t g, const char *name, hid_t type, const void *data, size_t rows, size_t cols)
+{
+	int rank = cols ? 2 : 1;
+	hsize_t dims[2] = {rows, cols}, maxd[2] = {H5S_UNLIMITED, cols};
+	hid_t d;
+	if (h5_exists(g, name)) {
+		d = H5Dopen2(g, name, H5P_DEFAULT);
+		if (d >= 0 && H5Dset_extent(d, dims) < 0) {
+			H5Dclose(d);
+			d = -1;
+		}
+	} else {
+		hid_t sp = H5Screate_simple(rank, dims, maxd);
+		hid_t pl = H5Pcreate(H5P_DATASET_CREATE);
+		hsize_t chunk[2] = {rows > 65536 ? 65536 : rows ? rows : 1, cols ? cols : 1};
+		H5Pset_chunk(pl, rank, chunk);
+		d = H5Dcreate2(g, name, type, sp, H5P_DEFAULT, pl, H5P_DEFAULT);
+		H5Pclose(pl);
+		H5Sclose(sp);
+	}
+	herr_t rc = d < 0 ? -1 : rows ? H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) : 0;
+	if (d >= 0)
+		H5Dclose(d);
+	if (rc < 0)
+		return err_set("%s: cannot write checkpoint dataset '%s' (disk full?)", h5_name(g),
+		               name);
+	return 0;
+}
+
+/* Bond-record fields of a pair list as flat arrays. */
+typedef struct {
+	double *t, *h, *d0;
+	int32_t *i, *j;
+	uint8_t *state;
+} fields;
+
+static void split(const pairlist *l, fields *f)
+{
+	size_t n = l->n + 1;
+	f->t = xmalloc(3 * n * sizeof *f->t);
+	f->h = xmalloc(LAW_NHIST * n * sizeof *f->h);
+	f->d0 = xmalloc(n * sizeof *f->d0);
+	f->i = xmalloc(n * sizeof *f->i);
+	f->j = xmalloc(n * sizeof *f->j);
+	f->state = xmalloc(n);
+	for (size_t b = 0; b < l->n; b++) {
+		memcpy(f->t + 3 * b, l->rec[b].t, 3 * sizeof *f->t);
+		memcpy(f->h + LAW_NHIST * b, l->rec[b].h, LAW_NHIST * sizeof *f->h);
+		f->d0[b] = l->rec[b].d0;
+		f->i[b] = l->rec[b].i;
+		f->j[b] = l->rec[b].j;
+		f->state[b] = l->rec[b].state;
+	}
+}
+
+static void fields_free(fields *f)
+{
+	free(f->t), free(f->h), free(f->d0), free(f->i), free(f->j), free(f->state);
+	memset(f, 0, sizeof *f);
+}
+
+static int write_platens(hid_t g, const engine *e)
+{
+	int rc = 0;
+	for (int k = 0; !rc && k < 2; k++) {
+		size_t n = e->pl.ncand[k];
+		double *pc = xmalloc((6 * n + 1) * sizeof *pc);
+		for (size_t c = 0; c < n; c++) {
+			const platen_contact *p = &e->pl.pc[k][c];
+			double v[6] = {p->t[0], p->t[1], p->t[2], p->kn, p->ks, p->cn};
+			memcpy(pc + 6 * c, v, sizeof v);
+		}
+		char who[32], con[32];
+		snprintf(who, sizeof who, "platen%d_particle", k);
+		snprintf(con, sizeof con, "platen%d_contact", k);
+		rc = put(g, who, H5T_NATIVE_INT32, e->pl.who[k], n, 0) ||
+		     put(g, con, H5T_NATIVE_DOUBLE, pc, n, 6);
+		free(pc);
+	}
+	return rc;
+}
+
+int checkpoint_write(engine *e, hid_t file)
+{
+	hid_t g = h5_exists(file, "checkpoint") ? h5_open_group(file, "checkpoint")
+	                                        : h5_group(file, "checkpoint");
+	if (g < 0)
+		return -1;
+	int rc = h5_attr_i64(g, "complete", 0);
+	scalar s[64];
+	int ns = scalars(e, s);
+	for (int k = 0; !rc && k < ns; k++)
+		rc = s[k].d   ? h5_attr_f64(g, s[k].name, *s[k].d)
+		     : s[k].i ? h5_attr_i64(g, s[k].name, *s[k].i)
+		     : s[k].n ? h5_attr_i64(g, s[k].name, *s[k].n)
+		              : h5_attr_i64(g, s[k].name, (int64_t)*s[k].z);
+	const particles *P = &e->p;
+	size_t n = P->n;
+	fields b, c;
+	split(&e->bonds, &b);
+	split(&e->contacts, &c);
+	rc = rc || put(g, "orig", H5T_NATIVE_INT32, P->orig, n, 0) ||
+	     put(g, "x", H5T_NATIVE_DOUBLE, P->x, n, 3) ||
+	     put(g, "v", H5T_NATIVE_DOUBLE, P->v, n, 3) ||
+	     put(g, "w", H5T_NATIVE_DOUBLE, P->w, n, 3) ||
+	     put(g, "x_ref", H5T_NATIVE_DOUBLE, P->x_ref, n, 3) ||
+	     put(g, "flag", H5T_NATIVE_UINT8, P->flag, n, 0) ||
+	     put(g, "surface_particle", H5T_NATIVE_INT32, e->surf.idx, e->surf.n, 0) ||
+	     put(g, "surface_area", H5T_NATIVE_DOUBLE, e->surf.area, e->surf.n, 0) ||
+	     put(g, "bond_t", H5T_NATIVE_DOUBLE, b.t, e->bonds.n, 3) ||
+	     put(g, "bond_h", H5T_NATIVE_DOUBLE, b.h, e->bonds.n, LAW_NHIST) ||
+	     put(g, "bond_state", H5T_NATIVE_UINT8, b.state, e->bonds.n, 0) ||
+	     put(g, "bond_force", H5T_NATIVE_DOUBLE, e->bonds.f, e->bonds.n, 6) ||
+	     put(g, "contact_i", H5T_NATIVE_INT32, c.i, e->contacts.n, 0) ||
+	     put(g, "contact_j", H5T_NATIVE_INT32, c.j, e->contacts.n, 0) ||
+	     put(g, "contact_t", H5T_NATIVE_DOUBLE, c.t, e->contacts.n, 3) ||
+	     put(g, "contact_k", H5T_NATIVE_DOUBLE, e->contacts.k, e->contacts.n, 3) ||
+	     write_platens(g, e) || h5_attr_i64(g, "complete", 1);
+	fields_free(&b);
+	fields_free(&c);
+	H5Gclose(g);
+	if (!rc && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
+		rc = err_set("%s: cannot flush the checkpoint (disk full?)", h5_name(file));
+	return rc ? -1 : 0;
+}
+
+/* Read a dataset of exactly rows x cols into dst. */
+static int get(hid_t g, const char *name, hid_t type, void *dst, size_t rows, size_t cols)
+{
+	void *buf;
+	if (h5_read_n(g, name, type, &buf, rows, cols))
+		return -1;
+	memcpy(dst, buf, rows * (cols ? cols : 1) * H5Tget_size(type));
+	free(buf);
+	return 0;
+}
+
+static int read_pairs(hid_t g, engine *e, size_t nc)
+{
+	pairlist *L = &e->contacts;
+	if (nc > L->cap) {
+		L->cap = nc;
+		L->rec = xrealloc(L->rec, nc * sizeof *L->rec);
+		L->f = xrealloc(L->f, 6 * nc * sizeof *L->f);
+		L->k = xrealloc(L->k, 3 * nc * sizeof *L->k);
+		L->ref = xrealloc(L->ref, 2 * nc * sizeof *L->ref);
+	}
+	int32_t *i = xmalloc((nc + 1) * sizeof *i), *j = xmalloc((nc + 1) * sizeof *j);
+	double *t = xmalloc((3 * nc + 1) * sizeof *t);
+	int rc = get(g, "contact_i", H5T_NATIVE_INT32, i, nc, 0) ||
+	         get(g, "contact_j", H5T_NATIVE_INT32, j, nc, 0) ||
+	         get(g, "contact_t", H5T_NATIVE_DOUBLE, t, nc, 3) ||
+	         get(g, "contact_k", H5T_NATIVE_DOUBLE, L->k, nc, 3);
+	for (size_t q = 0; !rc && q < nc; q++) {
+		if (i[q] < 0 || j[q] < 0 || (size_t)i[q] >= e->p.n || (size_t)j[q] >= e->p.n) {
+			rc = err_set("%s: checkpoint contact %zu: particle out of range",
+			             h5_name(g), q);
+			break;
+		}
+		bond *b = &L->rec[q];
+		memset(b, 0, sizeof *b);
+		b->i = i[q];
+		b->j = j[q];
+		b->d0 = e->p.r[i[q]] + e->p.r[j[q]];
+		b->state = BOND_BROKEN_TENSION;
+		memcpy(b->t, t + 3 * q, sizeof b->t);
+	}
+	free(i), free(j), free(t);
+	if (rc)
+		return -1;
+	L->n = nc;
+	memset(L->f, 0, 6 * nc * sizeof *L->f);
+	pairlist_csr(L, e->p.n);
+	if (nblocks(nc) > e->ncblock) {
+		e->ncblock = nblocks(nc);
+		e->cblock = xrealloc(e->cblock, e->ncblock * sizeof *e->cblock);
+	}
+	return 0;
+}
+
+static int read_platens(hid_t g, engine *e)
+{
+	particles *P = &e->p;
+	for (int k = 0; k < 2; k++) {
+		size_t n = e->pl.ncand[k];
+		if (n > e->pl.cap[k]) {
+			e->pl.cap[k] = n;
+			e->pl.pc[k] = xrealloc(e->pl.pc[k], n * sizeof *e->pl.pc[k]);
+			e->pl.pc_old[k] = xrealloc(e->pl.pc_old[k], n * sizeof *e->pl.pc_old[k]);
+			e->pl.who[k] = xrealloc(e->pl.who[k], n * sizeof *e->pl.who[k]);
+		}
+		double *pc = xmalloc((6 * n + 1) * sizeof *pc);
+		char who[32], con[32];
+		snprintf(who, sizeof who, "platen%d_particle", k);
+		snprintf(con, sizeof con, "platen%d_contact", k);
+		int rc = get(g, who, H5T_NATIVE_INT32, e->pl.who[k], n, 0) ||
+		         get(g, con, H5T_NATIVE_DOUBLE, pc, n, 6);
+		for (size_t i = 0; i < P->n; i++)
+			P->pslot[k][i] = -1;
+		for (size_t c = 0; !rc && c < n; c++) {
+			int32_t p = e->pl.who[k][c];
+			if (p < 0 || (size_t)p >= P->n) {
+				rc = err_set("%s: checkpoint platen contact: particle out of range",
+				             h5_name(g));
+				break;
+			}
+			platen_contact *q = &e->pl.pc[k][c];
+			memcpy(q->t, pc + 6 * c, sizeof q->t);
+			q->kn = pc[6 * c + 3];
+			q->ks = pc[6 * c + 4];
+			q->cn = pc[6 * c + 5];
+			P->pslot[k][p] = (int32_t)c;
+		}
+		free(pc);
+		if (rc)
+			return -1;
+	}
+	return 0;
+}
+
+static int read_surface(hid_t g, engine *e)
+{
+	surface *S = &e->surf;
+	particles *P = &e->p;
+	if (S->n > S->cap)
+		return err_set("%s: checkpoint surface larger than its bins", h5_name(g));
+	if (get(g, "surface_particle", H5T_NATIVE_INT32, S->idx, S->n, 0) ||
+	    get(g, "surface_area", H5T_NATIVE_DOUBLE, S->area, S->n, 0))
+		return -1;
+	for (size_t i = 0; i < P->n; i++)
+		P->surf[i] = -1;
+	for (size_t k = 0; k < S->n; k++) {
+		if (S->idx[k] < 0 || (size_t)S->idx[k] >= P->n)
+			return err_set("%s: checkpoint surface particle out of range", h5_name(g));
+		P->surf[S->idx[k]] = (int32_t)k;
+	}
+	return 0;
+}
+
+int checkpoint_read(engine *e, const char *path)
+{
+	hid_t f = h5_open(path, RUN_FORMAT, 0);
+	if (f < 0)
+		return -1;
+	if (!h5_exists(f, "checkpoint")) {
+		H5Fclose(f);
+		return err_set(
+		    "%s: no checkpoint to restart from (the run stopped before its first "
+		    "one)",
+		    path);
+	}
+	hid_t g = h5_open_group(f, "checkpoint");
+	int64_t complete = 0;
+	int rc = h5_read_attr_i64(g, "complete", &complete);
+	if (!rc && !complete)
+		rc = err_set(
+		    "%s: the checkpoint is incomplete (the program was killed while writing "
+		    "it)",
+		    path);
+	scalar s[64];
+	int ns = scalars(e, s);
+	for (int k = 0; !rc && k < ns; k++) {
+		int64_t v;
+		if (s[k].d)
+			rc = h5_read_attr_f64(g, s[k].name, s[k].d);
+		else if (!(rc = h5_read_attr_i64(g, s[k].name, &v))) {
+			if (s[k].i)
+				*s[k].i = v;
+			else if (s[k].n)
+				*s[k].n = (int)v;
+			else
+				*s[k].z = (size_t)v;
+		}
+	}
+	particles *P = &e->p;
+	size_t n = P->n, nb = e->bonds.n;
+	int32_t *orig = rc ? NULL : xmalloc((n + 1) * sizeof *orig);
+	rc = rc || get(g, "orig", H5T_NATIVE_INT32, orig, n, 0);
+	if (!rc && memcmp(orig, P->orig, n * sizeof *orig))
+		rc = err_set("%s: the checkpoint's particle order differs from this build's (not "
+		             "restartable with this version)",
+		             path);
+	free(orig);
+	if (!rc && (e->stage < 0 || e->stage >= e->cs->nstages))
+		rc = err_set("%s: checkpoint stage %d out of range", path, e->stage);
+	fields b = {0};
+	if (!rc)
+		split(&e->bonds, &b);
+	rc = rc || get(g, "x", H5T_NATIVE_DOUBLE, P->x, n, 3) ||
+	     get(g, "v", H5T_NATIVE_DOUBLE, P->v, n, 3) ||
+	     get(g, "w", H5T_NATIVE_DOUBLE, P->w, n, 3) ||
+	     get(g, "x_ref", H5T_NATIVE_DOUBLE, P->x_ref, n, 3) ||
+	     get(g, "flag", H5T_NATIVE_UINT8, P->flag, n, 0) ||
+	     get(g, "bond_t", H5T_NATIVE_DOUBLE, b.t, nb, 3) ||
+	     get(g, "bond_h", H5T_NATIVE_DOUBLE, b.h, nb, LAW_NHIST) ||
+	     get(g, "bond_state", H5T_NATIVE_UINT8, b.state, nb, 0) ||
+	     get(g, "bond_force", H5T_NATIVE_DOUBLE, e->bonds.f, nb, 6) || read_surface(g, e) ||
+	     read_pairs(g, e, e->contacts.n) || read_platens(g, e);
+	for (size_t q = 0; !rc && q < nb; q++) {
+		bond *r = &e->bonds.rec[q];
+		memcpy(r->t, b.t + 3 * q, sizeof r->t);
+		memcpy(r->h, b.h + LAW_NHIST * q, sizeof r->h);
+		r->state = b.state[q];
+	}
+	fields_free(&b);
+	H5Gclose(g);
+	H5Fclose(f);
+	return rc ? -1 : 0;
+}

@@ -1,0 +1,15 @@
+/* Checkpoints of the engine state in run.h5 (/checkpoint). */
+#ifndef DEM_CHECKPOINT_H
+#define DEM_CHECKPOINT_H
+
+#include <hdf5.h>
+
+#include "solve/engine.h"
+
+/* Write (or overwrite) /checkpoint in an open run file. */
+int checkpoint_write(engine *e, hid_t file);
+/* Restore the state of an engine freshly set up from the same assembly and
+ * configuration. */
+int checkpoint_read(engine *e, const char *path);
+
+#endif

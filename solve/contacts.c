@@ -1,0 +1,178 @@
+/* Non-bonded contacts: a Verlet list of the pairs that are not bonded and
+ * closer than r_i + r_j + skin, built from a cell grid and rebuilt only when
+ * some particle has moved more than half the skin since the last build (so
+ * no pair can come into contact unseen). Each pair is a Cundall–Strack
+ * contact (laws/cundall.h) about d0 = r_i + r_j; its shear history survives
+ * rebuilds by merging the old and new lists, both sorted by (i, j). */
+#include <math.h>
+#include <omp.h>
+#include <string.h>
+
+#include "lib/err.h"
+#include "solve/cells.h"
+#include "solve/engine.h"
+#include "solve/kinematics.h"
+#include "solve/laws/cundall.h"
+
+/* Normal and shear stiffness and normal damping of a contact between
+ * spheres of radii ri, rj and masses mi, mj touching at distance d0. */
+void contact_constants(const engine *e, double ri, double rj, double mi, double mj, double d0,
+                       double k[3])
+{
+	const material *M = &e->cs->mat;
+	law_pair q = {.ri = ri, .rj = rj, .mi = mi, .mj = mj, .d0 = d0};
+	law_const c;
+	e->law->constants(e->lp, &q, &c);
+	if (M->E > 0) {
+		c.kn = c.area * M->E / d0;
+		c.ks = c.kn / (2 * (1 + M->nu));
+	}
+	k[0] = c.kn;
+	k[1] = c.ks;
+	k[2] = 2 * M->damping * sqrt(mi * mj / (mi + mj) * c.kn);
+}
+
+static int bonded(const engine *e, int32_t i, int32_t j)
+{
+	const pairlist *B = &e->bonds;
+	for (int32_t q = B->off[i]; q < B->off[i + 1]; q++) {
+		const bond *b = &B->rec[B->ref[q] >> 1];
+		if ((B->ref[q] & 1 ? b->i : b->j) == j)
+			return 1;
+	}
+	return 0;
+}
+
+static void reserve(pairlist *l, size_t n, size_t np)
+{
+	if (n <= l->cap && l->off)
+		return;
+	size_t cap = l->cap > n ? l->cap : n + n / 2 + 64;
+	l->rec = xrealloc(l->rec, cap * sizeof *l->rec);
+	l->f = xrealloc(l->f, 6 * cap * sizeof *l->f);
+	l->k = xrealloc(l->k, 3 * cap * sizeof *l->k);
+	l->ref = xrealloc(l->ref, 2 * cap * sizeof *l->ref);
+	if (!l->off)
+		l->off = xcalloc(np + 1, sizeof *l->off);
+	l->cap = cap;
+}
+
+static void add_contact(engine *e, pairlist *L, const pairlist *old, size_t *o, int32_t i,
+                        int32_t j)
+{
+	const particles *P = &e->p;
+	reserve(L, L->n + 1, P->n);
+	bond *c = &L->rec[L->n];
+	memset(c, 0, sizeof *c);
+	c->i = i;
+	c->j = j;
+	c->d0 = P->r[i] + P->r[j];
+	c->state = BOND_BROKEN_TENSION;
+	while (*o < old->n && (old->rec[*o].i < i || (old->rec[*o].i == i && old->rec[*o].j < j)))
+		(*o)++;
+	if (*o < old->n && old->rec[*o].i == i && old->rec[*o].j == j)
+		memcpy(c->t, old->rec[*o].t, sizeof c->t);
+	contact_constants(e, P->r[i], P->r[j], P->m[i], P->m[j], c->d0, L->k + 3 * L->n);
+	L->n++;
+}
+
+void contacts_rebuild(engine *e)
+{
+	particles *P = &e->p;
+	pairlist tmp = e->contacts_old;
+	e->contacts_old = e->contacts;
+	e->contacts = tmp;
+	pairlist *L = &e->contacts;
+	const pairlist *old = &e->contacts_old;
+	L->n = 0;
+	reserve(L, 0, P->n);
+	cells *g = &e->grid;
+	cells_build(g, P->x, P->n, 2 * e->r_max + e->skin);
+	int32_t near[27];
+	size_t o = 0;
+	for (size_t i = 0; i < P->n; i++) {
+		int nc = cells_around(g, g->cell[i], near);
+		size_t first = L->n;
+		for (int c = 0; c < nc; c++)
+			for (int32_t q = g->start[near[c]]; q < g->start[near[c] + 1]; q++) {
+				int32_t j = g->item[q];
+				if ((size_t)j <= i)
+					continue;
+				double d2 = 0;
+				for (int k = 0; k < 3; k++) {
+					double dx = P->x[3 * j + k] - P->x[3 * i + k];
+					d2 += dx * dx;
+				}
+				double reach = P->r[i] + P->r[j] + e->skin;
+				if (d2 < reach * reach && !bonded(e, (int32_t)i, j)) {
+					reserve(L, L->n + 1, P->n);
+					L->rec[L->n++].j = j;
+				}
+			}
+		/* Sort this particle's partners, then fill the records in order. */
+		size_t m = L->n - first;
+		for (size_t a = 1; a < m; a++) {
+			int32_t j = L->rec[first + a].j;
+			size_t q = a;
+			for (; q > 0 && L->rec[first + q - 1].j > j; q--)
+				L->rec[first + q].j = L->rec[first + q - 1].j;
+			L->rec[first + q].j = j;
+		}
+		L->n = first;
+		for (size_t a = 0; a < m; a++)
+			add_contact(e, L, old, &o, (int32_t)i, L->rec[first + a].j);
+	}
+	pairlist_csr(L, P->n);
+	size_t nb = nblocks(L->n);
+	if (nb > e->ncblock) {
+		e->ncblock = nb + nb / 2 + 1;
+		e->cblock = xrealloc(e->cblock, e->ncblock * sizeof *e->cblock);
+	}
+	memcpy(P->x_ref, P->x, 3 * P->n * sizeof *P->x);
+	platens_rebuild(e);
+	e->rebuilds++;
+	e->rebuild = 0;
+}
+
+static void contact_block(engine *e, size_t lo, size_t hi, int measure, pair_sums *s)
+{
+	const particles *P = &e->p;
+	pairlist *L = &e->contacts;
+	double mu = e->cs->mat.friction;
+	memset(s, 0, sizeof *s);
+	for (size_t q = lo; q < hi; q++) {
+		bond *b = &L->rec[q];
+		law_pair pair;
+		law_kin kin;
+		law_out out = {0};
+		double n[3], d;
+		pair_kinematics(P->x, P->v, P->w, P->r, P->m, b->i, b->j, b->d0, e->dt, b->t, &pair,
+		                &kin, n, &d);
+		const double *k = L->k + 3 * q;
+		cundall c = {.kn = k[0], .ks = k[1], .cn = k[2], .mu = mu};
+		cundall_force(&c, kin.un, kin.vn, kin.dus, b->t, &out);
+		double *f = L->f + 6 * q;
+		pair_force(&out, n, d, pair.ri, pair.rj, f);
+		s->e_friction += out.e_friction;
+		s->e_viscous += out.fn_viscous * kin.vn * e->dt;
+		if (measure) {
+			s->e_elastic += cundall_energy(&c, kin.un, b->t);
+			for (int a = 0; a < 3; a++)
+				for (int m = 0; m < 3; m++)
+					s->love[3 * a + m] += d * n[a] * f[m];
+			s->count[4] += kin.un < 0;
+		}
+	}
+}
+
+void contacts_forces(engine *e, int measure)
+{
+	size_t nb = nblocks(e->contacts.n);
+#pragma omp for schedule(static)
+	for (size_t k = 0; k < nb; k++) {
+		size_t hi = (k + 1) * BLOCK < e->contacts.n ? (k + 1) * BLOCK : e->contacts.n;
+		contact_block(e, k * BLOCK, hi, measure, &e->cblock[k]);
+	}
+#pragma omp single
+	pair_sums_total(e->cblock, nb, &e->csum);
+}

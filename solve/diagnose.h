@@ -1,0 +1,19 @@
+/* Diagnoses of a failing simulation, each a one-line message naming the
+ * particle or bond at fault (assembly indices). */
+#ifndef DEM_DIAGNOSE_H
+#define DEM_DIAGNOSE_H
+
+#include <stddef.h>
+
+#include "solve/engine.h"
+
+/* Particle i's state is not finite after this step. */
+void diagnose_nan(const engine *e, size_t i, char *msg, size_t n);
+/* 1 (and a message) if the kinetic energy exceeds twice the energy the run
+ * has received (initial plus external work): the integration is unstable. */
+int diagnose_runaway(const engine *e, char *msg, size_t n);
+/* 1 (and a message) if the time step exceeds the critical bound with the
+ * current contacts (checked after each neighbour rebuild). */
+int diagnose_timestep(const engine *e, char *msg, size_t n);
+
+#endif

@@ -1,0 +1,197 @@
+/* "linear": a linear elastic–brittle bond that, once broken, is a
+ * Cundall–Strack frictional contact (MODELS.md §3).
+ *
+ * Bonds form between spheres with d <= (1 + β)(r_i + r_j) (Eq. 16), β default
+ * 0.10. Local elastic constants (Oñate et al. 2015):
+ *   Ā   = α π r_c²,  r_c = min(r_i, r_j)                      (Eq. 21)
+ *   α   = 40 P / N_c from the packing unless given            (Eq. 22)
+ *   K_n = Ā E / d0                                            (Eq. 30)
+ *   K_s = K_n / (2 (1 + ν))                                   (Eq. 36)
+ * or constant K_n, K_s for every bond when "kn" and "ks" are given.
+ * Normal viscous damping C_n = 2 ξ sqrt(m_ij K_n), ξ a fraction of the
+ * critical damping of the pair (0 by default).
+ *
+ * Intact bond: f_n = K_n u_n + C_n u̇_n (tension positive), F_s = K_s u_s with
+ * u_s the accumulated shear displacement (kept in t). Brittle failure:
+ *   tension  K_n u_n > σ_t Ā                                  (Eq. 41-42)
+ *   shear    |K_s u_s| > τ Ā + μ1 max(-K_n u_n, 0)            (Eq. 41-42)
+ * (tension checked first). The stored energy is released as fracture
+ * energy; from then on the bond is a Cundall–Strack contact (cundall.h) about
+ * its reference length d0 with friction μ, its shear history starting from
+ * the elastic shear force at failure (clipped by the Coulomb limit).
+ *
+ * History: t = shear displacement (intact) or shear force (broken);
+ * h[0] = u_n of the last call (for the energy), h[1..3] = K_n, K_s, C_n. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "lib/cfg.h"
+#include "lib/err.h"
+#include "lib/runfile.h"
+#include "lib/vec3.h"
+#include "solve/law.h"
+#include "solve/laws/cundall.h"
+
+struct law_params {
+	double E, nu;   /* Pa, - (local definitions) */
+	double kn, ks;  /* N/m, constant stiffnesses (0 when local) */
+	double alpha;   /* Eq. 22; 0 until setup when taken from the packing */
+	double beta;    /* interaction range, Eq. 16 */
+	double sigma_t; /* Pa, tensile strength */
+	double tau;     /* Pa, shear strength (cohesion) */
+	double mu1;     /* friction in the bond shear strength */
+	double mu;      /* friction after failure */
+	double xi;      /* fraction of critical damping */
+};
+
+static law_params *linear_parse(cfg *c)
+{
+	law_params *p = xcalloc(1, sizeof *p);
+	int rc = 0;
+	if (cfg_has(c, "kn") || cfg_has(c, "ks")) {
+		rc = cfg_number(c, "kn", &p->kn, "N/m", CFG_POS, INFINITY) ||
+		     cfg_number(c, "ks", &p->ks, "N/m", CFG_POS, INFINITY);
+	} else {
+		rc = cfg_number(c, "E", &p->E, "Pa", CFG_POS, INFINITY) ||
+		     cfg_number(c, "nu", &p->nu, "", -0.99, 0.5);
+	}
+	rc = rc || cfg_number_or(c, "alpha", &p->alpha, 0, "", CFG_POS, INFINITY) ||
+	     cfg_number_or(c, "beta", &p->beta, 0.10, "", 0, 1) ||
+	     cfg_number(c, "tensile_strength", &p->sigma_t, "Pa", 0, INFINITY) ||
+	     cfg_number(c, "shear_strength", &p->tau, "Pa", 0, INFINITY) ||
+	     cfg_number_or(c, "strength_friction", &p->mu1, 0, "", 0, INFINITY) ||
+	     cfg_number_or(c, "friction", &p->mu, 0.5, "", 0, INFINITY) ||
+	     cfg_number_or(c, "damping", &p->xi, 0, "fraction of critical", 0, 1);
+	if (rc) {
+		free(p);
+		return NULL;
+	}
+	return p;
+}
+
+static void linear_free(law_params *p)
+{
+	free(p);
+}
+
+static double linear_range(const law_params *p)
+{
+	return 1 + p->beta;
+}
+
+static void linear_setup(law_params *p, const law_packing *pk)
+{
+	if (p->alpha == 0)
+		p->alpha = pk->coordination > 0 ? 40 * pk->porosity / pk->coordination : 1;
+}
+
+static void linear_constants(const law_params *p, const law_pair *q, law_const *out)
+{
+	double rc = fmin(q->ri, q->rj);
+	double area = p->alpha * DEM_PI * rc * rc;
+	double kn = p->kn > 0 ? p->kn : area * p->E / q->d0;
+	double ks = p->kn > 0 ? p->ks : kn / (2 * (1 + p->nu));
+	double mij = q->mi * q->mj / (q->mi + q->mj);
+	*out = (law_const){
+	    .kn = kn, .ks = ks, .cn = 2 * p->xi * sqrt(mij * kn), .area = area, .rc = rc};
+}
+
+static void linear_init(const law_params *p, const law_pair *q, bond *b)
+{
+	law_const c;
+	linear_constants(p, q, &c);
+	for (int k = 0; k < 3; k++)
+		b->t[k] = 0;
+	b->h[0] = 0;
+	b->h[1] = c.kn;
+	b->h[2] = c.ks;
+	b->h[3] = c.cn;
+	b->state = BOND_INTACT;
+}
+
+static inline double intact_energy(const bond *b, double un)
+{
+	double tt = b->t[0] * b->t[0] + b->t[1] * b->t[1] + b->t[2] * b->t[2];
+	return 0.5 * b->h[1] * un * un + 0.5 * b->h[2] * tt;
+}
+
+static inline void linear_force_one(const law_params *p, const law_pair *q, bond *b,
+                                    const law_kin *k, law_out *out)
+{
+	cundall c = {.kn = b->h[1], .ks = b->h[2], .cn = b->h[3], .mu = p->mu};
+	b->h[0] = k->un;
+	out->failed = 0;
+	if (b->state >= BOND_BROKEN_TENSION) {
+		cundall_force(&c, k->un, k->vn, k->dus, b->t, out);
+		return;
+	}
+	for (int d = 0; d < 3; d++)
+		b->t[d] += k->dus[d];
+	double rc = fmin(q->ri, q->rj);
+	double area = p->alpha * DEM_PI * rc * rc;
+	double fe = c.kn * k->un;
+	double fs[3] = {c.ks * b->t[0], c.ks * b->t[1], c.ks * b->t[2]};
+	double fs2 = fs[0] * fs[0] + fs[1] * fs[1] + fs[2] * fs[2];
+	double shear_limit = p->tau * area + p->mu1 * (fe < 0 ? -fe : 0);
+	int mode = fe > p->sigma_t * area            ? CRACK_TENSION
+	           : fs2 > shear_limit * shear_limit ? CRACK_SHEAR
+	                                             : 0;
+	if (!mode) {
+		out->fn_viscous = c.cn * k->vn;
+		out->fn = fe + out->fn_viscous;
+		for (int d = 0; d < 3; d++)
+			out->fs[d] = fs[d];
+		return;
+	}
+	double before = intact_energy(b, k->un);
+	for (int d = 0; d < 3; d++)
+		b->t[d] = fs[d];
+	b->state = mode == CRACK_TENSION ? BOND_BROKEN_TENSION : BOND_BROKEN_SHEAR;
+	const double none[3] = {0, 0, 0};
+	double friction = out->e_friction;
+	cundall_force(&c, k->un, k->vn, none, b->t, out);
+	/* Sliding in the failing call is part of the failure. */
+	out->e_friction = friction;
+	out->e_damage += before - cundall_energy(&c, k->un, b->t);
+	out->failed = mode;
+}
+
+static void linear_force(const law_params *p, const law_pair *q, bond *b, const law_kin *k,
+                         law_out *out)
+{
+	linear_force_one(p, q, b, k, out);
+}
+
+LAW_BATCH(linear, linear_force_one)
+
+static double linear_energy(const law_params *p, const law_pair *q, const bond *b)
+{
+	(void)q;
+	if (b->state < BOND_BROKEN_TENSION)
+		return intact_energy(b, b->h[0]);
+	cundall c = {.kn = b->h[1], .ks = b->h[2], .cn = b->h[3], .mu = p->mu};
+	return cundall_energy(&c, b->h[0], b->t);
+}
+
+static void linear_damage(const law_params *p, const bond *b, double *dn, double *ds)
+{
+	(void)p;
+	double broken = b->state >= BOND_BROKEN_TENSION ? 1 : 0;
+	*dn = broken;
+	*ds = broken;
+}
+
+const law law_linear = {
+    .name = "linear",
+    .summary = "linear elastic-brittle bond, Cundall-Strack friction after failure",
+    .parse = linear_parse,
+    .free = linear_free,
+    .bond_range = linear_range,
+    .setup = linear_setup,
+    .constants = linear_constants,
+    .init = linear_init,
+    .force = linear_force,
+    .force_batch = linear_batch,
+    .energy = linear_energy,
+    .damage = linear_damage,
+};

@@ -1,0 +1,15 @@
+/* The run report at the end (CoMD-style phase timers): on stderr, and as
+ * JSON when --report is given. */
+#ifndef DEM_REPORT_H
+#define DEM_REPORT_H
+
+#include <stdint.h>
+
+#include "solve/engine.h"
+#include "solve/run.h"
+
+/* Bytes of the engine's state (particles, bonds, contacts, lists). */
+size_t engine_bytes(const engine *e);
+void report_print(const engine *e, int64_t step0, const char *status, const run_opts *o);
+
+#endif

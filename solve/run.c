@@ -1,0 +1,317 @@
+/* The run loop: steps, the history table, snapshots, checkpoints, stop
+ * rules, diagnoses of a failing simulation, interruption and the run
+ * report. Everything the loop does besides engine_step is timed as output. */
+#include <inttypes.h>
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lib/err.h"
+#include "lib/h5.h"
+#include "lib/progress.h"
+#include "lib/timer.h"
+#include "solve/checkpoint.h"
+#include "solve/diagnose.h"
+#include "solve/history.h"
+#include "solve/output.h"
+#include "solve/report.h"
+#include "solve/run.h"
+
+static volatile sig_atomic_t interrupted;
+
+static void on_interrupt(int sig)
+{
+	interrupted = sig;
+}
+
+typedef struct {
+	engine *e;
+	run_writer *w;
+	const run_opts *o;
+	double wall0, last_checkpoint, last_row_wall;
+	int64_t last_row_step, step0, last_snapshot_step;
+	progress pg;
+	char status[512];
+} loop_state;
+
+static int snapshot(loop_state *L)
+{
+	engine *e = L->e;
+	if (L->last_snapshot_step == e->step)
+		return 0;
+	L->last_snapshot_step = e->step;
+	e->last_snapshot_strain = engine_strain(e);
+	return output_snapshot(e, L->w);
+}
+
+static int snapshot_due(loop_state *L)
+{
+	engine *e = L->e;
+	const dem_case *cs = e->cs;
+	double strain = engine_strain(e);
+	if (cs->snapshot_every && e->step % cs->snapshot_every == 0)
+		return 1;
+	if (cs->snapshot_every_strain > 0 &&
+	    fabs(strain - e->last_snapshot_strain) >= cs->snapshot_every_strain)
+		return 1;
+	if (e->snapshot_strain_next < cs->nsnapshot_strains) {
+		double target = cs->snapshot_strains[e->snapshot_strain_next];
+		double from = e->last_snapshot_strain;
+		if (from <= target ? strain >= target : strain <= target) {
+			e->snapshot_strain_next++;
+			return 1;
+		}
+	}
+	return 0;
+}
+
+static int checkpoint(loop_state *L)
+{
+	engine *e = L->e;
+	if (output_cracks(e, L->w) || run_flush(L->w))
+		return -1;
+	L->last_checkpoint = timer_now();
+	return checkpoint_write(e, run_hid(L->w));
+}
+
+static int checkpoint_due(const loop_state *L)
+{
+	const dem_case *cs = L->e->cs;
+	if (cs->checkpoint_every && L->e->step % cs->checkpoint_every == 0)
+		return 1;
+	return cs->checkpoint_wall > 0 && timer_now() - L->last_checkpoint >= cs->checkpoint_wall;
+}
+
+static int history(loop_state *L)
+{
+	engine *e = L->e;
+	double now = timer_now();
+	double rate = now > L->last_row_wall && e->step > L->last_row_step
+	                  ? (double)(e->step - L->last_row_step) / (now - L->last_row_wall)
+	                  : 0;
+	L->last_row_wall = now;
+	L->last_row_step = e->step;
+	double row[64];
+	history_row(e, rate, row);
+	e->history_rows++;
+	double elastic = engine_elastic(e);
+	if (e->meas.step == 0)
+		e->e_initial = e->ke + elastic;
+	if (!e->drop_armed && elastic > 0 && e->ke < 0.01 * elastic)
+		e->drop_armed = 1;
+	return run_history(L->w, row);
+}
+
+static void show_progress(loop_state *L)
+{
+	engine *e = L->e;
+	const dem_case *cs = e->cs;
+	const stop_rule *r[2] = {&cs->stop, &cs->stages[cs->nstages - 1].until};
+	double frac = 0;
+	for (int k = 0; k < 2; k++) {
+		if (r[k]->steps)
+			frac = fmax(frac, (double)e->step / (double)r[k]->steps);
+		if (!isnan(r[k]->time))
+			frac = fmax(frac, e->t / r[k]->time);
+		if (!isnan(r[k]->strain_axial) && r[k]->strain_axial != 0)
+			frac = fmax(frac, engine_strain(e) / r[k]->strain_axial);
+	}
+	double done = (double)(e->step - L->step0);
+	L->pg.total = frac > 0 ? (double)e->step / fmin(frac, 1) - (double)L->step0 : 0;
+	const double *c = e->bsum.count;
+	char detail[160];
+	snprintf(detail, sizeof detail, "stage %d  strain %.4g%%  stress %.4g MPa  broken %.0f",
+	         e->stage + 1, 100 * engine_strain(e), 1e-6 * engine_stress(e),
+	         c[BOND_BROKEN_TENSION] + c[BOND_BROKEN_SHEAR]);
+	progress_update(&L->pg, done, detail);
+}
+
+/* Finish the file with a status; returns the exit code given. */
+static int finish(loop_state *L, const char *status, int code, int final_outputs)
+{
+	engine *e = L->e;
+	int rc = 0;
+	if (final_outputs)
+		rc = snapshot(L) || checkpoint(L);
+	rc = rc || output_cracks(e, L->w);
+	progress_end(&L->pg);
+	if (rc) {
+		run_abort(L->w);
+		fatal(NULL);
+	}
+	if (run_finish(L->w, status))
+		fatal(NULL);
+	snprintf(L->status, sizeof L->status, "%s", status);
+	return code;
+}
+
+static int loop(loop_state *L)
+{
+	engine *e = L->e;
+	const run_opts *o = L->o;
+	const dem_case *cs = e->cs;
+	char why[512], diag[1024];
+	for (;;) {
+		int measure = e->step % cs->history_every == 0;
+		int64_t rebuilds = e->rebuilds;
+		engine_step(e, measure);
+		double t0 = timer_now();
+		boundary_track_peak(e);
+		if (e->psum.bad < (double)e->p.n) {
+			diagnose_nan(e, (size_t)e->psum.bad, diag, sizeof diag);
+			if (measure)
+				history(L);
+			return finish(L, diag, 1, 0);
+		}
+		if (measure && history(L))
+			fatal(NULL);
+		if (measure && diagnose_runaway(e, diag, sizeof diag))
+			return finish(L, diag, 1, 0);
+		if (e->rebuilds != rebuilds && diagnose_timestep(e, diag, sizeof diag))
+			return finish(L, diag, 1, 0);
+		int stop = boundary_check(e, why, sizeof why);
+		if (stop == BOUNDARY_NEXT_STAGE && !o->quiet) {
+			progress_end(&L->pg);
+			fprintf(stderr, "%s: step %" PRId64 ": %s\n", err_program_name(), e->step,
+			        why);
+		}
+		if (stop == BOUNDARY_COMPLETE || stop == BOUNDARY_STOP) {
+			e->tm[TM_OUTPUT] += timer_now() - t0;
+			char status[600] = "complete";
+			if (stop == BOUNDARY_STOP)
+				snprintf(status, sizeof status, "stopped: %s", why);
+			if (!o->quiet) {
+				progress_end(&L->pg);
+				fprintf(stderr, "%s: step %" PRId64 ": %s\n", err_program_name(),
+				        e->step, why);
+			}
+			return finish(L, status, 0, 1);
+		}
+		if (snapshot_due(L) && snapshot(L))
+			fatal(NULL);
+		if (checkpoint_due(L) && checkpoint(L))
+			fatal(NULL);
+		if (e->cracks.n >= 4096 && output_cracks(e, L->w))
+			fatal(NULL);
+		int budget = (o->max_steps && e->step - L->step0 >= o->max_steps) ||
+		             (o->max_wall > 0 && timer_now() - L->wall0 >= o->max_wall);
+		if (interrupted || budget) {
+			e->tm[TM_OUTPUT] += timer_now() - t0;
+			progress_end(&L->pg);
+			if (!o->quiet)
+				fprintf(stderr,
+				        "%s: interrupted at step %" PRId64
+				        " (%s); continue with: solve "
+				        "--restart %s\n",
+				        err_program_name(), e->step,
+				        interrupted ? "signal" : "budget", o->output);
+			return finish(L, "interrupted", 3, 1);
+		}
+		show_progress(L);
+		e->tm[TM_OUTPUT] += timer_now() - t0;
+	}
+}
+
+static int run_loop(engine *e, run_writer *w, const run_opts *o)
+{
+	loop_state L = {.e = e, .w = w, .o = o, .last_snapshot_step = -1};
+	L.wall0 = L.last_checkpoint = L.last_row_wall = timer_now();
+	L.last_row_step = L.step0 = e->step;
+	progress_start(&L.pg, "steps", 0);
+	struct sigaction sa = {.sa_handler = on_interrupt}, old_int, old_term;
+	sigemptyset(&sa.sa_mask);
+	interrupted = 0;
+	sigaction(SIGINT, &sa, &old_int);
+	sigaction(SIGTERM, &sa, &old_term);
+	if (e->step == 0 && snapshot(&L))
+		fatal(NULL);
+	L.last_snapshot_step = e->step;
+	int code = loop(&L);
+	sigaction(SIGINT, &old_int, NULL);
+	sigaction(SIGTERM, &old_term, NULL);
+	e->tm[TM_TOTAL] = timer_now() - L.wall0;
+	report_print(e, L.step0, L.status, o);
+	return code;
+}
+
+int run_case(const dem_case *cs, const dem_assembly *a, const run_opts *o)
+{
+	engine e;
+	double t0 = timer_now();
+	if (engine_setup(&e, cs, a, o->quiet))
+		fatal("%s: %s", o->output, err_msg());
+	dem_provenance prov;
+	prov_init(&prov, "solve", cs->config, 0);
+	run_writer *w = run_create(o->output, &prov, a, history_columns, history_ncolumns);
+	prov_free(&prov);
+	if (!w || output_bonds(&e, w))
+		fatal(NULL);
+	e.tm[TM_NEIGHBOUR] += timer_now() - t0;
+	int code = run_loop(&e, w, o);
+	engine_free(&e);
+	return code;
+}
+
+/* Snapshots written after the checkpoint are redone by the continued run. */
+typedef struct {
+	int64_t keep;
+	size_t n;
+	char names[64][32];
+} later;
+
+static herr_t collect_later(hid_t g, const char *name, const H5L_info_t *info, void *data)
+{
+	(void)g, (void)info;
+	later *l = data;
+	if (strtoll(name, NULL, 10) > l->keep && l->n < 64)
+		snprintf(l->names[l->n++], sizeof l->names[0], "%s", name);
+	return 0;
+}
+
+static int drop_later_snapshots(run_writer *w, int64_t step)
+{
+	hid_t g = h5_open_group(run_hid(w), "snapshots");
+	if (g < 0)
+		return -1;
+	later l = {.keep = step};
+	do {
+		l.n = 0;
+		H5Literate(g, H5_INDEX_NAME, H5_ITER_NATIVE, NULL, collect_later, &l);
+		for (size_t k = 0; k < l.n; k++)
+			H5Ldelete(g, l.names[k], H5P_DEFAULT);
+	} while (l.n == 64);
+	H5Gclose(g);
+	return 0;
+}
+
+int run_restart(const run_opts *o, int threads)
+{
+	dem_run r;
+	if (run_read(o->restart, &r))
+		fatal(NULL);
+	if (strcmp(r.status, "complete") == 0)
+		fatal("%s: the run is complete: nothing to continue", o->restart);
+	dem_case cs;
+	if (case_parse_text(r.prov.config, o->restart, &cs))
+		fatal("%s: stored configuration: %s", o->restart, err_msg());
+	if (threads > 0)
+		cs.threads = threads;
+	engine e;
+	double t0 = timer_now();
+	if (engine_setup(&e, &cs, &r.assembly, 1) || checkpoint_read(&e, o->restart))
+		fatal(NULL);
+	run_writer *w = run_reopen(o->restart, e.history_rows, e.crack_rows);
+	if (!w || drop_later_snapshots(w, e.step))
+		fatal(NULL);
+	if (!o->quiet)
+		fprintf(stderr, "%s: %s: continuing from step %" PRId64 " (t = %g s, stage %d)\n",
+		        err_program_name(), o->restart, e.step, e.t, e.stage + 1);
+	e.tm[TM_NEIGHBOUR] += timer_now() - t0;
+	run_free(&r);
+	int code = run_loop(&e, w, o);
+	engine_free(&e);
+	case_free(&cs);
+	return code;
+}

@@ -1,0 +1,24 @@
+/* Running a case from start, or continuing one from its checkpoint. */
+#ifndef DEM_RUN_H
+#define DEM_RUN_H
+
+#include "lib/assembly.h"
+#include "solve/case.h"
+
+typedef struct {
+	const char *output;  /* the run file */
+	const char *restart; /* the run file to continue, or NULL */
+	long max_steps;      /* steps in this invocation before interrupting; 0: no limit */
+	double max_wall;     /* s of wall time before interrupting; 0: no limit */
+	const char *report;  /* JSON run report file, or NULL */
+	int quiet;
+} run_opts;
+
+/* Exit codes: 0 complete or stopped by a rule, 1 a diagnosed failure (the
+ * file is kept with its status), 3 interrupted (restartable). */
+enum { RUN_OK = 0, RUN_FAILED = 1, RUN_INTERRUPTED = 3 };
+
+int run_case(const dem_case *cs, const dem_assembly *a, const run_opts *o);
+int run_restart(const run_opts *o, int threads);
+
+#endif

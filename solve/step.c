@@ -1,0 +1,252 @@
+/* One time step: forces at x(t) from the bonds and contacts, gathered per
+ * particle with the platen contacts and the confinement, then central
+ * differences with rotations (Oñate et al. 2015 Eq. 5-10):
+ *
+ *   v(t + Δt/2) = v(t - Δt/2) + Δt (F + F_damp) / m          (Eq. 5-6)
+ *   x(t + Δt)   = x(t) + Δt v(t + Δt/2)                      (Eq. 7)
+ *   ω(t + Δt/2) = ω(t - Δt/2) + Δt (T + T_damp) / I,  I = 2/5 m r²   (Eq. 8-9)
+ *   (Δθ = ω Δt, Eq. 10, enters the next step's shear increments)
+ *
+ * with the global non-viscous damping (Eq. 39-40)
+ *   F_damp = -α^t |F| v/|v|,  T_damp = -α^r |T| ω/|ω|   (velocities at t - Δt/2).
+ *
+ * Energies use the central-difference "shadow" kinetic energy
+ * ½ m v(t - Δt/2)·v(t + Δt/2), which with the elastic energy at t is exactly
+ * conserved by the scheme for a linear undamped system; the work of a force
+ * G(t) is G · ½ (v(t - Δt/2) + v(t + Δt/2)) Δt, the matching rule. */
+#include <math.h>
+#include <omp.h>
+#include <string.h>
+
+#include "lib/timer.h"
+#include "lib/vec3.h"
+#include "solve/engine.h"
+#include "solve/platen_contact.h"
+
+static inline void gather(const pairlist *L, int32_t i, double ri, double F[3], double T[3])
+{
+	for (int32_t q = L->off[i]; q < L->off[i + 1]; q++) {
+		int32_t ref = L->ref[q];
+		const double *f = L->f + 6 * (ref >> 1);
+		double s = ref & 1 ? -1.0 : 1.0;
+		F[0] += s * f[0];
+		F[1] += s * f[1];
+		F[2] += s * f[2];
+		T[0] += ri * f[3];
+		T[1] += ri * f[4];
+		T[2] += ri * f[5];
+	}
+}
+
+/* The unit radial vector of particle i (from the axis), 0 on the axis. */
+static inline void radial_unit(const engine *e, const double *x, double u[3])
+{
+	double d[3] = {x[0] - e->center[0], x[1] - e->center[1], x[2] - e->center[2]};
+	double z = d[0] * e->axis[0] + d[1] * e->axis[1] + d[2] * e->axis[2];
+	for (int k = 0; k < 3; k++)
+		u[k] = d[k] - z * e->axis[k];
+	double l = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+	double inv = l > 0 ? 1 / l : 0;
+	for (int k = 0; k < 3; k++)
+		u[k] *= inv;
+}
+
+static inline double dot3(const double a[3], const double b[3])
+{
+	return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
+{
+	particles *P = &e->p;
+	double F[3] = {0, 0, 0}, T[3] = {0, 0, 0};
+	double ri = P->r[i], dt = e->dt;
+	gather(&e->bonds, i, ri, F, T);
+	gather(&e->contacts, i, ri, F, T);
+	for (int k = 0; k < 2; k++)
+		if (P->pslot[k][i] >= 0)
+			platen_force(e, k, i, &e->pl.pc[k][P->pslot[k][i]], F, T, s, measure);
+	double *x = P->x + 3 * i, *v = P->v + 3 * i, *w = P->w + 3 * i;
+	double vn[3], wn[3], ext[3] = {0, 0, 0}, er[3] = {0, 0, 0};
+	int32_t slot = P->surf[i];
+	uint8_t flag = P->flag[i];
+	if (slot >= 0 || (flag & PF_CONSTRAINED))
+		radial_unit(e, x, er);
+	if (slot >= 0) {
+		if (e->ld.lateral == LATERAL_PRESSURE) {
+			double area =
+			    e->ld.method == PRESSURE_PAPER ? DEM_PI * ri * ri : e->surf.area[slot];
+			double mag = e->ld.pressure * area;
+			for (int k = 0; k < 3; k++) {
+				ext[k] = -mag * er[k];
+				F[k] += ext[k];
+			}
+			s->lateral_force += mag;
+			if (measure)
+				for (int p = 0; p < 3; p++)
+					for (int q = 0; q < 3; q++)
+						s->love[3 * p + q] += ri * er[p] * ext[q];
+		}
+	}
+	if (e->ld.layers && (flag & (PF_LAYER_BOTTOM | PF_LAYER_TOP))) {
+		/* Prescribed motion: the reaction is what keeps it (Yade-style loading). */
+		int k = flag & PF_LAYER_TOP ? 1 : 0;
+		double m = P->m[i], R[3];
+		for (int c = 0; c < 3; c++) {
+			vn[c] = e->ld.layer_vel[k] * e->axis[c];
+			wn[c] = 0;
+			R[c] = m * (vn[c] - v[c]) / dt - F[c];
+		}
+		double ra = dot3(R, e->axis);
+		s->layer[k] += k == 0 ? ra : -ra;
+		s->e_work +=
+		    0.5 * dt *
+		    (R[0] * (v[0] + vn[0]) + R[1] * (v[1] + vn[1]) + R[2] * (v[2] + vn[2]));
+	} else {
+		double fa = sqrt(dot3(F, F)), ta = sqrt(dot3(T, T));
+		double va = sqrt(dot3(v, v)), wa = sqrt(dot3(w, w));
+		double cf = va > 0 ? -e->cs->alpha_t * fa / va : 0;
+		double ct = wa > 0 ? -e->cs->alpha_r * ta / wa : 0;
+		double im = P->inv_m[i], ii = P->inv_i[i];
+		double fd[3], td[3];
+		for (int c = 0; c < 3; c++) {
+			fd[c] = cf * v[c];
+			td[c] = ct * w[c];
+			vn[c] = v[c] + dt * im * (F[c] + fd[c]);
+			wn[c] = w[c] + dt * ii * (T[c] + td[c]);
+		}
+		s->e_damped -= 0.5 * dt * (dot3(fd, v) + dot3(fd, vn) + dot3(td, w) + dot3(td, wn));
+		if (flag & PF_CONSTRAINED) {
+			/* Radial displacement held: remove the radial velocity; the force
+			 * that does so is the constraint's reaction. */
+			double vr = dot3(vn, er);
+			for (int c = 0; c < 3; c++)
+				vn[c] -= vr * er[c];
+			double R = -P->m[i] * vr / dt;
+			s->constraint_force -= R;
+			if (measure)
+				for (int p = 0; p < 3; p++)
+					for (int q = 0; q < 3; q++)
+						s->love[3 * p + q] += ri * er[p] * R * er[q];
+		}
+	}
+	double mass = P->m[i], inertia = 1 / P->inv_i[i];
+	s->ke += 0.5 * (mass * dot3(v, vn) + inertia * dot3(w, wn));
+	s->e_work += 0.5 * dt *
+	             (ext[0] * (v[0] + vn[0]) + ext[1] * (v[1] + vn[1]) + ext[2] * (v[2] + vn[2]));
+	double d2 = 0;
+	for (int c = 0; c < 3; c++) {
+		v[c] = vn[c];
+		w[c] = wn[c];
+		x[c] += dt * vn[c];
+		double dx = x[c] - P->x_ref[3 * i + c];
+		d2 += dx * dx;
+	}
+	s->disp2 = d2 > s->disp2 ? d2 : s->disp2;
+	if (!(isfinite(x[0] + x[1] + x[2] + w[0] + w[1] + w[2])) && s->bad > i)
+		s->bad = i;
+}
+
+static void particles_integrate(engine *e, int measure)
+{
+	size_t n = e->p.n, nb = nblocks(n);
+#pragma omp for schedule(static)
+	for (size_t k = 0; k < nb; k++) {
+		particle_sums *s = &e->pblock[k];
+		memset(s, 0, sizeof *s);
+		s->bad = (double)n;
+		size_t hi = (k + 1) * BLOCK < n ? (k + 1) * BLOCK : n;
+		for (size_t i = k * BLOCK; i < hi; i++)
+			integrate_one(e, (int32_t)i, measure, s);
+	}
+#pragma omp single
+	{
+		particle_sums *t = &e->psum;
+		memset(t, 0, sizeof *t);
+		t->bad = (double)n;
+		for (size_t k = 0; k < nb; k++) {
+			const particle_sums *s = &e->pblock[k];
+			t->ke += s->ke;
+			t->e_damped += s->e_damped;
+			t->e_work += s->e_work;
+			for (int c = 0; c < 2; c++) {
+				t->load[c] += s->load[c];
+				t->ksum[c] += s->ksum[c];
+				t->ntouch[c] += s->ntouch[c];
+				t->layer[c] += s->layer[c];
+			}
+			t->lateral_force += s->lateral_force;
+			t->constraint_force += s->constraint_force;
+			t->platen_friction += s->platen_friction;
+			t->platen_viscous += s->platen_viscous;
+			t->platen_elastic += s->platen_elastic;
+			for (int c = 0; c < 9; c++)
+				t->love[c] += s->love[c];
+			t->disp2 = s->disp2 > t->disp2 ? s->disp2 : t->disp2;
+			t->bad = s->bad < t->bad ? s->bad : t->bad;
+		}
+	}
+}
+
+void engine_step(engine *e, int measure)
+{
+	double t0 = timer_now();
+	if (e->rebuild)
+		contacts_rebuild(e);
+	if (e->step - e->surf.updated >= e->cs->surface_every && e->surf.ntheta)
+		surface_update(e);
+	boundary_prepare(e);
+	if (measure)
+		e->meas = (measurement){.t = e->t,
+		                        .step = e->step,
+		                        .stage = e->stage,
+		                        .strain_radial = gauge_strain(e),
+		                        .lateral_area = e->surf.lateral_area};
+	double t1 = timer_now(), t2 = t1, t3 = t1;
+	e->tm[TM_NEIGHBOUR] += t1 - t0;
+#pragma omp parallel num_threads(e->nthreads)
+	{
+		bonds_forces(e, measure);
+#pragma omp master
+		t2 = timer_now();
+		contacts_forces(e, measure);
+#pragma omp master
+		t3 = timer_now();
+		particles_integrate(e, measure);
+	}
+	double t4 = timer_now();
+	e->tm[TM_BONDS] += t2 - t1;
+	e->tm[TM_CONTACTS] += t3 - t2;
+	e->tm[TM_INTEGRATE] += t4 - t3;
+
+	const particle_sums *ps = &e->psum;
+	e->ke = ps->ke;
+	e->e_damped += ps->e_damped + e->bsum.e_viscous + e->csum.e_viscous + ps->platen_viscous;
+	e->e_friction += e->bsum.e_friction + e->csum.e_friction + ps->platen_friction;
+	e->e_fracture += e->bsum.e_damage;
+	e->e_work += ps->e_work;
+	for (int k = 0; k < 2; k++) {
+		e->pl.load[k] = e->ld.layers ? ps->layer[k] : ps->load[k];
+		e->pl.ksum[k] = ps->ksum[k];
+		e->pl.ntouch[k] = (int)ps->ntouch[k];
+	}
+	if (measure) {
+		measurement *m = &e->meas;
+		m->strain = engine_strain(e);
+		for (int k = 0; k < 2; k++)
+			m->stress[k] = engine_stress_of(e, k);
+		int held = e->ld.lateral == LATERAL_CONSTRAINT;
+		m->lateral_force = held ? ps->constraint_force : ps->lateral_force;
+		m->pressure = !held                 ? e->ld.pressure
+		              : m->lateral_area > 0 ? ps->constraint_force / m->lateral_area
+		                                    : 0;
+	}
+	bonds_collect_cracks(e);
+	boundary_finish_step(e);
+	e->t += e->dt;
+	e->step++;
+	double drift = sqrt(ps->disp2);
+	if (2 * drift >= e->skin || drift + platens_drift(e) >= e->skin)
+		e->rebuild = 1;
+	e->tm[TM_NEIGHBOUR] += timer_now() - t4;
+}
