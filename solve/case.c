@@ -286,6 +286,7 @@ int case_load(const char *path, const char *assembly, dem_case *k)
 	char buf[4096];
 	snprintf(buf, sizeof buf, "%s", path);
 	k->dir = xstrdup(dirname(buf));
+	k->source = xstrdup(path);
 	int rc = load(c, k->dir, assembly, k);
 	cfg_free(c);
 	if (rc)
@@ -300,6 +301,7 @@ int case_parse_text(const char *text, const char *source, dem_case *k)
 	if (!c)
 		return -1;
 	k->dir = xstrdup(".");
+	k->source = xstrdup(source);
 	int rc = load(c, ".", NULL, k);
 	cfg_free(c);
 	if (rc)
@@ -310,7 +312,7 @@ int case_parse_text(const char *text, const char *source, dem_case *k)
 void case_free(dem_case *k)
 {
 	material_free(&k->mat);
-	free(k->dir), free(k->assembly), free(k->config), free(k->test);
+	free(k->source), free(k->dir), free(k->assembly), free(k->config), free(k->test);
 	free(k->snapshot_strains), free(k->stages);
 	memset(k, 0, sizeof *k);
 }

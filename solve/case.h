@@ -48,6 +48,7 @@ typedef struct {
 } stage;
 
 typedef struct {
+	char *source;   /* the case file's name (for messages) */
 	char *dir;      /* directory of the case file (paths are relative to it) */
 	char *assembly; /* path of the assembly file */
 	material mat;

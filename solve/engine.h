@@ -146,7 +146,8 @@ struct engine {
 	const dem_case *cs;
 	const law *law;
 	law_params *lp;
-	int nthreads;
+	int nthreads; /* threads asked for */
+	int team;     /* threads used in a step */
 
 	particles p;
 	pairlist bonds, contacts, contacts_old;

@@ -45,8 +45,8 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 		    "%s: run report: %.0f steps in %.3g s, %.4g particle-steps/s on %d thread%s, "
 		    "%.3g ns per bond update, %.0f bytes of state per particle, %" PRId64
 		    " neighbour rebuilds\n",
-		    err_program_name(), steps, wall, rate, e->nthreads, e->nthreads > 1 ? "s" : "",
-		    ns_bond, state / n, e->rebuilds);
+		    err_program_name(), steps, wall, rate, e->team, e->team > 1 ? "s" : "", ns_bond,
+		    state / n, e->rebuilds);
 		for (int k = 0; k < TM_TOTAL; k++)
 			fprintf(stderr, "  %-12s %9.3f s %6.1f %%\n", phase_names[k], e->tm[k],
 			        wall > 0 ? 100 * e->tm[k] / wall : 0);
@@ -67,8 +67,8 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	        "\"steps\": %.0f, \"wall\": %.6g, \"particle_steps_per_s\": %.6g, "
 	        "\"ns_per_bond\": %.6g, \"state_bytes\": %zu, \"peak_rss_bytes\": %ld, "
 	        "\"rebuilds\": %" PRId64 ", \"dt\": %.6g, \"phases\": {",
-	        e->p.n, e->bonds.n, e->nthreads, steps, wall, rate, ns_bond, state, rss,
-	        e->rebuilds, e->dt);
+	        e->p.n, e->bonds.n, e->team, steps, wall, rate, ns_bond, state, rss, e->rebuilds,
+	        e->dt);
 	for (int k = 0; k < TM_TOTAL; k++)
 		fprintf(f, "%s\"%s\": %.6g", k ? ", " : "", phase_names[k], e->tm[k]);
 	fprintf(f, "}}\n");

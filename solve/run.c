@@ -128,13 +128,18 @@ static void show_progress(loop_state *L)
 	progress_update(&L->pg, done, detail);
 }
 
-/* Finish the file with a status; returns the exit code given. */
-static int finish(loop_state *L, const char *status, int code, int final_outputs)
+/* Finish the file with a status; returns the exit code given. A finished
+ * run also gets a last snapshot; an interrupted one only its checkpoint. */
+enum { END_FAILED, END_INTERRUPTED, END_FINISHED };
+
+static int finish(loop_state *L, const char *status, int code, int how)
 {
 	engine *e = L->e;
 	int rc = 0;
-	if (final_outputs)
-		rc = snapshot(L) || checkpoint(L);
+	if (how == END_FINISHED)
+		rc = snapshot(L);
+	if (how != END_FAILED)
+		rc = rc || checkpoint(L);
 	rc = rc || output_cracks(e, L->w);
 	progress_end(&L->pg);
 	if (rc) {
@@ -163,14 +168,14 @@ static int loop(loop_state *L)
 			diagnose_nan(e, (size_t)e->psum.bad, diag, sizeof diag);
 			if (measure)
 				history(L);
-			return finish(L, diag, 1, 0);
+			return finish(L, diag, RUN_FAILED, END_FAILED);
 		}
 		if (measure && history(L))
 			fatal(NULL);
 		if (measure && diagnose_runaway(e, diag, sizeof diag))
-			return finish(L, diag, 1, 0);
+			return finish(L, diag, RUN_FAILED, END_FAILED);
 		if (e->rebuilds != rebuilds && diagnose_timestep(e, diag, sizeof diag))
-			return finish(L, diag, 1, 0);
+			return finish(L, diag, RUN_FAILED, END_FAILED);
 		int stop = boundary_check(e, why, sizeof why);
 		if (stop == BOUNDARY_NEXT_STAGE && !o->quiet) {
 			progress_end(&L->pg);
@@ -187,7 +192,7 @@ static int loop(loop_state *L)
 				fprintf(stderr, "%s: step %" PRId64 ": %s\n", err_program_name(),
 				        e->step, why);
 			}
-			return finish(L, status, 0, 1);
+			return finish(L, status, RUN_OK, END_FINISHED);
 		}
 		if (snapshot_due(L) && snapshot(L))
 			fatal(NULL);
@@ -207,7 +212,7 @@ static int loop(loop_state *L)
 				        "--restart %s\n",
 				        err_program_name(), e->step,
 				        interrupted ? "signal" : "budget", o->output);
-			return finish(L, "interrupted", 3, 1);
+			return finish(L, "interrupted", RUN_INTERRUPTED, END_INTERRUPTED);
 		}
 		show_progress(L);
 		e->tm[TM_OUTPUT] += timer_now() - t0;
@@ -232,8 +237,23 @@ static int run_loop(engine *e, run_writer *w, const run_opts *o)
 	sigaction(SIGINT, &old_int, NULL);
 	sigaction(SIGTERM, &old_term, NULL);
 	e->tm[TM_TOTAL] = timer_now() - L.wall0;
+	if (code == RUN_FAILED)
+		fprintf(stderr, "%s: %s\n", err_program_name(), L.status);
 	report_print(e, L.step0, L.status, o);
 	return code;
+}
+
+int run_engine(engine *e, const dem_assembly *a, const run_opts *o)
+{
+	double t0 = timer_now();
+	dem_provenance prov;
+	prov_init(&prov, "solve", e->cs->config, 0);
+	run_writer *w = run_create(o->output, &prov, a, history_columns, history_ncolumns);
+	prov_free(&prov);
+	if (!w || output_bonds(e, w))
+		fatal(NULL);
+	e->tm[TM_OUTPUT] += timer_now() - t0;
+	return run_loop(e, w, o);
 }
 
 int run_case(const dem_case *cs, const dem_assembly *a, const run_opts *o)
@@ -241,15 +261,9 @@ int run_case(const dem_case *cs, const dem_assembly *a, const run_opts *o)
 	engine e;
 	double t0 = timer_now();
 	if (engine_setup(&e, cs, a, o->quiet))
-		fatal("%s: %s", o->output, err_msg());
-	dem_provenance prov;
-	prov_init(&prov, "solve", cs->config, 0);
-	run_writer *w = run_create(o->output, &prov, a, history_columns, history_ncolumns);
-	prov_free(&prov);
-	if (!w || output_bonds(&e, w))
-		fatal(NULL);
+		fatal("%s: %s", cs->source, err_msg());
 	e.tm[TM_NEIGHBOUR] += timer_now() - t0;
-	int code = run_loop(&e, w, o);
+	int code = run_engine(&e, a, o);
 	engine_free(&e);
 	return code;
 }

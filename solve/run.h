@@ -19,6 +19,9 @@ typedef struct {
 enum { RUN_OK = 0, RUN_FAILED = 1, RUN_INTERRUPTED = 3 };
 
 int run_case(const dem_case *cs, const dem_assembly *a, const run_opts *o);
+/* The same for an engine already set up from cs and a. */
+struct engine;
+int run_engine(struct engine *e, const dem_assembly *a, const run_opts *o);
 int run_restart(const run_opts *o, int threads);
 
 #endif

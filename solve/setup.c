@@ -168,6 +168,10 @@ static void scratch_alloc(engine *e)
 {
 	size_t n = e->p.n;
 	e->nthreads = e->cs->threads > 0 ? e->cs->threads : omp_get_max_threads();
+	/* Below about a thousand particles per thread, synchronisation costs more
+	 * than it saves (results do not depend on the team size). */
+	e->team = (int)(n / 1000) < e->nthreads ? (int)(n / 1000) : e->nthreads;
+	e->team = e->team > 0 ? e->team : 1;
 	e->pblock = xcalloc(nblocks(n) + 1, sizeof *e->pblock);
 	e->bblock = xcalloc(nblocks(e->bonds.n) + 1, sizeof *e->bblock);
 	e->thread_cracks = xcalloc((size_t)e->nthreads, sizeof *e->thread_cracks);

@@ -204,7 +204,7 @@ void engine_step(engine *e, int measure)
 		                        .lateral_area = e->surf.lateral_area};
 	double t1 = timer_now(), t2 = t1, t3 = t1;
 	e->tm[TM_NEIGHBOUR] += t1 - t0;
-#pragma omp parallel num_threads(e->nthreads)
+#pragma omp parallel num_threads(e->team)
 	{
 		bonds_forces(e, measure);
 #pragma omp master
