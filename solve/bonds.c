@@ -243,13 +243,11 @@ void bonds_forces(engine *e, int measure)
 {
 	size_t nb = nblocks(e->bonds.n);
 	crack_buf *cb = &e->thread_cracks[omp_get_thread_num()];
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait
 	for (size_t k = 0; k < nb; k++) {
 		size_t hi = (k + 1) * BLOCK < e->bonds.n ? (k + 1) * BLOCK : e->bonds.n;
 		bond_block(e, k * BLOCK, hi, measure, &e->bblock[k], cb);
 	}
-#pragma omp single
-	pair_sums_total(e->bblock, nb, &e->bsum);
 }
 
 /* Move this step's failures from the thread buffers to e->cracks, in bond

@@ -209,8 +209,10 @@ static int parse_material(cfg *c, const char *dir, dem_case *k, char **json)
 		*json = cfg_text(m);
 		return material_parse(m, &k->mat);
 	}
-	if (err_msg()[0] && cfg_has(c, "material"))
-		err_clear();
+	if (!cfg_has(c, "material"))
+		return cfg_error(c, "material",
+		                 "missing: expected a material file name or an object");
+	err_clear();
 	const char *name;
 	if (cfg_string(c, "material", &name))
 		return -1;

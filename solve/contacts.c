@@ -173,6 +173,4 @@ void contacts_forces(engine *e, int measure)
 		size_t hi = (k + 1) * BLOCK < e->contacts.n ? (k + 1) * BLOCK : e->contacts.n;
 		contact_block(e, k * BLOCK, hi, measure, &e->cblock[k]);
 	}
-#pragma omp single
-	pair_sums_total(e->cblock, nb, &e->csum);
 }

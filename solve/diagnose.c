@@ -1,7 +1,9 @@
 #include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
+#include "lib/err.h"
 #include "solve/diagnose.h"
 
 static int finite6(const double *f)
@@ -9,10 +11,27 @@ static int finite6(const double *f)
 	return isfinite(f[0] + f[1] + f[2] + f[3] + f[4] + f[5]);
 }
 
-/* The first pair of list L at particle i with a non-finite force, or -1. */
-static int64_t bad_pair(const pairlist *L, size_t i)
+/* Count, for each particle, the pairs of L with a non-finite force; the
+ * particle in most of them is where the trouble started. Returns the first
+ * such pair of that particle, or -1. */
+static int64_t worst_pair(const engine *e, const pairlist *L, size_t *who, int *count)
 {
-	for (int32_t q = L->off[i]; q < L->off[i + 1]; q++)
+	int32_t *n = e->p.n ? xcalloc(e->p.n, sizeof *n) : NULL;
+	for (size_t b = 0; b < L->n; b++)
+		if (!finite6(L->f + 6 * b)) {
+			n[L->rec[b].i]++;
+			n[L->rec[b].j]++;
+		}
+	size_t best = 0;
+	for (size_t i = 1; i < e->p.n; i++)
+		if (n[i] > n[best])
+			best = i;
+	*who = best;
+	*count = n ? n[best] : 0;
+	free(n);
+	if (!*count)
+		return -1;
+	for (int32_t q = L->off[best]; q < L->off[best + 1]; q++)
 		if (!finite6(L->f + 6 * (L->ref[q] >> 1)))
 			return L->ref[q] >> 1;
 	return -1;
@@ -21,28 +40,33 @@ static int64_t bad_pair(const pairlist *L, size_t i)
 void diagnose_nan(const engine *e, size_t i, char *msg, size_t n)
 {
 	const particles *P = &e->p;
-	int len = snprintf(msg, n,
-	                   "stopped: non-finite state at step %" PRId64 " (t = %g s): particle %d "
-	                   "(radius %g m)",
-	                   e->step - 1, e->t - e->dt, P->orig[i], P->r[i]);
-	int64_t b = bad_pair(&e->bonds, i);
 	const pairlist *L = &e->bonds;
-	const char *what = "bond";
+	const char *what = "bond", *law = e->law->name;
+	size_t who;
+	int count;
+	int64_t b = worst_pair(e, L, &who, &count);
 	if (b < 0) {
-		b = bad_pair(&e->contacts, i);
 		L = &e->contacts;
 		what = "contact";
+		law = "contact";
+		b = worst_pair(e, L, &who, &count);
 	}
-	if (len < 0 || (size_t)len >= n)
+	if (b < 0) {
+		snprintf(
+		    msg, n,
+		    "stopped: non-finite state at step %" PRId64 " (t = %g s): particle %d (radius "
+		    "%g m): its forces are finite, so its motion diverged (time step too large?)",
+		    e->step - 1, e->t - e->dt, P->orig[i], P->r[i]);
 		return;
-	if (b >= 0)
-		snprintf(msg + len, n - (size_t)len,
-		         ": the force of %s %d-%d (law %s) is not finite", what,
-		         P->orig[L->rec[b].i], P->orig[L->rec[b].j],
-		         L == &e->bonds ? e->law->name : "contact");
-	else
-		snprintf(msg + len, n - (size_t)len,
-		         ": its forces are finite, so its motion diverged (time step too large?)");
+	}
+	int32_t p = P->orig[who],
+	        q = P->orig[L->rec[b].i == (int32_t)who ? L->rec[b].j : L->rec[b].i];
+	snprintf(msg, n,
+	         "stopped: non-finite state at step %" PRId64
+	         " (t = %g s): particle %d (radius %g m): "
+	         "%d of its %ss have non-finite forces, first %s %d-%d (law %s)",
+	         e->step - 1, e->t - e->dt, p, P->r[who], count, what, what, p < q ? p : q,
+	         p < q ? q : p, law);
 }
 
 /* Bound on ω of particle i times the time step (2 is the stability limit). */
@@ -53,8 +77,10 @@ static double omega_dt(const engine *e, size_t i)
 
 int diagnose_runaway(const engine *e, char *msg, size_t n)
 {
-	double input = e->e_initial + fabs(e->e_work);
-	if (!(e->ke > 2 * input + 1e-300))
+	/* The shadow energy v- · v+ turns negative in a diverging oscillation:
+	 * use the kinetic energy at t + dt/2. */
+	double input = e->e_initial + fabs(e->e_work), ke = e->psum.ke_new;
+	if (!(ke > 2 * input + 1e-300))
 		return 0;
 	const particles *P = &e->p;
 	size_t worst = 0;
@@ -71,7 +97,7 @@ int diagnose_runaway(const engine *e, char *msg, size_t n)
 	         "stopped: kinetic energy %g J exceeds twice the energy put in (%g J) at step "
 	         "%" PRId64 ": the integration is unstable; fastest particle %d (speed %g m/s, "
 	         "bonds give omega dt = %.3g, stable below 2)",
-	         e->ke, input, e->step - 1, P->orig[worst], sqrt(top / P->m[worst]),
+	         ke, input, e->step - 1, P->orig[worst], sqrt(top / P->m[worst]),
 	         omega_dt(e, worst));
 	return 1;
 }

@@ -23,7 +23,7 @@
 #include "solve/cells.h"
 #include "solve/law.h"
 
-enum { BLOCK = 1024, BATCH = 32 };
+enum { BLOCK = 256, BATCH = 32 };
 
 /* Particle flags. */
 enum { PF_LAYER_BOTTOM = 1, PF_LAYER_TOP = 2, PF_CONSTRAINED = 4 };
@@ -107,7 +107,8 @@ typedef struct {
 } pair_sums;
 
 typedef struct {
-	double ke; /* shadow kinetic energy (v- · v+) */
+	double ke;     /* shadow kinetic energy (v- · v+) */
+	double ke_new; /* kinetic energy at t + dt/2 (for diagnoses) */
 	double e_damped, e_work;
 	double load[2], ksum[2], ntouch[2];
 	double layer[2];         /* N, reaction of the end layers */

@@ -132,6 +132,7 @@ static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 	}
 	double mass = P->m[i], inertia = 1 / P->inv_i[i];
 	s->ke += 0.5 * (mass * dot3(v, vn) + inertia * dot3(w, wn));
+	s->ke_new += 0.5 * (mass * dot3(vn, vn) + inertia * dot3(wn, wn));
 	s->e_work += 0.5 * dt *
 	             (ext[0] * (v[0] + vn[0]) + ext[1] * (v[1] + vn[1]) + ext[2] * (v[2] + vn[2]));
 	double d2 = 0;
@@ -150,7 +151,7 @@ static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 static void particles_integrate(engine *e, int measure)
 {
 	size_t n = e->p.n, nb = nblocks(n);
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait
 	for (size_t k = 0; k < nb; k++) {
 		particle_sums *s = &e->pblock[k];
 		memset(s, 0, sizeof *s);
@@ -159,32 +160,36 @@ static void particles_integrate(engine *e, int measure)
 		for (size_t i = k * BLOCK; i < hi; i++)
 			integrate_one(e, (int32_t)i, measure, s);
 	}
-#pragma omp single
-	{
-		particle_sums *t = &e->psum;
-		memset(t, 0, sizeof *t);
-		t->bad = (double)n;
-		for (size_t k = 0; k < nb; k++) {
-			const particle_sums *s = &e->pblock[k];
-			t->ke += s->ke;
-			t->e_damped += s->e_damped;
-			t->e_work += s->e_work;
-			for (int c = 0; c < 2; c++) {
-				t->load[c] += s->load[c];
-				t->ksum[c] += s->ksum[c];
-				t->ntouch[c] += s->ntouch[c];
-				t->layer[c] += s->layer[c];
-			}
-			t->lateral_force += s->lateral_force;
-			t->constraint_force += s->constraint_force;
-			t->platen_friction += s->platen_friction;
-			t->platen_viscous += s->platen_viscous;
-			t->platen_elastic += s->platen_elastic;
-			for (int c = 0; c < 9; c++)
-				t->love[c] += s->love[c];
-			t->disp2 = s->disp2 > t->disp2 ? s->disp2 : t->disp2;
-			t->bad = s->bad < t->bad ? s->bad : t->bad;
+}
+
+/* Block sums in block order (serial, after the parallel step). */
+static void particles_sum(engine *e)
+{
+	size_t n = e->p.n, nb = nblocks(n);
+	particle_sums *t = &e->psum;
+	memset(t, 0, sizeof *t);
+	t->bad = (double)n;
+	for (size_t k = 0; k < nb; k++) {
+		const particle_sums *s = &e->pblock[k];
+		t->ke += s->ke;
+		t->ke_new += s->ke_new;
+		t->e_damped += s->e_damped;
+		t->e_work += s->e_work;
+		for (int c = 0; c < 2; c++) {
+			t->load[c] += s->load[c];
+			t->ksum[c] += s->ksum[c];
+			t->ntouch[c] += s->ntouch[c];
+			t->layer[c] += s->layer[c];
 		}
+		t->lateral_force += s->lateral_force;
+		t->constraint_force += s->constraint_force;
+		t->platen_friction += s->platen_friction;
+		t->platen_viscous += s->platen_viscous;
+		t->platen_elastic += s->platen_elastic;
+		for (int c = 0; c < 9; c++)
+			t->love[c] += s->love[c];
+		t->disp2 = s->disp2 > t->disp2 ? s->disp2 : t->disp2;
+		t->bad = s->bad < t->bad ? s->bad : t->bad;
 	}
 }
 
@@ -214,6 +219,9 @@ void engine_step(engine *e, int measure)
 		t3 = timer_now();
 		particles_integrate(e, measure);
 	}
+	pair_sums_total(e->bblock, nblocks(e->bonds.n), &e->bsum);
+	pair_sums_total(e->cblock, nblocks(e->contacts.n), &e->csum);
+	particles_sum(e);
 	double t4 = timer_now();
 	e->tm[TM_BONDS] += t2 - t1;
 	e->tm[TM_CONTACTS] += t3 - t2;

@@ -1,0 +1,135 @@
+/* Bad case files give one clear message naming the file, the key, the value
+ * and what was expected; good ones parse into the expected settings. */
+#include <stdio.h>
+#include <string.h>
+
+#include "lib/err.h"
+#include "tests/check.h"
+#include "tests/solve/harness.h"
+
+#define MAT                                                                                    \
+	"\"material\": {\"name\": \"m\", \"law\": \"linear\", \"density\": 2000, \"E\": 1e9, " \
+	"\"nu\": 0.2, \"tensile_strength\": 1e6, \"shear_strength\": 2e6}"
+#define ONE_STAGE "\"loading\": [{\"axial\": {\"mode\": \"strain_rate\", \"rate\": 0.1}}]"
+
+/* The message of loading case text written to bad.json. */
+static const char *error_of(const char *text)
+{
+	const char *path = harness_file("bad.json", text);
+	dem_case c;
+	if (case_load(path, NULL, &c) == 0) {
+		case_free(&c);
+		return "(loaded without error)";
+	}
+	static char msg[1024];
+	const char *m = err_msg();
+	/* Drop the scratch directory from the file name. */
+	const char *slash = strrchr(path, '/');
+	size_t dir = slash ? (size_t)(slash - path) + 1 : 0;
+	snprintf(msg, sizeof msg, "%s", strncmp(m, path, dir) == 0 ? m + dir : m);
+	return msg;
+}
+
+static void expect(const char *text, const char *message)
+{
+	const char *got = error_of(text);
+	CHECK_STR(got, message);
+}
+
+int main(void)
+{
+	expect("{\"assembly\": \"a.h5\", " ONE_STAGE ", \"stop\": {\"steps\": 10}}",
+	       "bad.json: key 'material': missing: expected a material file name or an object");
+	expect("{\"assembly\": \"a.h5\", \"material\": \"no-such.json\", " ONE_STAGE
+	       ", \"stop\": {\"steps\": 10}}",
+	       "no-such.json: cannot open: No such file or directory");
+	expect("{\"assembly\": \"a.h5\", \"material\": {\"name\": \"m\", \"law\": \"linear\", "
+	       "\"density\": -5}, " ONE_STAGE "}",
+	       "bad.json: key 'material.density': value -5: expected a positive number (kg/m^3)");
+	expect(
+	    "{\"assembly\": \"a.h5\", \"material\": {\"name\": \"m\", \"law\": \"elastoplastic\", "
+	    "\"density\": 5}, " ONE_STAGE "}",
+	    "bad.json: key 'material.law': unknown law \"elastoplastic\": expected one of "
+	    "'linear'");
+	expect("{\"assembly\": \"a.h5\", \"material\": {\"name\": \"m\", \"law\": \"linear\", "
+	       "\"density\": 2000, \"E\": 1e9, \"nu\": 0.7, \"tensile_strength\": 1e6, "
+	       "\"shear_strength\": 2e6}, " ONE_STAGE "}",
+	       "bad.json: key 'material.nu': value 0.7: expected a number in [-0.99, 0.5]");
+	expect("{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE ", \"stop\": {\"steps\": 10}, "
+	       "\"colour\": \"red\"}",
+	       "bad.json: key 'colour': unknown key (misspelt, or not used by this program)");
+	expect("{\"assembly\": \"a.h5\", \"material\": {\"name\": \"m\", \"law\": \"linear\", "
+	       "\"density\": 2000, \"E\": 1e9, \"nu\": 0.2, \"tensile_strength\": 1e6, "
+	       "\"shear_strength\": 2e6, \"Young\": 3}, " ONE_STAGE ", \"stop\": {\"steps\": 10}}",
+	       "bad.json: key 'material.Young': unknown key (misspelt, or not used by this "
+	       "program)");
+	expect("{\"assembly\": \"a.h5\", " MAT
+	       ", \"loading\": [{\"axial\": {\"mode\": \"push\"}}], "
+	       "\"stop\": {\"steps\": 10}}",
+	       "bad.json: key 'loading[0].axial.mode': value \"push\": expected one of 'none', "
+	       "'hold', 'velocity', 'strain_rate', 'stress', 'force', 'layers'");
+	expect("{\"assembly\": \"a.h5\", " MAT ", \"loading\": [{\"axial\": {\"mode\": "
+	       "\"strain_rate\"}}], \"stop\": {\"steps\": 10}}",
+	       "bad.json: key 'loading[0].axial.rate': missing: expected a number (1/s)");
+	expect("{\"assembly\": \"a.h5\", " MAT ", \"loading\": [{\"axial\": {\"mode\": "
+	       "\"strain_rate\", \"rate\": 0.1, \"stress\": 5e6}}], \"stop\": {\"steps\": 10}}",
+	       "bad.json: key 'loading[0].axial.stress': unknown key (misspelt, or not used by "
+	       "this program)");
+	expect("{\"assembly\": \"a.h5\", " MAT ", \"loading\": [{\"lateral\": {\"mode\": "
+	       "\"pressure\", \"pressure\": -1}}], \"stop\": {\"steps\": 10}}",
+	       "bad.json: key 'loading[0].lateral.pressure': value -1: expected a non-negative "
+	       "number (Pa)");
+	expect("{\"assembly\": \"a.h5\", " MAT ", \"loading\": [{\"axial\": {\"mode\": \"hold\"}}, "
+	       "{\"axial\": {\"mode\": \"hold\"}}], \"stop\": {\"steps\": 10}}",
+	       "bad.json: key 'loading': stage 1: missing 'until': every stage but the last needs "
+	       "a condition that ends it");
+	expect("{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE "}",
+	       "bad.json: key 'stop': missing: the run never ends (give 'stop' or an 'until' in "
+	       "the last stage)");
+	expect("{\"assembly\": \"a.h5\", " MAT ", \"loading\": []}",
+	       "bad.json: key 'loading': missing: expected a non-empty array of stage objects");
+	expect("{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE ", \"stop\": {\"stress_drop\": 1.5}}",
+	       "bad.json: key 'stop.stress_drop': value 1.5: expected a number in [0, 1]");
+	expect("{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE
+	       ", \"stop\": {\"steps\": 10}, \"time_step\": {\"safety\": 1.5}}",
+	       "bad.json: key 'time_step.safety': value 1.5: expected a number in [0, 1]");
+	expect("{\"assembly\": 3, " MAT ", " ONE_STAGE ", \"stop\": {\"steps\": 10}}",
+	       "bad.json: key 'assembly': value 3: expected a string");
+	expect("{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE ", \"stop\": {\"steps\": 10}",
+	       "bad.json: line 1: not valid JSON");
+
+	/* A good case: every setting lands where it should. */
+	const char *path = harness_file(
+	    "good.json",
+	    "{\"assembly\": \"sub/a.h5\", " MAT ", \"test\": \"triaxial\", \"threads\": 3,"
+	    "\"time_step\": {\"safety\": 0.5}, \"damping\": {\"translational\": 0.2},"
+	    "\"output\": {\"history_every\": 7, \"snapshot_strains\": [0.001, 0.002]},"
+	    "\"loading\": [{\"name\": \"confine\", \"ramp\": 0.01, \"axial\": {\"mode\": "
+	    "\"stress\", \"stress\": 1e6}, \"lateral\": {\"mode\": \"pressure\", \"pressure\": "
+	    "1e6, "
+	    "\"method\": \"paper\"}, \"until\": {\"time\": 0.02}},"
+	    "{\"axial\": {\"mode\": \"strain_rate\", \"rate\": -0.5, \"move\": \"top\"}, "
+	    "\"lateral\": {\"mode\": \"pressure\", \"pressure\": 1e6}, \"until\": "
+	    "{\"stress_axial\": "
+	    "2e6}}], \"stop\": {\"strain_axial\": 0.01, \"stress_drop\": 0.5}}");
+	dem_case c;
+	CHECK(case_load(path, NULL, &c) == 0);
+	CHECK_CONTAINS(c.assembly, "/sub/a.h5");
+	CHECK_STR(c.test, "triaxial");
+	CHECK(c.threads == 3 && c.safety == 0.5 && c.alpha_t == 0.2 && c.alpha_r == 0.1);
+	CHECK(c.history_every == 7 && c.nsnapshot_strains == 2 && c.snapshot_strains[1] == 0.002);
+	CHECK(c.nstages == 2);
+	CHECK_STR(c.stages[0].name, "confine");
+	CHECK(c.stages[0].axial == AXIAL_STRESS && c.stages[0].target == 1e6 &&
+	      c.stages[0].rate == 1.0 && c.stages[0].ramp == 0.01);
+	CHECK(c.stages[0].lateral == LATERAL_PRESSURE && c.stages[0].method == PRESSURE_PAPER);
+	CHECK(c.stages[0].until.time == 0.02);
+	CHECK(c.stages[1].axial == AXIAL_STRAIN_RATE && c.stages[1].rate == -0.5 &&
+	      c.stages[1].top_only);
+	CHECK(c.stages[1].method == PRESSURE_TRIBUTARY && c.stages[1].until.stress_axial == 2e6);
+	CHECK(c.stop.strain_axial == 0.01 && c.stop.stress_drop == 0.5);
+	/* The provenance configuration has the material inline. */
+	CHECK_CONTAINS(c.config, "\"law\":\t\"linear\"");
+	case_free(&c);
+	return check_done();
+}

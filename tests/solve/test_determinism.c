@@ -1,0 +1,133 @@
+/* The same run, bit for bit, whatever the number of threads and however
+ * often it is interrupted and restarted: a short UCS past the peak (bonds
+ * breaking, the crack log filling) is run
+ *   A  on one thread,
+ *   B  on two threads,
+ *   C  on two threads with a step budget, then restarted on one thread,
+ *   D  interrupted by SIGINT at an arbitrary moment, then restarted;
+ * B, C and D must equal A in every history column (but the wall-clock rate),
+ * every crack and every snapshot. The interrupted files must be valid run
+ * files with status "interrupted". */
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "tests/check.h"
+#include "tests/solve/fixture.h"
+#include "tests/solve/harness.h"
+
+static const char *case_text =
+    "{\"assembly\": \"%s\", \"material\": {\"name\": \"demo\", \"law\": \"linear\", "
+    "\"density\": 1700, \"E\": 10e9, \"nu\": 0.2, \"tensile_strength\": 5e6, "
+    "\"shear_strength\": 10e6, \"friction\": 0.5},"
+    "\"output\": {\"history_every\": 50, \"snapshot_every\": 2000, \"checkpoint_every\": 1500},"
+    "\"loading\": [{\"axial\": {\"mode\": \"strain_rate\", \"rate\": 5}}],"
+    "\"stop\": {\"strain_axial\": 0.0036}}";
+
+static const char *path(const char *name)
+{
+	return check_tmp(name);
+}
+
+static int solve(const char *args)
+{
+	char cmd[2048];
+	snprintf(cmd, sizeof cmd, "--quiet %s", args);
+	return harness_solve(cmd);
+}
+
+/* Start solve in the background, interrupt it with SIGINT once it has
+ * written something, and return its exit status. */
+static int interrupted_run(const char *out, const char *casefile)
+{
+	const char *bin = getenv("DEM_BIN");
+	char exe[1024], tmp[1100];
+	snprintf(exe, sizeof exe, "%s/solve", bin && bin[0] ? bin : "build/bin");
+	snprintf(tmp, sizeof tmp, "%s.tmp", out);
+	pid_t pid = fork();
+	if (pid == 0) {
+		execl(exe, exe, "--quiet", "--threads", "2", "--output", out, casefile,
+		      (char *)NULL);
+		_exit(127);
+	}
+	struct stat st;
+	for (int k = 0; k < 600 && stat(tmp, &st) != 0; k++)
+		nanosleep(&(struct timespec){0, 10000000}, NULL);
+	nanosleep(&(struct timespec){0, 700000000}, NULL);
+	kill(pid, SIGINT);
+	int status;
+	waitpid(pid, &status, 0);
+	return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+int main(void)
+{
+	lattice l = {.kind = LATTICE_FCC,
+	             .nx = 9,
+	             .ny = 9,
+	             .nz = 14,
+	             .r = 1e-3,
+	             .jitter = 0.02,
+	             .polydisp = 0.02,
+	             .diameter = 0.0235,
+	             .seed = 5};
+	dem_assembly a;
+	fixture_lattice(&a, &l);
+	const char *apath = path("det.h5");
+	fixture_write(&a, apath);
+	fprintf(stderr, "%zu particles\n", a.n);
+	CHECK(a.n > 2000);
+	char json[2048], args[2048];
+	snprintf(json, sizeof json, case_text, apath);
+	const char *cpath = harness_file("det.json", json);
+
+	snprintf(args, sizeof args, "--threads 1 --output %s %s", path("det-A.h5"), cpath);
+	CHECK(solve(args) == 0);
+	snprintf(args, sizeof args, "--threads 2 --report %s --output %s %s", path("det-B.json"),
+	         path("det-B.h5"), cpath);
+	CHECK(solve(args) == 0);
+	snprintf(args, sizeof args, "--threads 2 --max-steps 1333 --output %s %s", path("det-C.h5"),
+	         cpath);
+	CHECK(solve(args) == 3);
+	dem_run c;
+	harness_read(path("det-C.h5"), &c);
+	CHECK_STR(c.status, "interrupted");
+	CHECK(c.nrows == 1333 / 50 + 1);
+	run_free(&c);
+	snprintf(args, sizeof args, "--restart %s", path("det-C.h5"));
+	CHECK(solve(args) == 0);
+	CHECK(interrupted_run(path("det-D.h5"), cpath) == 3);
+	dem_run d;
+	harness_read(path("det-D.h5"), &d);
+	CHECK_STR(d.status, "interrupted");
+	fprintf(stderr, "SIGINT after %zu history rows\n", d.nrows);
+	run_free(&d);
+	snprintf(args, sizeof args, "--restart %s --threads 2", path("det-D.h5"));
+	CHECK(solve(args) == 0);
+
+	/* The two-thread run did use two threads. */
+	FILE *f = fopen(path("det-B.json"), "r");
+	char report[2048] = "";
+	CHECK(f && fread(report, 1, sizeof report - 1, f) > 0);
+	if (f)
+		fclose(f);
+	CHECK_CONTAINS(report, "\"threads\": 2,");
+
+	dem_run ra;
+	harness_read(path("det-A.h5"), &ra);
+	fprintf(stderr, "A: %s, %zu rows, %zu cracks, %zu snapshots\n", ra.status, ra.nrows,
+	        ra.ncracks, ra.nsnap);
+	CHECK(ra.ncracks > 10);
+	CHECK(ra.nsnap >= 3);
+	run_free(&ra);
+	CHECK(harness_same_runs(path("det-A.h5"), path("det-B.h5")) == 0);
+	CHECK(harness_same_runs(path("det-A.h5"), path("det-C.h5")) == 0);
+	CHECK(harness_same_runs(path("det-A.h5"), path("det-D.h5")) == 0);
+	assembly_free(&a);
+	return check_done();
+}

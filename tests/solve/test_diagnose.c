@@ -1,0 +1,113 @@
+/* A failing simulation stops with a diagnosis naming the particle or bond,
+ * and the run file written so far stays valid (status "stopped: ..."):
+ *   - a time step above the stable limit is refused at start;
+ *   - a NaN in a particle's velocity is traced to the bond whose force it
+ *     made non-finite;
+ *   - a time step forced above the limit makes the kinetic energy run away;
+ *   - after a neighbour rebuild, the time step is checked again. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "lib/err.h"
+#include "solve/run.h"
+#include "tests/check.h"
+#include "tests/solve/fixture.h"
+#include "tests/solve/harness.h"
+
+static const char *case_text =
+    "{\"assembly\": \"-\", \"material\": {\"name\": \"m\", \"law\": \"linear\", "
+    "\"density\": 2500, \"E\": 1e10, \"nu\": 0.2, \"tensile_strength\": 1e12, "
+    "\"shear_strength\": 1e12}, %s \"output\": {\"history_every\": 1},"
+    "\"loading\": [{\"axial\": {\"mode\": \"%s\", \"rate\": 1}}], "
+    "\"stop\": {\"steps\": 300}}";
+
+static dem_assembly a;
+
+/* Run an engine prepared by the caller to its end; returns the status. */
+static char *run_to_end(engine *e, const char *name, int *code)
+{
+	run_opts o = {.output = check_tmp(name), .quiet = 1};
+	*code = run_engine(e, &a, &o);
+	dem_run r;
+	harness_read(o.output, &r);
+	fprintf(stderr, "%s: %s (%zu history rows)\n", name, r.status, r.nrows);
+	CHECK(r.nrows >= 1);
+	char *status = xstrdup(r.status);
+	run_free(&r);
+	return status;
+}
+
+int main(void)
+{
+	lattice l = {
+	    .kind = LATTICE_FCC, .nx = 3, .ny = 3, .nz = 4, .r = 1e-3, .jitter = 0.02, .seed = 2};
+	fixture_lattice(&a, &l);
+	char json[2048];
+
+	/* A time step above the bound at start. */
+	snprintf(json, sizeof json, case_text, "\"time_step\": {\"dt\": 1e-3},", "strain_rate");
+	dem_case c;
+	harness_case(&c, json);
+	engine e;
+	CHECK(engine_setup(&e, &c, &a, 1) == -1);
+	CHECK_CONTAINS(err_msg(), "time step 0.001 s above the stable limit ");
+	CHECK_CONTAINS(err_msg(), " s, set by particle ");
+	CHECK_CONTAINS(err_msg(), "lower time_step.dt or leave it out");
+	engine_free(&e);
+	case_free(&c);
+
+	/* A skin so wide that no neighbour rebuild (and its time-step check) comes. */
+	snprintf(json, sizeof json, case_text, "\"neighbours\": {\"skin\": 1},", "layers");
+	/* A NaN velocity: the bond it poisons is named. */
+	harness_case(&c, json);
+	harness_engine(&e, &c, &a);
+	size_t k = 17;
+	e.p.v[3 * k] = NAN;
+	int32_t bad = e.p.orig[k];
+	int nb = e.bonds.off[k + 1] - e.bonds.off[k];
+	int code;
+	char *status = run_to_end(&e, "nan.h5", &code);
+	CHECK(code == RUN_FAILED);
+	char want[256];
+	snprintf(
+	    want, sizeof want,
+	    "stopped: non-finite state at step 0 (t = 0 s): particle %d (radius 0.001 m): %d of "
+	    "its bonds have non-finite forces, first bond ",
+	    bad, nb);
+	CHECK_CONTAINS(status, want);
+	CHECK_CONTAINS(status, "(law linear)");
+	free(status);
+	engine_free(&e);
+
+	/* Twice the stable time step: the energy of a vibrating specimen runs
+	 * away. */
+	harness_engine(&e, &c, &a);
+	e.dt = 2 * e.dt_crit;
+	for (size_t i = 0; i < e.p.n; i++)
+		e.p.v[3 * i] = 1e-3 * (double)(i % 3);
+	status = run_to_end(&e, "runaway.h5", &code);
+	CHECK(code == RUN_FAILED);
+	CHECK_CONTAINS(status, "stopped: kinetic energy ");
+	CHECK_CONTAINS(status, "the integration is unstable; fastest particle ");
+	free(status);
+	engine_free(&e);
+
+	/* Just above the limit, caught at the first neighbour rebuild. */
+	case_free(&c);
+	snprintf(json, sizeof json, case_text, "", "strain_rate");
+	harness_case(&c, json);
+	harness_engine(&e, &c, &a);
+	e.dt = 1.05 * e.dt_crit;
+	e.rebuild = 1;
+	status = run_to_end(&e, "rebuild.h5", &code);
+	CHECK(code == RUN_FAILED);
+	CHECK_CONTAINS(status, "stopped: time step ");
+	CHECK_CONTAINS(status, " above the stable limit ");
+	CHECK_CONTAINS(status, " at step 1: particle ");
+	free(status);
+	engine_free(&e);
+	case_free(&c);
+	assembly_free(&a);
+	return check_done();
+}
