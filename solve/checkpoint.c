@@ -55,6 +55,7 @@ static int scalars(engine *e, scalar *s)
 	    {"platen_zref1", &e->pl.z_ref[1], 0, 0, 0},
 	    {"lateral_area", &e->surf.lateral_area, 0, 0, 0},
 	    {"surface_radius", &e->surf.radius, 0, 0, 0},
+	    {"surface_volume", &e->surf.volume, 0, 0, 0},
 	    {"step", 0, &e->step, 0, 0},
 	    {"stage_step", 0, &e->stage_step, 0, 0},
 	    {"surface_updated", 0, &e->surf.updated, 0, 0},

@@ -81,6 +81,7 @@ typedef struct {
 	double *best_rho;    /* its outer radial distance */
 	double lateral_area; /* m^2, current lateral area from the bins */
 	double radius;       /* m, mean outer radius */
+	double volume;       /* m^3, enclosed by the bins */
 	long updated;        /* step of the last update */
 } surface;
 
@@ -139,6 +140,7 @@ typedef struct {
 	double pressure;      /* Pa, applied or (under a constraint) developed */
 	double lateral_force; /* N, applied or reaction */
 	double lateral_area;  /* m^2 */
+	double volume;        /* m^3, enclosed by the lateral surface */
 } measurement;
 
 typedef struct engine engine;

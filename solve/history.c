@@ -6,7 +6,8 @@
  *   σ = -(1/V) sym[ Σ_pairs (x_j - x_i) ⊗ F_i + Σ_boundary (x_c - x_p) ⊗ f ]
  * over bonds and contacts (F_i the force on i) and the boundary forces
  * (platen contacts, confinement, constraint reactions) at their points of
- * application; V = V0 (1 - ε_v) the current specimen volume. */
+ * application; V the current volume enclosed by the lateral surface bins
+ * (surface.c) over the specimen's current height. */
 #include <math.h>
 #include <string.h>
 
@@ -26,6 +27,7 @@ const run_column history_columns[] = {
     {"lateral_force", "N"},
     {"lateral_force_target", "N"},
     {"lateral_area", "m^2"},
+    {"volume", "m^3"},
     {"stress_xx", "Pa"},
     {"stress_yy", "Pa"},
     {"stress_zz", "Pa"},
@@ -61,7 +63,7 @@ void history_row(const engine *e, double rate, double *row)
 	for (int c = 0; c < 9; c++)
 		love[c] = e->bsum.love[c] + e->csum.love[c] + e->psum.love[c];
 	double ev = m->strain + 2 * m->strain_radial;
-	double V = e->volume0 * (1 - ev);
+	double V = m->volume;
 	double s[6];
 	static const int ab[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
 	for (int c = 0; c < 6; c++) {
@@ -81,6 +83,7 @@ void history_row(const engine *e, double rate, double *row)
 	              m->lateral_force,
 	              m->pressure * m->lateral_area,
 	              m->lateral_area,
+	              m->volume,
 	              s[0],
 	              s[1],
 	              s[2],

@@ -206,7 +206,8 @@ void engine_step(engine *e, int measure)
 		                        .step = e->step,
 		                        .stage = e->stage,
 		                        .strain_radial = gauge_strain(e),
-		                        .lateral_area = e->surf.lateral_area};
+		                        .lateral_area = e->surf.lateral_area,
+		                        .volume = e->surf.volume};
 	double t1 = timer_now(), t2 = t1, t3 = t1;
 	e->tm[TM_NEIGHBOUR] += t1 - t0;
 #pragma omp parallel num_threads(e->team)

@@ -2,15 +2,22 @@
  *
  * The lateral surface is divided into n_θ × n_z bins (about one mean
  * diameter wide, fixed at start, stretched with the specimen's current
- * height). The outermost particle of each bin (largest ρ + r, ρ the
- * distance to the axis) is a surface particle; the bin's area on the current
- * boundary, (ρ + r) Δθ Δz, is its tributary area. Updated every few steps,
+ * height). Of the spheres overlapping a bin (as seen from the axis), the
+ * outermost one (largest ρ + r, ρ the distance to the axis) is a surface
+ * particle, and the bin's area on the current boundary, (ρ + r) Δθ Δz, is
+ * part of its tributary area. Binning the spheres rather than their centres
+ * keeps a deep particle from claiming a bin that an outer one half covers.
+ * The surface layer is every sphere reaching within its own radius of the
+ * outermost point of a bin it overlaps (those in the hollows between the
+ * outermost ones too); the bins enclose the specimen's current volume
+ * Σ ½ (ρ + r)² Δθ Δz. Updated every few steps,
  * so the set follows the deforming specimen.
  *
  * Confinement p_c (§10.1.1 of Oñate et al. 2015) becomes a radial inward
- * force on each surface particle: π r_i² p_c (the paper's approximation), or
- * p_c times its tributary area (the default: the forces then add up to p_c
- * times the current lateral area). The θ origin is the direction of the
+ * force: π r_i² p_c on each particle of the surface layer (the paper's
+ * approximation), or p_c times the tributary area of each outermost
+ * particle (the default: the forces then add up to p_c times the current
+ * lateral area). A lateral constraint holds the surface layer. The θ origin is the direction of the
  * outermost particle at start, so the bins turn with the specimen.
  *
  * The gauge, like the lab's strain gauges, is the set of particles in the
@@ -79,11 +86,38 @@ void surface_init(engine *e)
 	size_t nbins = (size_t)S->ntheta * S->nz;
 	S->best = xmalloc(nbins * sizeof *S->best);
 	S->best_rho = xmalloc(nbins * sizeof *S->best_rho);
-	S->cap = nbins;
-	S->idx = xmalloc(nbins * sizeof *S->idx);
-	S->area = xmalloc(nbins * sizeof *S->area);
+	S->cap = P->n;
+	S->idx = xmalloc((P->n + 1) * sizeof *S->idx);
+	S->area = xmalloc((P->n + 1) * sizeof *S->area);
 	S->n = 0;
 	surface_update(e);
+}
+
+/* The bins a sphere overlaps as seen from the axis, and its outer distance. */
+typedef struct {
+	int t0, t1, z0, z1;
+	double out;
+} bin_range;
+
+static bin_range sphere_bins(const engine *e, size_t i, double lo, double dz, double dth)
+{
+	const surface *S = &e->surf;
+	double rho[3], z = frame(e, e->p.x + 3 * i, rho), r = e->p.r[i];
+	double len = v3_norm(rho), th = atan2(v3_dot(rho, e->e2), v3_dot(rho, e->e1));
+	double half = len > r ? asin(r / len) : DEM_PI;
+	bin_range b = {(int)floor((th - half + DEM_PI) / dth),
+	               (int)floor((th + half + DEM_PI) / dth), (int)floor((z - r - lo) / dz),
+	               (int)floor((z + r - lo) / dz), len + r};
+	if (b.t1 - b.t0 >= S->ntheta)
+		b.t0 = 0, b.t1 = S->ntheta - 1;
+	b.z0 = b.z0 < 0 ? 0 : b.z0;
+	b.z1 = b.z1 >= S->nz ? S->nz - 1 : b.z1;
+	return b;
+}
+
+static size_t bin_index(const surface *S, int iz, int t)
+{
+	return (size_t)iz * S->ntheta + (size_t)(((t % S->ntheta) + S->ntheta) % S->ntheta);
 }
 
 void surface_update(engine *e)
@@ -99,22 +133,34 @@ void surface_update(engine *e)
 		S->best_rho[b] = -INFINITY;
 	}
 	for (size_t i = 0; i < P->n; i++) {
-		double rho[3], z = frame(e, P->x + 3 * i, rho);
-		double th = atan2(v3_dot(rho, e->e2), v3_dot(rho, e->e1));
-		int it = (int)floor((th + DEM_PI) / dth), iz = (int)floor((z - lo) / dz);
-		it = it < 0 ? 0 : it >= S->ntheta ? S->ntheta - 1 : it;
-		iz = iz < 0 ? 0 : iz >= S->nz ? S->nz - 1 : iz;
-		size_t b = (size_t)iz * S->ntheta + it;
-		double out = v3_norm(rho) + P->r[i];
-		if (out > S->best_rho[b]) {
-			S->best_rho[b] = out;
-			S->best[b] = (int32_t)i;
-		}
+		bin_range br = sphere_bins(e, i, lo, dz, dth);
+		for (int iz = br.z0; iz <= br.z1; iz++)
+			for (int t = br.t0; t <= br.t1; t++) {
+				size_t b = bin_index(S, iz, t);
+				if (br.out > S->best_rho[b]) {
+					S->best_rho[b] = br.out;
+					S->best[b] = (int32_t)i;
+				}
+			}
 	}
+	/* The surface layer: spheres reaching within their own radius of the
+	 * outermost point of a bin they overlap. */
 	for (size_t k = 0; k < S->n; k++)
 		P->surf[S->idx[k]] = -1;
 	S->n = 0;
-	S->lateral_area = 0;
+	for (size_t i = 0; i < P->n; i++) {
+		bin_range br = sphere_bins(e, i, lo, dz, dth);
+		int in = 0;
+		for (int iz = br.z0; iz <= br.z1 && !in; iz++)
+			for (int t = br.t0; t <= br.t1 && !in; t++)
+				in = br.out >= S->best_rho[bin_index(S, iz, t)] - P->r[i];
+		if (in) {
+			P->surf[i] = (int32_t)S->n;
+			S->idx[S->n] = (int32_t)i;
+			S->area[S->n++] = 0;
+		}
+	}
+	S->lateral_area = S->volume = 0;
 	double rsum = 0;
 	size_t used = 0;
 	for (size_t b = 0; b < nbins; b++) {
@@ -122,13 +168,9 @@ void surface_update(engine *e)
 		if (i < 0)
 			continue;
 		double a = S->best_rho[b] * dth * dz;
-		if (P->surf[i] < 0) {
-			P->surf[i] = (int32_t)S->n;
-			S->idx[S->n] = i;
-			S->area[S->n++] = 0;
-		}
 		S->area[P->surf[i]] += a;
 		S->lateral_area += a;
+		S->volume += 0.5 * S->best_rho[b] * a;
 		rsum += S->best_rho[b];
 		used++;
 	}
