@@ -22,25 +22,16 @@ double engine_strain(const engine *e)
 	return (e->height0 - gap) / e->height0;
 }
 
-double engine_stress_of(const engine *e, int k)
-{
-	return e->pl.load[k] / e->area0;
-}
+double engine_stress_of(const engine *e, int k) { return e->pl.load[k] / e->area0; }
 
 double engine_stress(const engine *e)
 {
 	return 0.5 * (engine_stress_of(e, 0) + engine_stress_of(e, 1));
 }
 
-static const stage *current(const engine *e)
-{
-	return &e->cs->stages[e->stage];
-}
+static const stage *current(const engine *e) { return &e->cs->stages[e->stage]; }
 
-static int uses_platens(int axial)
-{
-	return axial != AXIAL_NONE && axial != AXIAL_LAYERS;
-}
+static int uses_platens(int axial) { return axial != AXIAL_NONE && axial != AXIAL_LAYERS; }
 
 /* Ramp from the stage's starting value to its target. */
 static double ramped(const engine *e, double from, double to)

@@ -6,10 +6,7 @@
 #include "lib/err.h"
 #include "solve/diagnose.h"
 
-static int finite6(const double *f)
-{
-	return isfinite(f[0] + f[1] + f[2] + f[3] + f[4] + f[5]);
-}
+static int finite6(const double *f) { return isfinite(f[0] + f[1] + f[2] + f[3] + f[4] + f[5]); }
 
 /* Count, for each particle, the pairs of L with a non-finite force; the
  * particle in most of them is where the trouble started. Returns the first
@@ -70,10 +67,7 @@ void diagnose_nan(const engine *e, size_t i, char *msg, size_t n)
 }
 
 /* Bound on ω of particle i times the time step (2 is the stability limit). */
-static double omega_dt(const engine *e, size_t i)
-{
-	return sqrt(e->p.omega2[i]) * e->dt;
-}
+static double omega_dt(const engine *e, size_t i) { return sqrt(e->p.omega2[i]) * e->dt; }
 
 int diagnose_runaway(const engine *e, char *msg, size_t n)
 {

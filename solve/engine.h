@@ -276,9 +276,6 @@ double pair_omega2(double kn, double ks, double mi, double mj, double ii, double
                    double aj);
 
 /* Deterministic parallel helpers. */
-static inline size_t nblocks(size_t n)
-{
-	return (n + BLOCK - 1) / BLOCK;
-}
+static inline size_t nblocks(size_t n) { return (n + BLOCK - 1) / BLOCK; }
 
 #endif

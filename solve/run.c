@@ -21,10 +21,7 @@
 
 static volatile sig_atomic_t interrupted;
 
-static void on_interrupt(int sig)
-{
-	interrupted = sig;
-}
+static void on_interrupt(int sig) { interrupted = sig; }
 
 typedef struct {
 	engine *e;

@@ -28,10 +28,7 @@ double pair_omega2(double kn, double ks, double mi, double mj, double ii, double
 	return normal > shear ? normal : shear;
 }
 
-double damping_factor(double xi)
-{
-	return sqrt(1 + xi * xi) - xi;
-}
+double damping_factor(double xi) { return sqrt(1 + xi * xi) - xi; }
 
 /* Bound on ω² of particle i from the current touching contacts. */
 static double contact_omega2(const engine *e, size_t i)

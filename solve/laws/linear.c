@@ -69,15 +69,9 @@ static law_params *linear_parse(cfg *c)
 	return p;
 }
 
-static void linear_free(law_params *p)
-{
-	free(p);
-}
+static void linear_free(law_params *p) { free(p); }
 
-static double linear_range(const law_params *p)
-{
-	return 1 + p->beta;
-}
+static double linear_range(const law_params *p) { return 1 + p->beta; }
 
 static void linear_setup(law_params *p, const law_packing *pk)
 {

@@ -29,10 +29,7 @@ static const char *case_text =
     "\"loading\": [{\"axial\": {\"mode\": \"strain_rate\", \"rate\": 5}}],"
     "\"stop\": {\"strain_axial\": 0.0036}}";
 
-static const char *path(const char *name)
-{
-	return check_tmp(name);
-}
+static const char *path(const char *name) { return check_tmp(name); }
 
 static int solve(const char *args)
 {
