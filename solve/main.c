@@ -80,8 +80,11 @@ int main(int argc, char **argv)
 		o.output = restart;
 		return run_restart(&o, (int)threads);
 	}
-	if (npos != 1)
-		fatal("missing CASE.json (usage: %s; see --help)", spec.usage);
+	if (npos != 1) {
+		fprintf(stderr, "%s: missing argument CASE.json (usage: %s; see --help)\n",
+		        err_program_name(), spec.usage);
+		return 2;
+	}
 	dem_case cs;
 	if (case_load(pos[0], assembly, &cs))
 		fatal(NULL);
