@@ -14,8 +14,15 @@
 
 int main(void)
 {
-	lattice l = {.kind = LATTICE_FCC, .nx = 9, .ny = 9, .nz = 14, .r = 1e-3, .jitter = 0.02,
-	             .polydisp = 0.02, .diameter = 0.0235, .seed = 1};
+	lattice l = {.kind = LATTICE_FCC,
+	             .nx = 9,
+	             .ny = 9,
+	             .nz = 14,
+	             .r = 1e-3,
+	             .jitter = 0.02,
+	             .polydisp = 0.02,
+	             .diameter = 0.0235,
+	             .seed = 1};
 	dem_assembly a;
 	fixture_lattice(&a, &l);
 	const char *apath = check_tmp("demo-assembly.h5"), *out = check_tmp("demo-run.h5");
@@ -37,8 +44,8 @@ int main(void)
 	const double *strain = run_column_data(&r, "strain_axial");
 	for (size_t k = 0; k < n; k++)
 		peak = stress[k] > stress[peak] ? k : peak;
-	fprintf(stderr, "peak %.4g MPa at strain %.4g; last %.4g MPa at %.4g\n", 1e-6 * stress[peak],
-	        strain[peak], 1e-6 * stress[n - 1], strain[n - 1]);
+	fprintf(stderr, "peak %.4g MPa at strain %.4g; last %.4g MPa at %.4g\n",
+	        1e-6 * stress[peak], strain[peak], 1e-6 * stress[n - 1], strain[n - 1]);
 	CHECK(stress[peak] > 5e6);
 	CHECK(peak > 0 && peak < n - 1);
 	/* The stop rule is checked every step; the last snapshot is the last step
