@@ -294,7 +294,7 @@ int cfg_bool_or(cfg *c, const char *key, int *out, int def)
 
 int cfg_choice_or(cfg *c, const char *key, int *out, const char *const *words, int def)
 {
-	const char *s;
+	const char *s = NULL;
 	if (cfg_string_or(c, key, &s, NULL))
 		return -1;
 	if (!s) {

@@ -30,7 +30,7 @@ typedef struct {
 	double wall0, last_checkpoint, last_row_wall;
 	int64_t last_row_step, step0, last_snapshot_step;
 	progress pg;
-	char status[512];
+	char status[1100];
 } loop_state;
 
 static int snapshot(loop_state *L)
