@@ -146,9 +146,10 @@ void bonds_init_history(engine *e)
 }
 
 /* A failure as a crack record, with the force the bond carried before it. */
-static void record_crack(engine *e, crack_buf *cb, size_t b, const law_out *o, const double n[3],
-                         double d)
+static void record_crack(engine *e, crack_buf *cb, size_t b, const law_out *o, const batch_geom *g,
+                         int q)
 {
+	double n[3] = {g->n[0][q], g->n[1][q], g->n[2][q]}, d = g->d[q];
 	if (cb->n == cb->cap) {
 		cb->cap = cb->cap ? 2 * cb->cap : 64;
 		cb->c = xrealloc(cb->c, cb->cap * sizeof *cb->c);
@@ -169,7 +170,7 @@ static void record_crack(engine *e, crack_buf *cb, size_t b, const law_out *o, c
 	                 .i = oi < oj ? oi : oj,
 	                 .j = oi < oj ? oj : oi,
 	                 .mode = o->failed,
-	                 .radius = fmin(P->r[bd->i], P->r[bd->j]),
+	                 .radius = P->r[bd->i] < P->r[bd->j] ? P->r[bd->i] : P->r[bd->j],
 	                 .fn = fn,
 	                 .fs = sqrt(fs[0] * fs[0] + fs[1] * fs[1] + fs[2] * fs[2])};
 	for (int k = 0; k < 3; k++) {
@@ -179,11 +180,11 @@ static void record_crack(engine *e, crack_buf *cb, size_t b, const law_out *o, c
 }
 
 /* Love–Weber sums Σ l ⊗ F_i over a pair (l = x_j - x_i, F_i the force on i). */
-static inline void love_add(double love[9], const double n[3], double d, const double f[6])
+void love_add(double love[9], const batch_geom *g, int q, const double f[6])
 {
 	for (int a = 0; a < 3; a++)
 		for (int c = 0; c < 3; c++)
-			love[3 * a + c] += d * n[a] * f[c];
+			love[3 * a + c] += g->d[q] * g->n[a][q] * f[c];
 }
 
 /* One block of bonds [lo, hi). */
@@ -194,29 +195,27 @@ static void bond_block(engine *e, size_t lo, size_t hi, int measure, pair_sums *
 	law_pair pair[BATCH];
 	law_kin kin[BATCH];
 	law_out out[BATCH];
-	double nrm[BATCH][3], dist[BATCH];
+	batch_geom g;
 	memset(s, 0, sizeof *s);
 	for (size_t b0 = lo; b0 < hi; b0 += BATCH) {
 		int nq = (int)(hi - b0 < BATCH ? hi - b0 : BATCH);
-		for (int q = 0; q < nq; q++) {
-			bond *b = &L->rec[b0 + q];
-			pair_kinematics(P->x, P->v, P->w, P->r, P->m, b->i, b->j, b->d0, e->dt,
-			                b->t, &pair[q], &kin[q], nrm[q], &dist[q]);
+		batch_kinematics(P->x, P->v, P->w, P->r, P->m, &L->rec[b0], nq, e->dt, pair, kin,
+		                 &g);
+		for (int q = 0; q < nq; q++)
 			out[q].fn_viscous = out[q].e_damage = out[q].e_friction = 0;
-		}
 		e->law->force_batch(e->lp, nq, pair, &L->rec[b0], kin, out);
 		for (int q = 0; q < nq; q++) {
 			size_t b = b0 + q;
 			if (out[q].failed)
-				record_crack(e, cb, b, &out[q], nrm[q], dist[q]);
+				record_crack(e, cb, b, &out[q], &g, q);
 			double *f = L->f + 6 * b;
-			pair_force(&out[q], nrm[q], dist[q], pair[q].ri, pair[q].rj, f);
+			batch_force(&out[q], &g, q, f);
 			s->e_damage += out[q].e_damage;
 			s->e_friction += out[q].e_friction;
 			s->e_viscous += out[q].fn_viscous * kin[q].vn * e->dt;
 			if (measure) {
 				s->e_elastic += e->law->energy(e->lp, &pair[q], &L->rec[b]);
-				love_add(s->love, nrm[q], dist[q], f);
+				love_add(s->love, &g, q, f);
 				s->count[L->rec[b].state]++;
 			}
 		}

@@ -139,28 +139,29 @@ static void contact_block(engine *e, size_t lo, size_t hi, int measure, pair_sum
 	const particles *P = &e->p;
 	pairlist *L = &e->contacts;
 	double mu = e->cs->mat.friction;
+	law_pair pair[BATCH];
+	law_kin kin[BATCH];
+	batch_geom g;
 	memset(s, 0, sizeof *s);
-	for (size_t q = lo; q < hi; q++) {
-		bond *b = &L->rec[q];
-		law_pair pair;
-		law_kin kin;
-		law_out out = {0};
-		double n[3], d;
-		pair_kinematics(P->x, P->v, P->w, P->r, P->m, b->i, b->j, b->d0, e->dt, b->t, &pair,
-		                &kin, n, &d);
-		const double *k = L->k + 3 * q;
-		cundall c = {.kn = k[0], .ks = k[1], .cn = k[2], .mu = mu};
-		cundall_force(&c, kin.un, kin.vn, kin.dus, b->t, &out);
-		double *f = L->f + 6 * q;
-		pair_force(&out, n, d, pair.ri, pair.rj, f);
-		s->e_friction += out.e_friction;
-		s->e_viscous += out.fn_viscous * kin.vn * e->dt;
-		if (measure) {
-			s->e_elastic += cundall_energy(&c, kin.un, b->t);
-			for (int a = 0; a < 3; a++)
-				for (int m = 0; m < 3; m++)
-					s->love[3 * a + m] += d * n[a] * f[m];
-			s->count[4] += kin.un < 0;
+	for (size_t c0 = lo; c0 < hi; c0 += BATCH) {
+		int nq = (int)(hi - c0 < BATCH ? hi - c0 : BATCH);
+		batch_kinematics(P->x, P->v, P->w, P->r, P->m, &L->rec[c0], nq, e->dt, pair, kin,
+		                 &g);
+		for (int q = 0; q < nq; q++) {
+			size_t c = c0 + q;
+			const double *k = L->k + 3 * c;
+			cundall cd = {.kn = k[0], .ks = k[1], .cn = k[2], .mu = mu};
+			law_out out = {0};
+			cundall_force(&cd, kin[q].un, kin[q].vn, kin[q].dus, L->rec[c].t, &out);
+			double *f = L->f + 6 * c;
+			batch_force(&out, &g, q, f);
+			s->e_friction += out.e_friction;
+			s->e_viscous += out.fn_viscous * kin[q].vn * e->dt;
+			if (measure) {
+				s->e_elastic += cundall_energy(&cd, kin[q].un, L->rec[c].t);
+				love_add(s->love, &g, q, f);
+				s->count[4] += kin[q].un < 0;
+			}
 		}
 	}
 }

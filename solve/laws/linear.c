@@ -121,7 +121,7 @@ static inline void linear_force_one(const law_params *p, const law_pair *q, bond
 	}
 	for (int d = 0; d < 3; d++)
 		b->t[d] += k->dus[d];
-	double rc = fmin(q->ri, q->rj);
+	double rc = q->ri < q->rj ? q->ri : q->rj;
 	double area = p->alpha * DEM_PI * rc * rc;
 	double fe = c.kn * k->un;
 	double fs[3] = {c.ks * b->t[0], c.ks * b->t[1], c.ks * b->t[2]};
