@@ -8,16 +8,17 @@
  *   K_n = Ā E / d0                                            (Eq. 30)
  *   K_s = K_n / (2 (1 + ν))                                   (Eq. 36)
  * or constant K_n, K_s for every bond when "kn" and "ks" are given.
- * Normal viscous damping C_n = 2 ξ sqrt(m_ij K_n), ξ a fraction of the
- * critical damping of the pair (0 by default).
+ * Normal viscous damping C_n = 2 ξ sqrt(m_ij K_n), ξ ("xi") a fraction of
+ * the critical damping of the pair (0 by default).
  *
  * Intact bond: f_n = K_n u_n + C_n u̇_n (tension positive), F_s = K_s u_s with
  * u_s the accumulated shear displacement (kept in t). Brittle failure:
  *   tension  K_n u_n > σ_t Ā                                  (Eq. 41-42)
  *   shear    |K_s u_s| > τ Ā + μ1 max(-K_n u_n, 0)            (Eq. 41-42)
+ * ("tensile_strength" σ_t, "shear_strength" τ, "mu1", "mu2" as in onate)
  * (tension checked first). The stored energy is released as fracture
  * energy; from then on the bond is a Cundall–Strack contact (cundall.h) about
- * its reference length d0 with friction μ, its shear history starting from
+ * its reference length d0 with friction μ2, its shear history starting from
  * the elastic shear force at failure (clipped by the Coulomb limit).
  *
  * History: t = shear displacement (intact) or shear force (broken);
@@ -59,9 +60,9 @@ static law_params *linear_parse(cfg *c)
 	     cfg_number_or(c, "beta", &p->beta, 0.10, "", 0, 1) ||
 	     cfg_number(c, "tensile_strength", &p->sigma_t, "Pa", 0, INFINITY) ||
 	     cfg_number(c, "shear_strength", &p->tau, "Pa", 0, INFINITY) ||
-	     cfg_number_or(c, "strength_friction", &p->mu1, 0, "", 0, INFINITY) ||
-	     cfg_number_or(c, "friction", &p->mu, 0.5, "", 0, INFINITY) ||
-	     cfg_number_or(c, "damping", &p->xi, 0, "fraction of critical", 0, 1);
+	     cfg_number_or(c, "mu1", &p->mu1, 0, "", 0, INFINITY) ||
+	     cfg_number_or(c, "mu2", &p->mu, 0.5, "", 0, INFINITY) ||
+	     cfg_number_or(c, "xi", &p->xi, 0, "fraction of critical", 0, 1);
 	if (rc) {
 		free(p);
 		return NULL;

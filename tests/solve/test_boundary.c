@@ -24,7 +24,7 @@
 #define MATERIAL                                                                            \
 	"\"material\": {\"name\": \"elastic\", \"law\": \"linear\", \"density\": 2500, "    \
 	"\"E\": 1e10, \"nu\": 0.25, \"tensile_strength\": 1e12, \"shear_strength\": 1e12, " \
-	"\"friction\": 0.5}, \"damping\": {\"translational\": 0.3, \"rotational\": 0.3}, "  \
+	"\"mu2\": 0.5}, \"damping\": {\"translational\": 0.3, \"rotational\": 0.3}, "       \
 	"\"output\": {\"history_every\": 20}"
 
 static const char *apath;

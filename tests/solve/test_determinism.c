@@ -24,7 +24,7 @@
 static const char *case_text =
     "{\"assembly\": \"%s\", \"material\": {\"name\": \"demo\", \"law\": \"linear\", "
     "\"density\": 1700, \"E\": 10e9, \"nu\": 0.2, \"tensile_strength\": 5e6, "
-    "\"shear_strength\": 10e6, \"friction\": 0.5},"
+    "\"shear_strength\": 10e6, \"mu2\": 0.5},"
     "\"output\": {\"history_every\": 50, \"snapshot_every\": 2000, \"checkpoint_every\": 1500},"
     "\"loading\": [{\"axial\": {\"mode\": \"strain_rate\", \"rate\": 5}}],"
     "\"stop\": {\"strain_axial\": 0.0036}}";
