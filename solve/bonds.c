@@ -45,6 +45,34 @@ static int cmp_i32(const void *a, const void *b)
 	return (x > y) - (x < y);
 }
 
+/* The partners j > i of particle i within the bond range, sorted; returns
+ * their number, or -1 if there are more than cap. */
+static int partners(const engine *e, const cells *g, double range, size_t i, int32_t *js, int cap)
+{
+	const particles *P = &e->p;
+	int32_t near[27];
+	int nj = 0, nc = cells_around(g, g->cell[i], near);
+	for (int c = 0; c < nc; c++)
+		for (int32_t q = g->start[near[c]]; q < g->start[near[c] + 1]; q++) {
+			int32_t j = g->item[q];
+			if ((size_t)j <= i)
+				continue;
+			double d2 = 0;
+			for (int k = 0; k < 3; k++) {
+				double dx = P->x[3 * j + k] - P->x[3 * i + k];
+				d2 += dx * dx;
+			}
+			double reach = range * (P->r[i] + P->r[j]);
+			if (d2 <= reach * reach) {
+				if (nj == cap)
+					return -1;
+				js[nj++] = j;
+			}
+		}
+	qsort(js, (size_t)nj, sizeof *js, cmp_i32);
+	return nj;
+}
+
 int bonds_form(engine *e)
 {
 	particles *P = &e->p;
@@ -52,38 +80,25 @@ int bonds_form(engine *e)
 	cells g = {0};
 	cells_build(&g, P->x, P->n, range * 2 * e->r_max);
 	pairlist *L = &e->bonds;
-	size_t cap = 8 * P->n + 16;
-	L->rec = xmalloc(cap * sizeof *L->rec);
-	int32_t near[27], js[4096];
+	enum { CAP = 4096 };
+	int32_t js[CAP];
+	/* Count first, so the bond array is allocated once at its size. */
+	size_t count = 0;
 	for (size_t i = 0; i < P->n; i++) {
-		int nj = 0, nc = cells_around(&g, g.cell[i], near);
-		for (int c = 0; c < nc; c++)
-			for (int32_t q = g.start[near[c]]; q < g.start[near[c] + 1]; q++) {
-				int32_t j = g.item[q];
-				if ((size_t)j <= i)
-					continue;
-				double d2 = 0;
-				for (int k = 0; k < 3; k++) {
-					double dx = P->x[3 * j + k] - P->x[3 * i + k];
-					d2 += dx * dx;
-				}
-				double reach = range * (P->r[i] + P->r[j]);
-				if (d2 <= reach * reach) {
-					if (nj == (int)(sizeof js / sizeof js[0])) {
-						cells_free(&g);
-						return err_set(
-						    "particle %d has more than %d neighbours "
-						    "within "
-						    "the bond range: overlapping spheres?",
-						    P->orig[i], nj);
-					}
-					js[nj++] = j;
-				}
-			}
-		qsort(js, (size_t)nj, sizeof *js, cmp_i32);
+		int nj = partners(e, &g, range, i, js, CAP);
+		if (nj < 0) {
+			cells_free(&g);
+			return err_set(
+			    "particle %d has more than %d neighbours within the bond range: "
+			    "overlapping spheres?",
+			    P->orig[i], CAP);
+		}
+		count += (size_t)nj;
+	}
+	L->rec = xmalloc((count + 1) * sizeof *L->rec);
+	for (size_t i = 0; i < P->n; i++) {
+		int nj = partners(e, &g, range, i, js, CAP);
 		for (int q = 0; q < nj; q++) {
-			if (L->n == cap)
-				L->rec = xrealloc(L->rec, (cap *= 2) * sizeof *L->rec);
 			bond *b = &L->rec[L->n++];
 			memset(b, 0, sizeof *b);
 			b->i = (int32_t)i;
@@ -98,7 +113,6 @@ int bonds_form(engine *e)
 	}
 	cells_free(&g);
 	L->cap = L->n;
-	L->rec = xrealloc(L->rec, (L->n ? L->n : 1) * sizeof *L->rec);
 	L->f = xcalloc(6 * L->n + 1, sizeof *L->f);
 	L->off = xmalloc((P->n + 1) * sizeof *L->off);
 	L->ref = xmalloc((2 * L->n + 1) * sizeof *L->ref);

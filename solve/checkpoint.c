@@ -5,6 +5,7 @@
  * order is kept only to check that. Layout in share/doc/solve.md. Datasets
  * are extendible and overwritten in place, so repeated checkpoints do not
  * grow the file; the `complete` attribute is 0 while one is being written. */
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -79,8 +80,9 @@ static int scalars(engine *e, scalar *s)
 	return n;
 }
 
-/* Write or overwrite a dataset of rows x cols (cols 0: rank 1). */
-static int put(hid_t g, const char *name, hid_t type, const void *data, size_t rows, size_t cols)
+/* Open a dataset of rows x cols (cols 0: rank 1) for overwriting, creating
+ * it (chunked, extendible) the first time. */
+static hid_t open_put(hid_t g, const char *name, hid_t type, size_t rows, size_t cols)
 {
 	int rank = cols ? 2 : 1;
 	hsize_t dims[2] = {rows, cols}, maxd[2] = {H5S_UNLIMITED, cols};
@@ -100,45 +102,134 @@ static int put(hid_t g, const char *name, hid_t type, const void *data, size_t r
 		H5Pclose(pl);
 		H5Sclose(sp);
 	}
-	herr_t rc = d < 0 ? -1 : rows ? H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) : 0;
-	if (d >= 0)
-		H5Dclose(d);
+	if (d < 0)
+		err_set("%s: cannot write checkpoint dataset '%s' (disk full?)", h5_name(g), name);
+	return d;
+}
+
+/* Write or overwrite a whole dataset. */
+static int put(hid_t g, const char *name, hid_t type, const void *data, size_t rows, size_t cols)
+{
+	hid_t d = open_put(g, name, type, rows, cols);
+	if (d < 0)
+		return -1;
+	herr_t rc = rows ? H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) : 0;
+	H5Dclose(d);
 	if (rc < 0)
 		return err_set("%s: cannot write checkpoint dataset '%s' (disk full?)", h5_name(g),
 		               name);
 	return 0;
 }
 
-/* Bond-record fields of a pair list as flat arrays. */
+/* A field of the bond records (cols elements of size bytes at offset). */
+enum { T_F64, T_I32, T_U8 };
 typedef struct {
-	double *t, *h, *d0;
-	int32_t *i, *j;
-	uint8_t *state;
-} fields;
+	const char *name;
+	int type; /* T_* */
+	size_t offset, cols, size;
+} field;
 
-static void split(const pairlist *l, fields *f)
+static hid_t h5type(int t)
 {
-	size_t n = l->n + 1;
-	f->t = xmalloc(3 * n * sizeof *f->t);
-	f->h = xmalloc(LAW_NHIST * n * sizeof *f->h);
-	f->d0 = xmalloc(n * sizeof *f->d0);
-	f->i = xmalloc(n * sizeof *f->i);
-	f->j = xmalloc(n * sizeof *f->j);
-	f->state = xmalloc(n);
-	for (size_t b = 0; b < l->n; b++) {
-		memcpy(f->t + 3 * b, l->rec[b].t, 3 * sizeof *f->t);
-		memcpy(f->h + LAW_NHIST * b, l->rec[b].h, LAW_NHIST * sizeof *f->h);
-		f->d0[b] = l->rec[b].d0;
-		f->i[b] = l->rec[b].i;
-		f->j[b] = l->rec[b].j;
-		f->state[b] = l->rec[b].state;
-	}
+	return t == T_F64 ? H5T_NATIVE_DOUBLE : t == T_I32 ? H5T_NATIVE_INT32 : H5T_NATIVE_UINT8;
 }
 
-static void fields_free(fields *f)
+enum { PIECE = 16384 };
+
+/* Rows [at, at + n) of a dataset as a hyperslab. */
+static hid_t slab(hid_t d, size_t at, size_t n, size_t cols, hid_t *mem)
 {
-	free(f->t), free(f->h), free(f->d0), free(f->i), free(f->j), free(f->state);
-	memset(f, 0, sizeof *f);
+	hid_t fs = H5Dget_space(d);
+	hsize_t start[2] = {at, 0}, count[2] = {n, cols};
+	H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL);
+	*mem = H5Screate_simple(cols ? 2 : 1, count, NULL);
+	return fs;
+}
+
+/* Write one field of n records, a piece at a time (no copy of the whole). */
+static int put_field(hid_t g, const field *f, const bond *rec, size_t n)
+{
+	hid_t d = open_put(g, f->name, h5type(f->type), n, f->cols > 1 ? f->cols : 0);
+	if (d < 0)
+		return -1;
+	size_t row = f->cols * f->size;
+	unsigned char *buf = xmalloc(PIECE * row);
+	herr_t rc = 0;
+	for (size_t at = 0; rc >= 0 && at < n; at += PIECE) {
+		size_t m = n - at < PIECE ? n - at : PIECE;
+		for (size_t k = 0; k < m; k++)
+			memcpy(buf + k * row, (const unsigned char *)&rec[at + k] + f->offset, row);
+		hid_t mem, fs = slab(d, at, m, f->cols > 1 ? f->cols : 0, &mem);
+		rc = H5Dwrite(d, h5type(f->type), mem, fs, H5P_DEFAULT, buf);
+		H5Sclose(mem);
+		H5Sclose(fs);
+	}
+	free(buf);
+	H5Dclose(d);
+	if (rc < 0)
+		return err_set("%s: cannot write checkpoint dataset '%s' (disk full?)", h5_name(g),
+		               f->name);
+	return 0;
+}
+
+/* Read one field of n records (the dataset must have exactly n rows). */
+static int get_field(hid_t g, const field *f, bond *rec, size_t n)
+{
+	size_t cols = f->cols > 1 ? f->cols : 0;
+	if (!h5_exists(g, f->name))
+		return err_set("%s: checkpoint dataset '%s': missing", h5_name(g), f->name);
+	hid_t d = H5Dopen2(g, f->name, H5P_DEFAULT);
+	hid_t sp = H5Dget_space(d);
+	hsize_t dims[2] = {0, 0};
+	int rank = H5Sget_simple_extent_ndims(sp);
+	H5Sget_simple_extent_dims(sp, dims, NULL);
+	H5Sclose(sp);
+	if (rank != (cols ? 2 : 1) || dims[0] != n || (cols && dims[1] != cols)) {
+		H5Dclose(d);
+		return err_set("%s: checkpoint dataset '%s': wrong shape (expected %zu rows)",
+		               h5_name(g), f->name, n);
+	}
+	size_t row = f->cols * f->size;
+	unsigned char *buf = xmalloc(PIECE * row);
+	herr_t rc = 0;
+	for (size_t at = 0; rc >= 0 && at < n; at += PIECE) {
+		size_t m = n - at < PIECE ? n - at : PIECE;
+		hid_t mem, fs = slab(d, at, m, cols, &mem);
+		rc = H5Dread(d, h5type(f->type), mem, fs, H5P_DEFAULT, buf);
+		H5Sclose(mem);
+		H5Sclose(fs);
+		for (size_t k = 0; rc >= 0 && k < m; k++)
+			memcpy((unsigned char *)&rec[at + k] + f->offset, buf + k * row, row);
+	}
+	free(buf);
+	H5Dclose(d);
+	if (rc < 0)
+		return err_set("%s: checkpoint dataset '%s': unreadable", h5_name(g), f->name);
+	return 0;
+}
+
+#define FIELD(name, type, member, cols)                                                        \
+	{                                                                                      \
+		name, type, offsetof(bond, member), cols, sizeof(((bond *)0)->member) / (cols) \
+	}
+
+static const field bond_fields[] = {
+    FIELD("bond_t", T_F64, t, 3),
+    FIELD("bond_h", T_F64, h, LAW_NHIST),
+    FIELD("bond_state", T_U8, state, 1),
+};
+static const field contact_fields[] = {
+    FIELD("contact_i", T_I32, i, 1),
+    FIELD("contact_j", T_I32, j, 1),
+    FIELD("contact_t", T_F64, t, 3),
+};
+
+static int put_fields(hid_t g, const field *f, int nf, const pairlist *l)
+{
+	for (int k = 0; k < nf; k++)
+		if (put_field(g, &f[k], l->rec, l->n))
+			return -1;
+	return 0;
 }
 
 static int write_platens(hid_t g, const engine *e)
@@ -178,9 +269,6 @@ int checkpoint_write(engine *e, hid_t file)
 		              : h5_attr_i64(g, s[k].name, (int64_t)*s[k].z);
 	const particles *P = &e->p;
 	size_t n = P->n;
-	fields b, c;
-	split(&e->bonds, &b);
-	split(&e->contacts, &c);
 	rc = rc || put(g, "orig", H5T_NATIVE_INT32, P->orig, n, 0) ||
 	     put(g, "x", H5T_NATIVE_DOUBLE, P->x, n, 3) ||
 	     put(g, "v", H5T_NATIVE_DOUBLE, P->v, n, 3) ||
@@ -189,17 +277,11 @@ int checkpoint_write(engine *e, hid_t file)
 	     put(g, "flag", H5T_NATIVE_UINT8, P->flag, n, 0) ||
 	     put(g, "surface_particle", H5T_NATIVE_INT32, e->surf.idx, e->surf.n, 0) ||
 	     put(g, "surface_area", H5T_NATIVE_DOUBLE, e->surf.area, e->surf.n, 0) ||
-	     put(g, "bond_t", H5T_NATIVE_DOUBLE, b.t, e->bonds.n, 3) ||
-	     put(g, "bond_h", H5T_NATIVE_DOUBLE, b.h, e->bonds.n, LAW_NHIST) ||
-	     put(g, "bond_state", H5T_NATIVE_UINT8, b.state, e->bonds.n, 0) ||
+	     put_fields(g, bond_fields, 3, &e->bonds) ||
 	     put(g, "bond_force", H5T_NATIVE_DOUBLE, e->bonds.f, e->bonds.n, 6) ||
-	     put(g, "contact_i", H5T_NATIVE_INT32, c.i, e->contacts.n, 0) ||
-	     put(g, "contact_j", H5T_NATIVE_INT32, c.j, e->contacts.n, 0) ||
-	     put(g, "contact_t", H5T_NATIVE_DOUBLE, c.t, e->contacts.n, 3) ||
+	     put_fields(g, contact_fields, 3, &e->contacts) ||
 	     put(g, "contact_k", H5T_NATIVE_DOUBLE, e->contacts.k, e->contacts.n, 3) ||
 	     write_platens(g, e) || h5_attr_i64(g, "complete", 1);
-	fields_free(&b);
-	fields_free(&c);
 	H5Gclose(g);
 	if (!rc && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
 		rc = err_set("%s: cannot flush the checkpoint (disk full?)", h5_name(file));
@@ -227,27 +309,18 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 		L->k = xrealloc(L->k, 3 * nc * sizeof *L->k);
 		L->ref = xrealloc(L->ref, 2 * nc * sizeof *L->ref);
 	}
-	int32_t *i = xmalloc((nc + 1) * sizeof *i), *j = xmalloc((nc + 1) * sizeof *j);
-	double *t = xmalloc((3 * nc + 1) * sizeof *t);
-	int rc = get(g, "contact_i", H5T_NATIVE_INT32, i, nc, 0) ||
-	         get(g, "contact_j", H5T_NATIVE_INT32, j, nc, 0) ||
-	         get(g, "contact_t", H5T_NATIVE_DOUBLE, t, nc, 3) ||
-	         get(g, "contact_k", H5T_NATIVE_DOUBLE, L->k, nc, 3);
+	memset(L->rec, 0, nc * sizeof *L->rec);
+	int rc = get(g, "contact_k", H5T_NATIVE_DOUBLE, L->k, nc, 3);
+	for (int k = 0; !rc && k < 3; k++)
+		rc = get_field(g, &contact_fields[k], L->rec, nc);
 	for (size_t q = 0; !rc && q < nc; q++) {
-		if (i[q] < 0 || j[q] < 0 || (size_t)i[q] >= e->p.n || (size_t)j[q] >= e->p.n) {
-			rc = err_set("%s: checkpoint contact %zu: particle out of range",
-			             h5_name(g), q);
-			break;
-		}
 		bond *b = &L->rec[q];
-		memset(b, 0, sizeof *b);
-		b->i = i[q];
-		b->j = j[q];
-		b->d0 = e->p.r[i[q]] + e->p.r[j[q]];
+		if (b->i < 0 || b->j < 0 || (size_t)b->i >= e->p.n || (size_t)b->j >= e->p.n)
+			return err_set("%s: checkpoint contact %zu: particle out of range",
+			               h5_name(g), q);
+		b->d0 = e->p.r[b->i] + e->p.r[b->j];
 		b->state = BOND_BROKEN_TENSION;
-		memcpy(b->t, t + 3 * q, sizeof b->t);
 	}
-	free(i), free(j), free(t);
 	if (rc)
 		return -1;
 	L->n = nc;
@@ -365,26 +438,16 @@ int checkpoint_read(engine *e, const char *path)
 	free(orig);
 	if (!rc && (e->stage < 0 || e->stage >= e->cs->nstages))
 		rc = err_set("%s: checkpoint stage %d out of range", path, e->stage);
-	fields b = {0};
-	if (!rc)
-		split(&e->bonds, &b);
 	rc = rc || get(g, "x", H5T_NATIVE_DOUBLE, P->x, n, 3) ||
 	     get(g, "v", H5T_NATIVE_DOUBLE, P->v, n, 3) ||
 	     get(g, "w", H5T_NATIVE_DOUBLE, P->w, n, 3) ||
 	     get(g, "x_ref", H5T_NATIVE_DOUBLE, P->x_ref, n, 3) ||
 	     get(g, "flag", H5T_NATIVE_UINT8, P->flag, n, 0) ||
-	     get(g, "bond_t", H5T_NATIVE_DOUBLE, b.t, nb, 3) ||
-	     get(g, "bond_h", H5T_NATIVE_DOUBLE, b.h, nb, LAW_NHIST) ||
-	     get(g, "bond_state", H5T_NATIVE_UINT8, b.state, nb, 0) ||
+	     get_field(g, &bond_fields[0], e->bonds.rec, nb) ||
+	     get_field(g, &bond_fields[1], e->bonds.rec, nb) ||
+	     get_field(g, &bond_fields[2], e->bonds.rec, nb) ||
 	     get(g, "bond_force", H5T_NATIVE_DOUBLE, e->bonds.f, nb, 6) || read_surface(g, e) ||
 	     read_pairs(g, e, e->contacts.n) || read_platens(g, e);
-	for (size_t q = 0; !rc && q < nb; q++) {
-		bond *r = &e->bonds.rec[q];
-		memcpy(r->t, b.t + 3 * q, sizeof r->t);
-		memcpy(r->h, b.h + LAW_NHIST * q, sizeof r->h);
-		r->state = b.state[q];
-	}
-	fields_free(&b);
 	H5Gclose(g);
 	H5Fclose(f);
 	return rc ? -1 : 0;
