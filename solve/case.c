@@ -157,6 +157,16 @@ static int parse_numerics(cfg *c, dem_case *k)
 	if (cfg_integer_or(c, "threads", &threads, 0, 0, 1024))
 		return -1;
 	k->threads = (int)threads;
+	if (cfg_has(c, "axis")) {
+		double *a;
+		if (cfg_numbers(c, "axis", &a, NULL, 3, "", -INFINITY, INFINITY))
+			return -1;
+		memcpy(k->axis, a, sizeof k->axis);
+		free(a);
+		if (k->axis[0] == 0 && k->axis[1] == 0 && k->axis[2] == 0)
+			return cfg_error(c, "axis",
+			                 "value [0, 0, 0]: expected a non-zero direction");
+	}
 	return 0;
 }
 

@@ -55,6 +55,7 @@ typedef struct {
 	char *config;                 /* the whole case with the material resolved (JSON) */
 	char *test;                   /* label, e.g. "ucs" */
 	int threads;                  /* 0: OpenMP's default */
+	double axis[3];               /* loading axis; zero: the assembly geometry's axis */
 	double dt;                    /* s, fixed time step; 0: from the critical estimate */
 	double safety;                /* fraction of the critical time step */
 	double alpha_t, alpha_r;      /* global non-viscous damping (Eq. 39-40) */

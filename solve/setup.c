@@ -107,13 +107,17 @@ static int load_particles(engine *e, const dem_assembly *a)
 	return 0;
 }
 
+/* The loading axis (the case's, else the geometry's, else z) through the
+ * geometry's centre. */
 static void specimen_frame(engine *e, const dem_assembly *a)
 {
-	const dem_geometry *g = &a->geom;
-	double l = v3_norm(g->axis);
+	const double *ax = e->cs->axis;
+	if (ax[0] == 0 && ax[1] == 0 && ax[2] == 0)
+		ax = a->geom.axis;
+	double l = v3_norm(ax);
 	for (int k = 0; k < 3; k++) {
-		e->axis[k] = l > 0 ? g->axis[k] / l : k == 2;
-		e->center[k] = g->center[k];
+		e->axis[k] = l > 0 ? ax[k] / l : k == 2;
+		e->center[k] = a->geom.center[k];
 	}
 }
 

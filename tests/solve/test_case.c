@@ -93,6 +93,9 @@ int main(void)
 	expect("{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE
 	       ", \"stop\": {\"steps\": 10}, \"time_step\": {\"safety\": 1.5}}",
 	       "bad.json: key 'time_step.safety': value 1.5: expected a number in [0, 1]");
+	expect("{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE
+	       ", \"stop\": {\"steps\": 10}, \"axis\": [0, 0, 0]}",
+	       "bad.json: key 'axis': value [0, 0, 0]: expected a non-zero direction");
 	expect("{\"assembly\": 3, " MAT ", " ONE_STAGE ", \"stop\": {\"steps\": 10}}",
 	       "bad.json: key 'assembly': value 3: expected a string");
 	expect("{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE ", \"stop\": {\"steps\": 10}",
@@ -102,6 +105,7 @@ int main(void)
 	const char *path = harness_file(
 	    "good.json",
 	    "{\"assembly\": \"sub/a.h5\", " MAT ", \"test\": \"triaxial\", \"threads\": 3,"
+	    "\"axis\": [1, 0, 0],"
 	    "\"time_step\": {\"safety\": 0.5}, \"damping\": {\"translational\": 0.2},"
 	    "\"output\": {\"history_every\": 7, \"snapshot_strains\": [0.001, 0.002]},"
 	    "\"loading\": [{\"name\": \"confine\", \"ramp\": 0.01, \"axial\": {\"mode\": "
@@ -117,6 +121,7 @@ int main(void)
 	CHECK_CONTAINS(c.assembly, "/sub/a.h5");
 	CHECK_STR(c.test, "triaxial");
 	CHECK(c.threads == 3 && c.safety == 0.5 && c.alpha_t == 0.2 && c.alpha_r == 0.1);
+	CHECK(c.axis[0] == 1 && c.axis[1] == 0 && c.axis[2] == 0);
 	CHECK(c.history_every == 7 && c.nsnapshot_strains == 2 && c.snapshot_strains[1] == 0.002);
 	CHECK(c.nstages == 2);
 	CHECK_STR(c.stages[0].name, "confine");
