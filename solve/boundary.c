@@ -76,7 +76,6 @@ void boundary_begin_stage(engine *e)
 	e->stage_stress0 = engine_stress(e);
 	e->stage_pressure0 = e->pressure;
 	e->stage_peak = -INFINITY;
-	e->stage_peak_strain = 0;
 	if (s->axial == AXIAL_LAYERS && !e->layers_selected)
 		select_layers(e, s->thickness > 0 ? s->thickness : 2 * e->r_mean);
 	particles *P = &e->p;
@@ -180,15 +179,9 @@ static int rule_holds(const engine *e, const stop_rule *r, double strain0, doubl
 
 void boundary_track_peak(engine *e)
 {
-	double stress = engine_stress(e), strain = engine_strain(e);
-	if (stress > e->peak) {
-		e->peak = stress;
-		e->peak_strain = strain;
-	}
-	if (stress > e->stage_peak) {
-		e->stage_peak = stress;
-		e->stage_peak_strain = strain;
-	}
+	double stress = engine_stress(e);
+	e->peak = stress > e->peak ? stress : e->peak;
+	e->stage_peak = stress > e->stage_peak ? stress : e->stage_peak;
 }
 
 int boundary_check(engine *e, char *why, size_t n)

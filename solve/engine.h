@@ -57,14 +57,11 @@ typedef struct {
 } platen_contact;
 
 typedef struct {
-	int active;         /* platens in contact with the specimen this stage */
-	double z[2];        /* m, axial position (bottom, top) from the centre */
-	double z0[2];       /* at the start of the run */
-	double vel[2];      /* m/s along the axis, this step (t + dt/2) */
-	double vel_prev[2]; /* previous step */
-	double load[2];     /* N, compressive force from the specimen */
-	double ksum[2];     /* N/m, normal stiffness of touching contacts */
-	int ntouch[2];
+	int active;      /* platens in contact with the specimen this stage */
+	double z[2];     /* m, axial position (bottom, top) from the centre */
+	double vel[2];   /* m/s along the axis, this step (t + dt/2) */
+	double load[2];  /* N, compressive force from the specimen */
+	double ksum[2];  /* N/m, normal stiffness of touching contacts */
 	double z_ref[2]; /* at the last neighbour rebuild */
 	size_t ncand[2], cap[2];
 	platen_contact *pc[2], *pc_old[2];
@@ -164,7 +161,6 @@ struct engine {
 	double center[3], axis[3], e1[3], e2[3];
 	double height0; /* m, platen gap at the start */
 	double area0;   /* m^2, cross-section for the axial stress */
-	double volume0; /* m^3 */
 	double r_mean, r_max;
 	double skin;
 
@@ -178,8 +174,8 @@ struct engine {
 	int64_t stage_step; /* step at which the stage started */
 	double stage_t;
 	double stage_strain0, stage_stress0, stage_pressure0;
-	double stage_peak, stage_peak_strain;
-	double peak, peak_strain;
+	double stage_peak;
+	double peak;
 	double pressure;     /* Pa, currently applied */
 	int layers_selected; /* end layers chosen (at the first layers stage) */
 	int drop_armed;      /* quasi-static reached: the stress-drop rule may fire */

@@ -31,8 +31,8 @@ void platens_init(engine *e)
 		lo = fmin(lo, z - P->r[i]);
 		hi = fmax(hi, z + P->r[i]);
 	}
-	pl->z[0] = pl->z0[0] = lo;
-	pl->z[1] = pl->z0[1] = hi;
+	pl->z[0] = lo;
+	pl->z[1] = hi;
 	for (int k = 0; k < 2; k++) {
 		pl->cap[k] = 64;
 		pl->pc[k] = xmalloc(pl->cap[k] * sizeof *pl->pc[k]);

@@ -165,7 +165,6 @@ static void geometry_sizes(engine *e, const dem_assembly *a)
 		e->area0 = g->volume / g->height;
 	else
 		e->area0 = DEM_PI * e->surf.radius * e->surf.radius;
-	e->volume0 = g->volume > 0 ? g->volume : e->area0 * e->height0;
 }
 
 static void scratch_alloc(engine *e)

@@ -237,7 +237,6 @@ void engine_step(engine *e, int measure)
 	for (int k = 0; k < 2; k++) {
 		e->pl.load[k] = e->ld.layers ? ps->layer[k] : ps->load[k];
 		e->pl.ksum[k] = ps->ksum[k];
-		e->pl.ntouch[k] = (int)ps->ntouch[k];
 	}
 	if (measure) {
 		measurement *m = &e->meas;
