@@ -21,6 +21,7 @@ const run_column history_columns[] = {
     {"stress_axial", "Pa"},
     {"stress_bottom", "Pa"},
     {"stress_top", "Pa"},
+    {"force_axial", "N"},
     {"strain_radial", ""},
     {"strain_volumetric", ""},
     {"pressure", "Pa"},
@@ -77,6 +78,7 @@ void history_row(const engine *e, double rate, double *row)
 	              0.5 * (m->stress[0] + m->stress[1]),
 	              m->stress[0],
 	              m->stress[1],
+	              0.5 * (m->stress[0] + m->stress[1]) * e->area0,
 	              m->strain_radial,
 	              ev,
 	              m->pressure,
@@ -104,5 +106,7 @@ void history_row(const engine *e, double rate, double *row)
 	              e->psum.ntouch[0] + e->psum.ntouch[1],
 	              (double)(m->stage + 1),
 	              rate};
+	_Static_assert(sizeof v / sizeof *v == sizeof history_columns / sizeof *history_columns,
+	               "one value per history column");
 	memcpy(row, v, sizeof v);
 }

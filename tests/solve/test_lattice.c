@@ -63,6 +63,9 @@ int main(void)
 	        strain, stress / strain, e_want, szz, lw_want, ke / el);
 	CHECK_REL(strain, 1e-4, 0.02);
 	CHECK_REL(stress / strain, e_want, 1e-6);
+	/* The load itself: n² columns of n - 1 bonds in series. */
+	CHECK_REL(run_column_data(&run, "force_axial")[last], n * n * kn * strain * n * d / (n - 1),
+	          1e-6);
 	CHECK_REL(szz, lw_want, 1e-6);
 	CHECK_NEAR(sxx, 0, 1e-9 * szz);
 	CHECK_NEAR(run_column_data(&run, "strain_radial")[last], 0, 1e-12);
