@@ -46,11 +46,12 @@ int main(void)
 	expect("{\"assembly\": \"a.h5\", \"material\": {\"name\": \"m\", \"law\": \"linear\", "
 	       "\"density\": -5}, " ONE_STAGE "}",
 	       "bad.json: key 'material.density': value -5: expected a positive number (kg/m^3)");
-	expect(
-	    "{\"assembly\": \"a.h5\", \"material\": {\"name\": \"m\", \"law\": \"elastoplastic\", "
-	    "\"density\": 5}, " ONE_STAGE "}",
-	    "bad.json: key 'material.law': unknown law \"elastoplastic\": expected one of "
-	    "'linear'");
+	/* The list of laws grows with the library: its start is checked. */
+	static const char unknown_law[] = "bad.json: key 'material.law': unknown law "
+	                                  "\"elastoplastic\": expected one of 'linear', ";
+	const char *law = error_of("{\"assembly\": \"a.h5\", \"material\": {\"name\": \"m\", "
+	                           "\"law\": \"elastoplastic\", \"density\": 5}, " ONE_STAGE "}");
+	CHECK(strncmp(law, unknown_law, strlen(unknown_law)) == 0);
 	expect("{\"assembly\": \"a.h5\", \"material\": {\"name\": \"m\", \"law\": \"linear\", "
 	       "\"density\": 2000, \"E\": 1e9, \"nu\": 0.7, \"tensile_strength\": 1e6, "
 	       "\"shear_strength\": 2e6}, " ONE_STAGE "}",
