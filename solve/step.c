@@ -130,7 +130,7 @@ static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 						s->love[3 * p + q] += ri * er[p] * R * er[q];
 		}
 	}
-	double mass = P->m[i], inertia = 1 / P->inv_i[i];
+	double mass = P->m[i], inertia = 0.4 * mass * ri * ri;
 	s->ke += 0.5 * (mass * dot3(v, vn) + inertia * dot3(w, wn));
 	s->ke_new += 0.5 * (mass * dot3(vn, vn) + inertia * dot3(wn, wn));
 	s->e_work += 0.5 * dt *
