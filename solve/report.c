@@ -50,6 +50,7 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 		for (int k = 0; k < TM_TOTAL; k++)
 			fprintf(stderr, "  %-12s %9.3f s %6.1f %%\n", phase_names[k], e->tm[k],
 			        wall > 0 ? 100 * e->tm[k] / wall : 0);
+		fprintf(stderr, "  (setup before the loop: %.3f s)\n", e->tm[TM_SETUP]);
 	}
 	if (!o->report)
 		return;
@@ -66,9 +67,9 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	        "\", \"particles\": %zu, \"bonds\": %zu, \"threads\": %d, "
 	        "\"steps\": %.0f, \"wall\": %.6g, \"particle_steps_per_s\": %.6g, "
 	        "\"ns_per_bond\": %.6g, \"state_bytes\": %zu, \"peak_rss_bytes\": %ld, "
-	        "\"rebuilds\": %" PRId64 ", \"dt\": %.6g, \"phases\": {",
+	        "\"rebuilds\": %" PRId64 ", \"dt\": %.6g, \"setup\": %.6g, \"phases\": {",
 	        e->p.n, e->bonds.n, e->team, steps, wall, rate, ns_bond, state, rss, e->rebuilds,
-	        e->dt);
+	        e->dt, e->tm[TM_SETUP]);
 	for (int k = 0; k < TM_TOTAL; k++)
 		fprintf(f, "%s\"%s\": %.6g", k ? ", " : "", phase_names[k], e->tm[k]);
 	fprintf(f, "}}\n");

@@ -132,6 +132,7 @@ enum { END_FAILED, END_INTERRUPTED, END_FINISHED };
 static int finish(loop_state *L, const char *status, int code, int how)
 {
 	engine *e = L->e;
+	double t0 = timer_now();
 	int rc = 0;
 	if (how == END_FINISHED)
 		rc = snapshot(L);
@@ -146,6 +147,7 @@ static int finish(loop_state *L, const char *status, int code, int how)
 	if (run_finish(L->w, status))
 		fatal(NULL);
 	snprintf(L->status, sizeof L->status, "%s", status);
+	e->tm[TM_OUTPUT] += timer_now() - t0;
 	return code;
 }
 
@@ -229,6 +231,7 @@ static int run_loop(engine *e, run_writer *w, const run_opts *o)
 	sigaction(SIGTERM, &sa, &old_term);
 	if (e->step == 0 && snapshot(&L))
 		fatal(NULL);
+	e->tm[TM_OUTPUT] += timer_now() - L.wall0;
 	L.last_snapshot_step = e->step;
 	int code = loop(&L);
 	sigaction(SIGINT, &old_int, NULL);
@@ -249,7 +252,7 @@ int run_engine(engine *e, const dem_assembly *a, const run_opts *o)
 	prov_free(&prov);
 	if (!w || output_bonds(e, w))
 		fatal(NULL);
-	e->tm[TM_OUTPUT] += timer_now() - t0;
+	e->tm[TM_SETUP] += timer_now() - t0;
 	return run_loop(e, w, o);
 }
 
@@ -259,7 +262,7 @@ int run_case(const dem_case *cs, const dem_assembly *a, const run_opts *o)
 	double t0 = timer_now();
 	if (engine_setup(&e, cs, a, o->quiet))
 		fatal("%s: %s", cs->source, err_msg());
-	e.tm[TM_NEIGHBOUR] += timer_now() - t0;
+	e.tm[TM_SETUP] += timer_now() - t0;
 	int code = run_engine(&e, a, o);
 	engine_free(&e);
 	return code;
@@ -319,7 +322,7 @@ int run_restart(const run_opts *o, int threads)
 	if (!o->quiet)
 		fprintf(stderr, "%s: %s: continuing from step %" PRId64 " (t = %g s, stage %d)\n",
 		        err_program_name(), o->restart, e.step, e.t, e.stage + 1);
-	e.tm[TM_NEIGHBOUR] += timer_now() - t0;
+	e.tm[TM_SETUP] += timer_now() - t0;
 	run_free(&r);
 	int code = run_loop(&e, w, o);
 	engine_free(&e);
