@@ -9,6 +9,7 @@
 
 #include "lib/afile.h"
 #include "lib/assembly.h"
+#include "lib/depfile.h"
 #include "lib/err.h"
 #include "lib/timer.h"
 #include "pack/options.h"
@@ -143,7 +144,9 @@ int main(int argc, char **argv)
 	free(config);
 	if (assembly_write(o.output, &a))
 		fatal(NULL);
-	if (o.export_path && textio_write(o.export_path, a.x, a.r, a.n)) {
+	const char *inputs[] = {o.config, o.geometry, o.grading, o.import_path};
+	if ((o.export_path && textio_write(o.export_path, a.x, a.r, a.n)) ||
+	    (o.depfile && depfile_write(o.depfile, o.output, inputs, 4))) {
 		unlink(o.output);
 		fatal(NULL);
 	}

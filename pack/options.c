@@ -5,6 +5,7 @@
 
 #include "lib/cli.h"
 #include "lib/err.h"
+#include "lib/path.h"
 #include "pack/options.h"
 
 #define LEN 1e-9, 1e3 /* bounds of a length (m) */
@@ -67,6 +68,11 @@ static int table(pack_options *o, cli_opt *t)
 	     "JSON file of settings (keys: these option names with _ for -); options given on "
 	     "the command line win",
 	     0, 0},
+	    {"depfile", CLI_STR, &o->depfile, "FILE", "",
+	     "write a make rule to FILE: OUTPUT depends on the configuration, geometry, grading "
+	     "and "
+	     "import files read",
+	     0, 0},
 	    {"quiet", CLI_FLAG, &o->quiet, NULL, "", "do not print the summary", 0, 0},
 	};
 	_Static_assert(sizeof opts / sizeof opts[0] <= NOPT, "option table too small");
@@ -103,6 +109,15 @@ static void json_key(const char *name, char *key, size_t n)
 	for (char *p = key; *p; p++)
 		if (*p == '-')
 			*p = '_';
+}
+
+/* File names in the --config file are relative to its directory. */
+static void resolve_names(pack_options *o, const char *path)
+{
+	const char **names[] = {&o->geometry, &o->grading, &o->import_path};
+	for (int k = 0; k < 3; k++)
+		if (*names[k])
+			*names[k] = o->resolved[k] = path_beside(path, *names[k]);
 }
 
 /* Settings from the --config file, checked against the same bounds as the
@@ -144,7 +159,10 @@ static int apply_file(pack_options *o, const cli_opt *t, int n, const char *path
 		if (rc)
 			return -1;
 	}
-	return cfg_check_unused(c);
+	if (cfg_check_unused(c))
+		return -1;
+	resolve_names(o, path);
+	return 0;
 }
 
 void options_parse(pack_options *o, int argc, char **argv)
@@ -189,7 +207,12 @@ void options_parse(pack_options *o, int argc, char **argv)
 	o->output = pos[0];
 }
 
-void options_free(pack_options *o) { cfg_free(o->file); }
+void options_free(pack_options *o)
+{
+	cfg_free(o->file);
+	for (int k = 0; k < 3; k++)
+		free(o->resolved[k]);
+}
 
 int options_geometry(const pack_options *o, geometry_spec *g)
 {

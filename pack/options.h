@@ -16,10 +16,11 @@ typedef struct {
 	long count;
 	long seed, threads, cell;
 	double beta, keep, band;
-	const char *export_path, *import_path, *config;
+	const char *export_path, *import_path, *config, *depfile;
 	int quiet;
 	cfg *file;           /* the --config file (owns its strings) */
 	cfg *inline_grading; /* its "grading" object, if given inline */
+	char *resolved[3];   /* its geometry, grading, import names beside it */
 	char *output;
 } pack_options;
 

@@ -1,11 +1,11 @@
 #include <cjson/cJSON.h>
-#include <libgen.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "lib/err.h"
+#include "lib/path.h"
 #include "solve/case.h"
 
 static const char *const axial_words[] = {"none",   "hold",  "velocity", "strain_rate",
@@ -212,7 +212,7 @@ static int parse_body(cfg *c, dem_case *k)
 
 /* The material: a file name (relative to the case) or an inline object.
  * Sets *json to the material object as JSON text. */
-static int parse_material(cfg *c, const char *dir, dem_case *k, char **json)
+static int parse_material(cfg *c, const char *source, dem_case *k, char **json)
 {
 	cfg *m = cfg_object_opt(c, "material");
 	if (m) {
@@ -226,12 +226,8 @@ static int parse_material(cfg *c, const char *dir, dem_case *k, char **json)
 	const char *name;
 	if (cfg_string(c, "material", &name))
 		return -1;
-	char path[4096];
-	if (name[0] == '/')
-		snprintf(path, sizeof path, "%s", name);
-	else
-		snprintf(path, sizeof path, "%s/%s", dir, name);
-	cfg *mf = cfg_load(path);
+	k->material_file = path_beside(source, name);
+	cfg *mf = cfg_load(k->material_file);
 	if (!mf)
 		return -1;
 	int rc = material_parse(mf, &k->mat) || cfg_check_unused(mf);
@@ -262,25 +258,18 @@ static char *resolved_config(const char *text, const char *material_json, const 
 	return copy;
 }
 
-static int load(cfg *c, const char *dir, const char *assembly, dem_case *k)
+static int load(cfg *c, const char *source, const char *assembly, dem_case *k)
 {
 	char *mjson = NULL;
 	const char *apath = NULL;
-	int rc = parse_material(c, dir, k, &mjson);
+	int rc = parse_material(c, source, k, &mjson);
 	if (!rc && !assembly)
 		rc = cfg_string(c, "assembly", &apath);
 	else if (!rc && cfg_has(c, "assembly"))
 		rc = cfg_string(c, "assembly", &apath);
 	rc = rc || parse_body(c, k) || cfg_check_unused(c);
 	if (!rc) {
-		char path[4096];
-		if (assembly)
-			snprintf(path, sizeof path, "%s", assembly);
-		else if (apath[0] == '/')
-			snprintf(path, sizeof path, "%s", apath);
-		else
-			snprintf(path, sizeof path, "%s/%s", dir, apath);
-		k->assembly = xstrdup(path);
+		k->assembly = assembly ? xstrdup(assembly) : path_beside(source, apath);
 		char *text = cfg_text(c);
 		k->config = resolved_config(text, mjson, k->assembly);
 		free(text);
@@ -295,11 +284,8 @@ int case_load(const char *path, const char *assembly, dem_case *k)
 	cfg *c = cfg_load(path);
 	if (!c)
 		return -1;
-	char buf[4096];
-	snprintf(buf, sizeof buf, "%s", path);
-	k->dir = xstrdup(dirname(buf));
 	k->source = xstrdup(path);
-	int rc = load(c, k->dir, assembly, k);
+	int rc = load(c, path, assembly, k);
 	cfg_free(c);
 	if (rc)
 		case_free(k);
@@ -312,9 +298,8 @@ int case_parse_text(const char *text, const char *source, dem_case *k)
 	cfg *c = cfg_parse(text, source);
 	if (!c)
 		return -1;
-	k->dir = xstrdup(".");
 	k->source = xstrdup(source);
-	int rc = load(c, ".", NULL, k);
+	int rc = load(c, "./", NULL, k);
 	cfg_free(c);
 	if (rc)
 		case_free(k);
@@ -324,7 +309,7 @@ int case_parse_text(const char *text, const char *source, dem_case *k)
 void case_free(dem_case *k)
 {
 	material_free(&k->mat);
-	free(k->source), free(k->dir), free(k->assembly), free(k->config), free(k->test);
+	free(k->source), free(k->material_file), free(k->assembly), free(k->config), free(k->test);
 	free(k->snapshot_strains), free(k->stages);
 	memset(k, 0, sizeof *k);
 }

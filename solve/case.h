@@ -48,9 +48,9 @@ typedef struct {
 } stage;
 
 typedef struct {
-	char *source;   /* the case file's name (for messages) */
-	char *dir;      /* directory of the case file (paths are relative to it) */
-	char *assembly; /* path of the assembly file */
+	char *source;        /* the case file's name (for messages) */
+	char *material_file; /* the material file read, NULL if inline */
+	char *assembly;      /* path of the assembly file */
 	material mat;
 	char *config;                 /* the whole case with the material resolved (JSON) */
 	char *test;                   /* label, e.g. "ucs" */

@@ -4,6 +4,7 @@
 #include "lib/afile.h"
 #include "lib/assembly.h"
 #include "lib/cli.h"
+#include "lib/depfile.h"
 #include "lib/err.h"
 #include "lib/progress.h"
 #include "solve/case.h"
@@ -11,7 +12,8 @@
 
 int main(int argc, char **argv)
 {
-	const char *assembly = NULL, *output = "run.h5", *restart = NULL, *report = NULL;
+	const char *assembly = NULL, *output = "run.h5", *restart = NULL, *report = NULL,
+	           *depfile = NULL;
 	long threads = 0, max_steps = 0;
 	double max_wall = 0;
 	int quiet = 0, show_progress = 0;
@@ -32,6 +34,10 @@ int main(int argc, char **argv)
 	     "stop after S seconds of wall time, checkpointed and restartable (0: no limit)", 0,
 	     1e12},
 	    {"report", CLI_STR, &report, "FILE", "", "write the run report as JSON to FILE", 0, 0},
+	    {"depfile", CLI_STR, &depfile, "FILE", "",
+	     "write a make rule to FILE: the output depends on the case, material and assembly "
+	     "files read",
+	     0, 0},
 	    {"progress", CLI_FLAG, &show_progress, NULL, "",
 	     "show the progress line even when stderr is not a terminal", 0, 0},
 	    {"quiet", CLI_FLAG, &quiet, NULL, "", "print nothing but errors", 0, 0},
@@ -72,10 +78,9 @@ int main(int argc, char **argv)
 		if (npos)
 			fatal("--restart continues the run stored in %s: give no case file",
 			      restart);
-		if (assembly || strcmp(output, "run.h5") != 0)
-			fatal("--restart continues in %s with its own assembly: --assembly and "
-			      "--output "
-			      "do not apply",
+		if (assembly || depfile || strcmp(output, "run.h5") != 0)
+			fatal("--restart continues in %s with its own assembly: --assembly, "
+			      "--output and --depfile do not apply",
 			      restart);
 		o.output = restart;
 		return run_restart(&o, (int)threads);
@@ -90,6 +95,9 @@ int main(int argc, char **argv)
 		fatal(NULL);
 	if (threads > 0)
 		cs.threads = (int)threads;
+	const char *inputs[] = {pos[0], cs.material_file, cs.assembly};
+	if (depfile && depfile_write(depfile, output, inputs, 3))
+		fatal(NULL);
 	dem_assembly a;
 	if (assembly_read(cs.assembly, &a))
 		fatal(NULL);

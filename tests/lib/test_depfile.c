@@ -1,0 +1,55 @@
+/* Names beside the file that gives them, and make dependency files: the
+ * exact text make reads, escapes, and the empty rule per prerequisite. */
+#include <stdlib.h>
+#include <unistd.h>
+
+#include "lib/depfile.h"
+#include "lib/path.h"
+#include "tests/check.h"
+
+static void beside(const char *file, const char *name, const char *want)
+{
+	char *got = path_beside(file, name);
+	CHECK_STR(got, want);
+	free(got);
+}
+
+static char *slurp(const char *path)
+{
+	FILE *f = fopen(path, "r");
+	if (!f)
+		return NULL;
+	char *buf = calloc(1, 4096);
+	fread(buf, 1, 4095, f);
+	fclose(f);
+	return buf;
+}
+
+int main(void)
+{
+	beside("share/cases/ucs.json", "../materials/cement.json",
+	       "share/cases/../materials/cement.json");
+	beside("ucs.json", "cement.json", "cement.json");
+	beside("/a/b/ucs.json", "/m/cement.json", "/m/cement.json");
+	beside("/ucs.json", "cement.json", "/cement.json");
+
+	char dir[] = "/tmp/dem-depfile-XXXXXX";
+	CHECK(mkdtemp(dir) != NULL);
+	char path[256];
+	snprintf(path, sizeof path, "%s/run.d", dir);
+	const char *deps[] = {"case.json", NULL, "my mat$.json"};
+	CHECK(depfile_write(path, "runs/a/run.h5", deps, 3) == 0);
+	char *text = slurp(path);
+	CHECK(text != NULL);
+	if (text)
+		CHECK_STR(text, "runs/a/run.h5: case.json my\\ mat$$.json\n\ncase.json:\n\n"
+		                "my\\ mat$$.json:\n");
+	free(text);
+	snprintf(path, sizeof path, "%s/run.d.tmp", dir);
+	CHECK(access(path, F_OK) != 0);
+	snprintf(path, sizeof path, "%s/run.d", dir);
+	unlink(path);
+	CHECK(depfile_write("/nonexistent-dir/run.d", "x", deps, 1) != 0);
+	rmdir(dir);
+	return check_done();
+}
