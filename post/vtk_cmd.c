@@ -116,9 +116,10 @@ static void run_files(const char *file, const char *dir, long every)
 		for (size_t k = 0; k < n; k++)
 			all[nall++] = entries[p][k];
 	}
+	/* run.pvd last: its presence says the series is complete. */
+	write_geometry(dir, &r.assembly.geom);
 	char *run_pvd = out_path(dir, "run.pvd");
 	pvd_write(run_pvd, all, nall);
-	write_geometry(dir, &r.assembly.geom);
 	printf("wrote %zu snapshots (%zu particles, %zu bonds, %zu cracks) to %s; open %s\n",
 	       nframes, r.assembly.n, r.bonds.n, r.ncracks, dir, run_pvd);
 	for (size_t k = 0; k < nall; k++)
