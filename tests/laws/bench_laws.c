@@ -58,7 +58,9 @@ int main(void)
 		int st[4] = {0};
 		for (int q = 0; q < NB; q++)
 			st[b[q].state]++;
-		printf("%-12s %6.1f ns/bond  (intact %d, damaged %d, broken %d/%d; %.1f s)\n",
+		printf("{\"bench\": \"laws\", \"figure\": \"ns_per_bond\", \"law\": \"%s\", "
+		       "\"value\": %.1f, \"intact\": %d, \"damaged\": %d, \"broken_tension\": %d, "
+		       "\"broken_shear\": %d, \"wall\": %.2f}\n",
 		       L->name, work / ((double)NB * NSTEP) * 1e9, st[0], st[1], st[2], st[3],
 		       timer_now() - t0);
 		L->free(p);
