@@ -39,40 +39,6 @@ void pairlist_csr(pairlist *l, size_t np)
 	l->off[0] = 0;
 }
 
-static int cmp_i32(const void *a, const void *b)
-{
-	int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
-	return (x > y) - (x < y);
-}
-
-/* The partners j > i of particle i within the bond range, sorted; returns
- * their number, or -1 if there are more than cap. */
-static int partners(const engine *e, const cells *g, double range, size_t i, int32_t *js, int cap)
-{
-	const particles *P = &e->p;
-	int32_t near[27];
-	int nj = 0, nc = cells_around(g, g->cell[i], near);
-	for (int c = 0; c < nc; c++)
-		for (int32_t q = g->start[near[c]]; q < g->start[near[c] + 1]; q++) {
-			int32_t j = g->item[q];
-			if ((size_t)j <= i)
-				continue;
-			double d2 = 0;
-			for (int k = 0; k < 3; k++) {
-				double dx = P->x[3 * j + k] - P->x[3 * i + k];
-				d2 += dx * dx;
-			}
-			double reach = range * (P->r[i] + P->r[j]);
-			if (d2 <= reach * reach) {
-				if (nj == cap)
-					return -1;
-				js[nj++] = j;
-			}
-		}
-	qsort(js, (size_t)nj, sizeof *js, cmp_i32);
-	return nj;
-}
-
 int bonds_form(engine *e)
 {
 	particles *P = &e->p;
@@ -85,7 +51,7 @@ int bonds_form(engine *e)
 	/* Count first, so the bond array is allocated once at its size. */
 	size_t count = 0;
 	for (size_t i = 0; i < P->n; i++) {
-		int nj = partners(e, &g, range, i, js, CAP);
+		int nj = cells_partners(&g, P->x, P->r, i, range, 0, js, CAP);
 		if (nj < 0) {
 			cells_free(&g);
 			return err_set(
@@ -97,7 +63,7 @@ int bonds_form(engine *e)
 	}
 	L->rec = xmalloc((count + 1) * sizeof *L->rec);
 	for (size_t i = 0; i < P->n; i++) {
-		int nj = partners(e, &g, range, i, js, CAP);
+		int nj = cells_partners(&g, P->x, P->r, i, range, 0, js, CAP);
 		for (int q = 0; q < nj; q++) {
 			bond *b = &L->rec[L->n++];
 			memset(b, 0, sizeof *b);

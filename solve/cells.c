@@ -73,6 +73,38 @@ int cells_around(const cells *g, int32_t c, int32_t out[27])
 	return m;
 }
 
+static int cmp_i32(const void *a, const void *b)
+{
+	int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+	return (x > y) - (x < y);
+}
+
+int cells_partners(const cells *g, const double *x, const double *r, size_t i, double scale,
+                   double add, int32_t *js, int cap)
+{
+	int32_t near[27];
+	int nj = 0, nc = cells_around(g, g->cell[i], near);
+	for (int c = 0; c < nc; c++)
+		for (int32_t q = g->start[near[c]]; q < g->start[near[c] + 1]; q++) {
+			int32_t j = g->item[q];
+			if ((size_t)j <= i)
+				continue;
+			double d2 = 0;
+			for (int k = 0; k < 3; k++) {
+				double dx = x[3 * j + k] - x[3 * i + k];
+				d2 += dx * dx;
+			}
+			double reach = scale * (r[i] + r[j]) + add;
+			if (d2 <= reach * reach) {
+				if (nj == cap)
+					return -1;
+				js[nj++] = j;
+			}
+		}
+	qsort(js, (size_t)nj, sizeof *js, cmp_i32);
+	return nj;
+}
+
 void cells_free(cells *g)
 {
 	free(g->start), free(g->item), free(g->cell), free(g->fill);

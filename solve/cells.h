@@ -26,4 +26,10 @@ void cells_free(cells *g);
 /* The cells around cell c (itself included, at most 27); returns how many. */
 int cells_around(const cells *g, int32_t c, int32_t out[27]);
 
+/* The particles j > i whose centres lie within scale (r_i + r_j) + add of
+ * particle i's (x, r: every particle's centre and radius), in increasing
+ * order; returns their number, or -1 if there are more than cap. */
+int cells_partners(const cells *g, const double *x, const double *r, size_t i, double scale,
+                   double add, int32_t *js, int cap);
+
 #endif

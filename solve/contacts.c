@@ -88,39 +88,19 @@ void contacts_rebuild(engine *e)
 	reserve(L, 0, P->n);
 	cells *g = &e->grid;
 	cells_build(g, P->x, P->n, 2 * e->r_max + e->skin);
-	int32_t near[27];
+	enum { CAP = 4096 };
+	int32_t js[CAP];
 	size_t o = 0;
 	for (size_t i = 0; i < P->n; i++) {
-		int nc = cells_around(g, g->cell[i], near);
-		size_t first = L->n;
-		for (int c = 0; c < nc; c++)
-			for (int32_t q = g->start[near[c]]; q < g->start[near[c] + 1]; q++) {
-				int32_t j = g->item[q];
-				if ((size_t)j <= i)
-					continue;
-				double d2 = 0;
-				for (int k = 0; k < 3; k++) {
-					double dx = P->x[3 * j + k] - P->x[3 * i + k];
-					d2 += dx * dx;
-				}
-				double reach = P->r[i] + P->r[j] + e->skin;
-				if (d2 < reach * reach && !bonded(e, (int32_t)i, j)) {
-					reserve(L, L->n + 1, P->n);
-					L->rec[L->n++].j = j;
-				}
-			}
-		/* Sort this particle's partners, then fill the records in order. */
-		size_t m = L->n - first;
-		for (size_t a = 1; a < m; a++) {
-			int32_t j = L->rec[first + a].j;
-			size_t q = a;
-			for (; q > 0 && L->rec[first + q - 1].j > j; q--)
-				L->rec[first + q].j = L->rec[first + q - 1].j;
-			L->rec[first + q].j = j;
-		}
-		L->n = first;
-		for (size_t a = 0; a < m; a++)
-			add_contact(e, L, old, &o, (int32_t)i, L->rec[first + a].j);
+		int nj = cells_partners(g, P->x, P->r, i, 1, e->skin, js, CAP);
+		if (nj < 0)
+			fatal(
+			    "particle %d has more than %d neighbours within its reach: overlapping "
+			    "spheres?",
+			    P->orig[i], CAP);
+		for (int q = 0; q < nj; q++)
+			if (!bonded(e, (int32_t)i, js[q]))
+				add_contact(e, L, old, &o, (int32_t)i, js[q]);
 	}
 	pairlist_csr(L, P->n);
 	size_t nb = nblocks(L->n);
