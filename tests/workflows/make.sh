@@ -3,6 +3,7 @@
 # solve and post, not pack, when a material file changes; everything when the
 # specimen or the seed changes. Two cases run side by side with make -j2, and
 # a failing solve leaves no run.h5 that make would take as complete.
+# A run may take another case's file and a sphere count of its own.
 # Usage: make.sh BIN_DIR SOURCE_DIR TMP_DIR
 set -eu
 bin=$1 src=$2 tmp=$3
@@ -30,7 +31,8 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 # The programs a make run started, in order, e.g. "pack solve post post post".
 ran() {
 	make -C "$src/workflows" BIN="$bin" SHARE="$tmp/share" OUT="$tmp/runs" THREADS=1 \
-		CASES="a b bad" a.specimen=small b.specimen=small bad.specimen=small "$@" \
+		CASES="a b bad c" a.specimen=small b.specimen=small bad.specimen=small \
+		c.specimen=small c.case=a c.count=300 "$@" \
 		> "$tmp/log" 2>&1 || return 1
 	grep -o "^$bin/[a-z]*" "$tmp/log" | sed "s|^$bin/||" | tr '\n' ' ' | sed 's/ $//'
 }
@@ -59,6 +61,11 @@ expect "pack solve post post post" a
 # Side by side: both complete, each with its own files.
 ran -j2 a b > /dev/null || { cat "$tmp/log" >&2; fail "make -j2 a b failed"; }
 [ -s "$tmp/runs/b/vtk/run.pvd" ] || fail "make -j2: runs/b incomplete"
+
+# A run of another run's case with a sphere count of its own.
+expect "pack solve post post post" c COUNT=900
+grep -q -- "--count 300 " "$tmp/runs/c/pack.args" || fail "c.count not used"
+grep -q "cases/a.json" "$tmp/runs/c/run.d" || fail "c.case not used"
 
 # A case solve rejects: make fails, names the key, leaves no run.h5.
 if ran bad > /dev/null; then fail "make bad succeeded"; fi
