@@ -73,9 +73,12 @@ static void scale_cell(jam_cell *c, psd *d, double s)
 static void fill(spheres *S, const jam_cell *c, const psd *d, const dem_geometry *g,
                  const surface *surf, const zones *z, const packer_params *params, packer_stats *st)
 {
+	double t0 = timer_now();
 	S->n = 0;
 	tile_fill(S, c, surf, z, g->bbox_min, g->bbox_max, params->keep);
 	st->tiled = S->n;
+	double t1 = timer_now();
+	st->time_tile += t1 - t0;
 	double rmean = 0, rmax = 0;
 	for (size_t i = 0; i < c->n; i++) {
 		rmean += c->r[i] / (double)c->n;
@@ -89,7 +92,11 @@ static void fill(spheres *S, const jam_cell *c, const psd *d, const dem_geometry
 	band_relax(S, surf, g, &bp, &br);
 	st->band_mobile = br.mobile;
 	st->band_iter = br.iter;
+	double t2 = timer_now();
+	st->time_band += t2 - t1;
 	st->inserted = voids_fill(S, surf, g, d, params->seed);
+	double t3 = timer_now();
+	st->time_voids += t3 - t2;
 	bp.max_iter = REFILL_ITER;
 	bp.shrink_after = 0;
 	band_relax(S, surf, g, &bp, &br);
@@ -97,7 +104,10 @@ static void fill(spheres *S, const jam_cell *c, const psd *d, const dem_geometry
 	st->shrunk = br.shrunk;
 	st->shrink_mean = br.shrink_mean;
 	st->shrink_max = br.shrink_max;
+	double t4 = timer_now();
+	st->time_refill += t4 - t3;
 	st->pruned = prune_overlaps(S, surf, bp.width + 2 * rmax + bp.skin, PRUNE_LIMIT);
+	st->time_prune += timer_now() - t4;
 	progress_end(&prog);
 }
 
@@ -151,4 +161,8 @@ void packer_print(const packer_stats *st, FILE *out)
 	        "                   %zu left smaller than drawn, by %.2f %% on average, %.1f "
 	        "%% at most\n",
 	        st->shrunk, 100 * st->shrink_mean, 100 * st->shrink_max);
+	fprintf(out,
+	        "  fill time        tile %.3f, wall band %.3f, voids %.3f, settling %.3f, "
+	        "pruning %.3f s\n",
+	        st->time_tile, st->time_band, st->time_voids, st->time_refill, st->time_prune);
 }

@@ -30,6 +30,9 @@ typedef struct {
 	size_t shrunk;                  /* wall-band spheres left smaller than drawn */
 	double shrink_mean, shrink_max; /* their relative radius reduction */
 	double time_cell, time_fill;
+	/* s, of time_fill (summed over the passes): tiling, wall band, voids,
+	 * their settling, pruning */
+	double time_tile, time_band, time_voids, time_refill, time_prune;
 } packer_stats;
 
 /* The scale on the sizes of d that makes about `count` spheres fill a

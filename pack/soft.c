@@ -60,6 +60,7 @@ void soft_free(soft_system *s)
 	free(s->wall_margin);
 	free(s->wall_count);
 	free(s->wall_pool);
+	free(s->wall_dist);
 	memset(s, 0, sizeof *s);
 }
 
@@ -102,25 +103,31 @@ typedef struct {
 	size_t n, cap;
 } nbuf;
 
-static void nbuf_push(nbuf *b, int32_t j, uint8_t shift)
+/* Room for m more neighbours. */
+static void nbuf_reserve(nbuf *b, size_t m)
 {
-	if (b->n == b->cap) {
-		b->cap = b->cap ? 2 * b->cap : 4096;
-		b->j = xrealloc(b->j, b->cap * sizeof *b->j);
-		b->shift = xrealloc(b->shift, b->cap);
-	}
-	b->j[b->n] = j;
-	b->shift[b->n++] = shift;
+	if (b->n + m <= b->cap)
+		return;
+	b->cap = 2 * (b->n + m) > 4096 ? 2 * (b->n + m) : 4096;
+	b->j = xrealloc(b->j, b->cap * sizeof *b->j);
+	b->shift = xrealloc(b->shift, b->cap);
 }
 
-/* Append the neighbours of sphere i within r_i + r_j + skin, with the
- * periodic image each was seen through, to b; xs holds (x, y, z, r) of
- * the spheres in cell order. Returns their number. */
-static size_t scan_neighbours(const soft_system *s, const cells *g, const double *xs, size_t i,
-                              double rmax, nbuf *b)
+/* The candidates of one grid cell: every sphere in the cells around it,
+ * moved to its image next to the cell (or left where it is in a periodic
+ * box too short for three cells a side, where each pair takes its minimum
+ * image), with the image code; arrays by coordinate for a tight test loop. */
+typedef struct {
+	double *x[4]; /* x, y, z, r */
+	int32_t *j;
+	uint8_t *code;
+	size_t n, cap;
+} cands;
+
+static void cands_gather(const soft_system *s, const cells *g, const double *xs, const int c0[3],
+                         int small, cands *c)
 {
-	int c0[3], lo[3], hi[3];
-	cells_coord(g, s->x + 3 * i, c0);
+	int lo[3], hi[3];
 	for (int k = 0; k < 3; k++) {
 		int span = g->dim[k] >= 3 || !periodic(s) ? 1 : 0;
 		lo[k] = c0[k] - span;
@@ -130,65 +137,99 @@ static size_t scan_neighbours(const soft_system *s, const cells *g, const double
 			hi[k] = hi[k] >= g->dim[k] ? g->dim[k] - 1 : hi[k];
 		}
 	}
-	int small = periodic(s) && (g->dim[0] < 3 || g->dim[1] < 3 || g->dim[2] < 3);
-	const double *xi = s->x + 3 * i, reach = s->r[i] + s->skin;
-	/* A cell farther from x_i than r_i + skin + r_max holds no neighbour:
-	 * for the small spheres of a wide distribution most corner cells. */
-	double far2 = (reach + rmax) * (reach + rmax), gap[3][3];
-	for (int k = 0; k < 3; k++)
-		for (int o = 0; o < 3; o++) {
-			double a = g->lo[k] + (c0[k] + o - 1) * g->edge[k], e = a + g->edge[k];
-			double t = xi[k] < a ? a - xi[k] : xi[k] > e ? xi[k] - e : 0;
-			gap[k][o] = t * t;
-		}
-	size_t count = 0;
-	for (int cz = lo[2]; cz <= hi[2]; cz++) {
-		int wz = cz < 0 ? cz + g->dim[2] : cz >= g->dim[2] ? cz - g->dim[2] : cz;
-		for (int cy = lo[1]; cy <= hi[1]; cy++) {
-			int wy = cy < 0 ? cy + g->dim[1] : cy >= g->dim[1] ? cy - g->dim[1] : cy;
+	c->n = 0;
+	for (int cz = lo[2]; cz <= hi[2]; cz++)
+		for (int cy = lo[1]; cy <= hi[1]; cy++)
 			for (int cx = lo[0]; cx <= hi[0]; cx++) {
-				int wx = cx < 0            ? cx + g->dim[0]
-				         : cx >= g->dim[0] ? cx - g->dim[0]
-				                           : cx;
-				int code = 13;
+				int cc[3] = {cx, cy, cz}, code = 13, w[3];
 				double sh[3] = {0, 0, 0};
-				if (periodic(s) && !small) {
-					int o[3] = {cx - wx, cy - wy, cz - wz};
-					for (int k = 0; k < 3; k++) {
-						int sk = o[k] < 0 ? -1 : o[k] > 0 ? 1 : 0;
-						code += (k == 0 ? 1 : k == 1 ? 3 : 9) * sk;
-						sh[k] = sk * s->box[k];
+				for (int k = 0; k < 3; k++) {
+					w[k] = cc[k] < 0            ? cc[k] + g->dim[k]
+					       : cc[k] >= g->dim[k] ? cc[k] - g->dim[k]
+					                            : cc[k];
+					int o = cc[k] < w[k] ? -1 : cc[k] > w[k] ? 1 : 0;
+					if (periodic(s) && !small) {
+						code += (k == 0 ? 1 : k == 1 ? 3 : 9) * o;
+						sh[k] = o * s->box[k];
 					}
 				}
-				if (!small && gap[0][cx - c0[0] + 1] + gap[1][cy - c0[1] + 1] +
-				                      gap[2][cz - c0[2] + 1] >=
-				                  far2)
-					continue;
-				size_t id = ((size_t)wz * (size_t)g->dim[1] + (size_t)wy) *
+				size_t id = ((size_t)w[2] * (size_t)g->dim[1] + (size_t)w[1]) *
 				                (size_t)g->dim[0] +
-				            (size_t)wx;
-				for (size_t q = g->start[id]; q < g->start[id + 1]; q++) {
-					const double *xj = xs + 4 * q;
-					double d[3] = {xj[0] + sh[0] - xi[0], xj[1] + sh[1] - xi[1],
-					               xj[2] + sh[2] - xi[2]};
-					double cut = reach + xj[3];
-					if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= cut * cut)
-						continue;
-					size_t j = (size_t)g->item[q];
-					if (j == i)
-						continue;
-					int sc = code;
-					if (small) {
-						soft_delta(s, i, j, d);
-						sc = image_code(s, i, j, d);
-						if (v3_dot(d, d) >= cut * cut)
-							continue;
-					}
-					nbuf_push(b, (int32_t)j, (uint8_t)sc);
-					count++;
+				            (size_t)w[0];
+				size_t m = g->start[id + 1] - g->start[id];
+				if (c->n + m > c->cap) {
+					c->cap = 2 * (c->n + m);
+					for (int k = 0; k < 4; k++)
+						c->x[k] =
+						    xrealloc(c->x[k], c->cap * sizeof *c->x[k]);
+					c->j = xrealloc(c->j, c->cap * sizeof *c->j);
+					c->code = xrealloc(c->code, c->cap);
+				}
+				for (size_t q = g->start[id]; q < g->start[id + 1]; q++, c->n++) {
+					for (int k = 0; k < 3; k++)
+						c->x[k][c->n] = xs[4 * q + k] + sh[k];
+					c->x[3][c->n] = xs[4 * q + 3];
+					c->j[c->n] = g->item[q];
+					c->code[c->n] = (uint8_t)code;
 				}
 			}
+}
+
+static void cands_free(cands *c)
+{
+	for (int k = 0; k < 4; k++)
+		free(c->x[k]);
+	free(c->j);
+	free(c->code);
+}
+
+/* Append the neighbours of sphere i within r_i + r_j + skin among the
+ * candidates of its cell to b; returns their number. A loop without
+ * branches tests the distances and one more appends the hits (the
+ * compiler vectorises the first); a periodic box too short for three
+ * cells a side takes the minimum image of each pair instead. */
+static size_t scan_neighbours(const soft_system *s, const cands *c, size_t i, int small, nbuf *b)
+{
+	const double *xi = s->x + 3 * i, reach = s->r[i] + s->skin;
+	size_t count = 0;
+	if (small) {
+		for (size_t k = 0; k < c->n; k++) {
+			size_t j = (size_t)c->j[k];
+			double d[3], cut = reach + c->x[3][k];
+			soft_delta(s, i, j, d);
+			if (j == i || v3_dot(d, d) >= cut * cut)
+				continue;
+			nbuf_reserve(b, 1);
+			b->j[b->n] = (int32_t)j;
+			b->shift[b->n++] = (uint8_t)image_code(s, i, j, d);
+			count++;
 		}
+		return count;
+	}
+	enum { BLOCK = 256 };
+	const double *restrict cx = c->x[0], *restrict cy = c->x[1], *restrict cz = c->x[2],
+	                       *restrict cr = c->x[3];
+	double x0 = xi[0], y0 = xi[1], z0 = xi[2];
+	for (size_t k0 = 0; k0 < c->n; k0 += BLOCK) {
+		size_t m = c->n - k0 < BLOCK ? c->n - k0 : BLOCK;
+		unsigned char hit[BLOCK];
+		for (size_t k = 0; k < m; k++) {
+			double dx = cx[k0 + k] - x0, dy = cy[k0 + k] - y0, dz = cz[k0 + k] - z0,
+			       cut = reach + cr[k0 + k];
+			hit[k] = dx * dx + dy * dy + dz * dz < cut * cut;
+		}
+		nbuf_reserve(b, m);
+		int32_t *restrict oj = b->j + b->n;
+		uint8_t *restrict oc = b->shift + b->n;
+		size_t o = 0;
+		for (size_t k = 0; k < m; k++) {
+			int32_t j = c->j[k0 + k];
+			oj[o] = j;
+			oc[o] = c->code[k0 + k];
+			o += hit[k] & ((size_t)j != i);
+		}
+		b->n += o;
+		count += o;
 	}
 	return count;
 }
@@ -205,11 +246,12 @@ static double triangle_distance(const soft_system *s, int32_t k, const double p[
 }
 
 /* The boundary triangles sphere i may touch before the next build. A query
- * at x_q lists the triangles within r + skin + WALL_MARGIN (the WALL_MAX
- * closest, the margin shrinking to what they cover if there are more);
- * the list serves every build while the sphere stays within the margin of
- * x_q. Without a list, the depth bound s_q - |x - x_q| tells whether the
- * sphere can reach the boundary at all. */
+ * at x_q lists the triangles within r + skin + WALL_MARGIN, nearest first
+ * with their distances from x_q (the WALL_MAX nearest, the margin
+ * shrinking to what they cover if there are more); the list serves every
+ * build while the sphere stays within the margin of x_q. Without a list,
+ * the depth bound s_q - |x - x_q| tells whether the sphere can reach the
+ * boundary at all. */
 static void wall_update(soft_system *s, size_t i)
 {
 	double d[3];
@@ -229,26 +271,56 @@ static void wall_update(soft_system *s, size_t i)
 	double dist[CAP], q[3], margin = WALL_MARGIN * s->skin;
 	size_t m = surface_near(s->wall, s->x + 3 * i, reach + margin, buf, CAP);
 	m = m < CAP ? m : CAP;
-	for (size_t k = 0; k < m; k++)
-		dist[k] = triangle_distance(s, buf[k], s->x + 3 * i, q);
-	while (m > WALL_MAX) { /* drop the farthest; the list covers less */
-		size_t far = 0;
-		for (size_t k = 1; k < m; k++)
-			far = dist[k] > dist[far] ? k : far;
-		margin = fmin(margin, dist[far] - reach);
-		buf[far] = buf[m - 1];
-		dist[far] = dist[m - 1];
-		m--;
+	for (size_t k = 0; k < m; k++) { /* insertion sort by distance, then index */
+		int32_t t = buf[k];
+		double dk = triangle_distance(s, t, s->x + 3 * i, q);
+		size_t at = k;
+		for (; at > 0 && (dist[at - 1] > dk || (dist[at - 1] == dk && buf[at - 1] > t));
+		     at--) {
+			dist[at] = dist[at - 1];
+			buf[at] = buf[at - 1];
+		}
+		dist[at] = dk;
+		buf[at] = t;
+	}
+	if (m > WALL_MAX) { /* keep the nearest; the list covers less */
+		margin = fmin(margin, dist[WALL_MAX] - reach);
+		m = WALL_MAX;
 	}
 	memcpy(s->wall_pool + i * WALL_MAX, buf, m * sizeof *buf);
+	memcpy(s->wall_dist + i * WALL_MAX, dist, m * sizeof *dist);
 	s->wall_count[i] = (uint8_t)m;
 	s->wall_margin[i] = margin;
 }
 
+/* The closest point q of the boundary to sphere i among its listed
+ * triangles, if closer than its radius; returns that distance (or
+ * INFINITY). A triangle listed at distance d_k from x_q is at least
+ * d_k - |x - x_q| from x (the distance is 1-Lipschitz), so the ascending
+ * list is cut as soon as that bound reaches the best found or the radius. */
+static double wall_contact(const soft_system *s, size_t i, double q[3])
+{
+	const int32_t *tl = s->wall_pool + i * WALL_MAX;
+	const double *dl = s->wall_dist + i * WALL_MAX, *xi = s->x + 3 * i;
+	double d[3], qk[3], best = s->r[i];
+	v3_sub(d, xi, s->wall_xq + 3 * i);
+	double moved = v3_norm(d), found = INFINITY;
+	for (int k = 0; k < s->wall_count[i] && dl[k] - moved < best; k++) {
+		double dk = triangle_distance(s, tl[k], xi, qk);
+		if (dk < best) {
+			best = found = dk;
+			v3_copy(q, qk);
+		}
+	}
+	return found;
+}
+
 void soft_rebuild(soft_system *s)
 {
-	if (s->wall && !s->wall_pool)
+	if (s->wall && !s->wall_pool) {
 		s->wall_pool = xmalloc(s->nmobile * WALL_MAX * sizeof *s->wall_pool + 1);
+		s->wall_dist = xmalloc(s->nmobile * WALL_MAX * sizeof *s->wall_dist + 1);
+	}
 	for (int code = 0; code < 27; code++)
 		for (int k = 0; k < 3; k++)
 			s->shift[code][k] = s->box[k] * (double)(code /
@@ -272,24 +344,47 @@ void soft_rebuild(soft_system *s)
 		v3_copy(xs + 4 * q, s->x + 3 * i);
 		xs[4 * q + 3] = s->r[i];
 	}
-	/* Neighbours by chunks of spheres into their own buffers, then laid
-	 * out in sphere order: the same list whatever the thread count. */
-	enum { CHUNK = 512 };
-	size_t nchunk = (n + CHUNK - 1) / CHUNK;
+	/* Neighbours by chunks of grid cells into their own buffers, then
+	 * laid out in sphere order: the same list whatever the thread count. */
+	int small = periodic(s) && (g.dim[0] < 3 || g.dim[1] < 3 || g.dim[2] < 3);
+	size_t ncell = (size_t)g.dim[0] * (size_t)g.dim[1] * (size_t)g.dim[2];
+	enum { CHUNK = 64 };
+	size_t nchunk = (ncell + CHUNK - 1) / CHUNK;
 	nbuf *buf = xcalloc(nchunk + 1, sizeof *buf);
-#pragma omp parallel for schedule(dynamic, 1) if (n >= PAR_MIN)
-	for (size_t c = 0; c < nchunk; c++) {
-		size_t end = (c + 1) * CHUNK < n ? (c + 1) * CHUNK : n;
-		for (size_t i = c * CHUNK; i < end; i++) {
-			s->nb_start[i + 1] =
-			    is_mobile(s, i) ? scan_neighbours(s, &g, xs, i, rmax, &buf[c]) : 0;
-			if (s->wall && is_mobile(s, i))
-				wall_update(s, i);
+	size_t *at = xmalloc(n * sizeof *at + 1);
+	int32_t *chunk_of = xmalloc(n * sizeof *chunk_of + 1);
+#pragma omp parallel if (n >= PAR_MIN)
+	{
+		cands c = {0};
+#pragma omp for schedule(dynamic, 1)
+		for (size_t ch = 0; ch < nchunk; ch++) {
+			size_t end = (ch + 1) * CHUNK < ncell ? (ch + 1) * CHUNK : ncell;
+			for (size_t id = ch * CHUNK; id < end; id++) {
+				int mobile = 0;
+				for (size_t q = g.start[id]; q < g.start[id + 1]; q++)
+					mobile |= is_mobile(s, (size_t)g.item[q]);
+				if (!mobile)
+					continue;
+				int c0[3] = {(int)(id % (size_t)g.dim[0]),
+				             (int)(id / (size_t)g.dim[0] % (size_t)g.dim[1]),
+				             (int)(id / (size_t)g.dim[0] / (size_t)g.dim[1])};
+				cands_gather(s, &g, xs, c0, small, &c);
+				for (size_t q = g.start[id]; q < g.start[id + 1]; q++) {
+					size_t i = (size_t)g.item[q];
+					if (!is_mobile(s, i))
+						continue;
+					at[i] = buf[ch].n;
+					chunk_of[i] = (int32_t)ch;
+					s->nb_start[i + 1] =
+					    scan_neighbours(s, &c, i, small, &buf[ch]);
+				}
+			}
 		}
+		cands_free(&c);
 	}
 	s->nb_start[0] = 0;
 	for (size_t i = 0; i < n; i++)
-		s->nb_start[i + 1] += s->nb_start[i];
+		s->nb_start[i + 1] = s->nb_start[i] + (is_mobile(s, i) ? s->nb_start[i + 1] : 0);
 	if (s->nb_start[n] > s->nb_cap) {
 		s->nb_cap = s->nb_start[n] + s->nb_start[n] / 4;
 		free(s->nb);
@@ -297,17 +392,23 @@ void soft_rebuild(soft_system *s)
 		s->nb = xmalloc(s->nb_cap * sizeof *s->nb);
 		s->nb_shift = xmalloc(s->nb_cap);
 	}
-#pragma omp parallel for schedule(static) if (n >= PAR_MIN)
-	for (size_t c = 0; c < nchunk; c++) {
-		size_t at = s->nb_start[c * CHUNK];
-		if (buf[c].n) {
-			memcpy(s->nb + at, buf[c].j, buf[c].n * sizeof *buf[c].j);
-			memcpy(s->nb_shift + at, buf[c].shift, buf[c].n);
-		}
-		free(buf[c].j);
-		free(buf[c].shift);
+	size_t nm = s->nmobile;
+#pragma omp parallel for schedule(dynamic, 256) if (n >= PAR_MIN)
+	for (size_t i = 0; i < nm; i++) {
+		const nbuf *b = &buf[chunk_of[i]];
+		size_t m = s->nb_start[i + 1] - s->nb_start[i];
+		memcpy(s->nb + s->nb_start[i], b->j + at[i], m * sizeof *b->j);
+		memcpy(s->nb_shift + s->nb_start[i], b->shift + at[i], m);
+		if (s->wall)
+			wall_update(s, i);
+	}
+	for (size_t ch = 0; ch < nchunk; ch++) {
+		free(buf[ch].j);
+		free(buf[ch].shift);
 	}
 	free(buf);
+	free(at);
+	free(chunk_of);
 	free(xs);
 	cells_free(&g);
 	memcpy(s->x_built, s->x, 3 * n * sizeof *s->x);
@@ -320,22 +421,48 @@ void soft_rebuild(soft_system *s)
 	s->builds++;
 }
 
+/* The list stays valid while no pair has closed its gap by the skin: a
+ * pair's centres approach by at most the sum of their displacements, so
+ * the two largest displacements bound every pair (twice the largest, as
+ * often used, rebuilds early when one sphere outruns the rest). Both are
+ * exact maxima, whatever the order they are taken in. */
 void soft_update(soft_system *s, int force)
 {
 	if (force || s->stale) {
 		soft_rebuild(s);
 		return;
 	}
-	double move = 0, grow = 0;
-	size_t n = s->nmobile;
-#pragma omp parallel for reduction(max : move, grow) schedule(static) if (n >= PAR_MIN)
-	for (size_t i = 0; i < n; i++) {
-		double d[3];
-		v3_sub(d, s->x + 3 * i, s->x_built + 3 * i);
-		move = fmax(move, v3_dot(d, d));
-		grow = fmax(grow, s->r[i] - s->r_built[i]);
+	enum { BLOCK = 4096 };
+	size_t n = s->nmobile, nblock = (n + BLOCK - 1) / BLOCK;
+	double part[3 * 64], *p = nblock <= 64 ? part : xmalloc(3 * nblock * sizeof *p);
+#pragma omp parallel for schedule(static) if (n >= PAR_MIN)
+	for (size_t b = 0; b < nblock; b++) {
+		double m1 = 0, m2 = 0, grow = 0;
+		size_t end = (b + 1) * BLOCK < n ? (b + 1) * BLOCK : n;
+		for (size_t i = b * BLOCK; i < end; i++) {
+			double d[3];
+			v3_sub(d, s->x + 3 * i, s->x_built + 3 * i);
+			double m = v3_dot(d, d);
+			m2 = m > m2 ? (m > m1 ? m1 : m) : m2;
+			m1 = m > m1 ? m : m1;
+			grow = fmax(grow, s->r[i] - s->r_built[i]);
+		}
+		p[3 * b] = m1;
+		p[3 * b + 1] = m2;
+		p[3 * b + 2] = grow;
 	}
-	if (2 * sqrt(move) + 2 * grow > s->skin)
+	double m1 = 0, m2 = 0, grow = 0;
+	for (size_t b = 0; b < nblock; b++) {
+		for (int k = 0; k < 2; k++) {
+			double m = p[3 * b + k];
+			m2 = m > m2 ? (m > m1 ? m1 : m) : m2;
+			m1 = m > m1 ? m : m1;
+		}
+		grow = fmax(grow, p[3 * b + 2]);
+	}
+	if (p != part)
+		free(p);
+	if (sqrt(m1) + sqrt(m2) + 2 * grow > s->skin)
 		soft_rebuild(s);
 }
 
@@ -362,46 +489,35 @@ void soft_forces(soft_system *s, double *f, soft_stats *out)
 			{
 				const double *pi = xr + 4 * i;
 				double ri = pi[3];
+				/* Without branches (about half the listed pairs touch,
+				 * at random): a pair apart adds zeros, exactly. The
+				 * image shift of code 13 is zero. */
 				for (size_t q = s->nb_start[i]; q < s->nb_start[i + 1]; q++) {
-					const double *pj = xr + 4 * (size_t)s->nb[q];
-					double d[3];
-					v3_sub(d, pj, pi);
-					if (s->nb_shift[q] != 13)
-						v3_add(d, d, s->shift[s->nb_shift[q]]);
-					double dd = v3_dot(d, d), rs = ri + pj[3];
-					if (dd >= rs * rs)
-						continue;
+					const double *pj = xr + 4 * (size_t)s->nb[q],
+					             *sh = s->shift[s->nb_shift[q]];
+					double d[3] = {pj[0] - pi[0] + sh[0], pj[1] - pi[1] + sh[1],
+					               pj[2] - pi[2] + sh[2]};
+					double dist = sqrt(v3_dot(d, d)), rs = ri + pj[3];
+					double delta = rs - dist, touch = delta > 0;
 					/* One division for both delta/dist and delta/min(r). */
-					double dist = sqrt(dd), delta = rs - dist;
 					double rmin = ri < pj[3] ? ri : pj[3],
-					       inv = 1 / (dist * rmin);
+					       inv = touch / (dist * rmin);
 					v3_axpy(fi, d, -delta * rmin * inv);
 					double rel = delta * dist * inv;
 					wi = rel > wi ? rel : wi;
 					sum += rel;
-					count += 1;
+					count += touch;
 				}
-				if (s->wall_count[i]) {
+				double q[3] = {0, 0, 0}, dmin;
+				if (s->wall_count[i] && (dmin = wall_contact(s, i, q)) < ri &&
+				    dmin > 0) {
 					/* Push the centre away from its closest boundary point. */
-					const int32_t *tl = s->wall_pool + i * WALL_MAX;
-					double q[3] = {0, 0, 0}, qk[3], dmin = INFINITY;
-					for (int k = 0; k < s->wall_count[i]; k++) {
-						double dk =
-						    triangle_distance(s, tl[k], s->x + 3 * i, qk);
-						if (dk < dmin) {
-							dmin = dk;
-							v3_copy(q, qk);
-						}
-					}
-					double delta = ri - dmin;
-					if (delta > 0 && dmin > 0) {
-						double d[3];
-						v3_sub(d, s->x + 3 * i, q);
-						v3_axpy(fi, d, delta / dmin);
-						wi = delta / ri > wi ? delta / ri : wi;
-						sum += delta / ri;
-						count += 1;
-					}
+					double delta = ri - dmin, d[3];
+					v3_sub(d, s->x + 3 * i, q);
+					v3_axpy(fi, d, delta / dmin);
+					wi = delta / ri > wi ? delta / ri : wi;
+					sum += delta / ri;
+					count += 1;
 				}
 				worst = wi > worst ? wi : worst;
 				double fr = sqrt(v3_dot(fi, fi)) / ri;
