@@ -28,7 +28,7 @@ static void refused(int status, const char *message, int prefix, const char *arg
 	char tmp[1100];
 	snprintf(tmp, sizeof tmp, "%s.tmp", out);
 	remove(out);
-	run_result r = run_pack("%s %s", args, out);
+	harness_result r = run_pack("%s %s", args, out);
 	CHECK(r.status == status);
 	if (prefix)
 		CHECK(strncmp(r.err, message, strlen(message)) == 0);
@@ -37,9 +37,9 @@ static void refused(int status, const char *message, int prefix, const char *arg
 	if (r.status != status ||
 	    (prefix ? strncmp(r.err, message, strlen(message)) != 0 : strcmp(r.err, message) != 0))
 		fprintf(stderr, "  for: pack %s\n  got status %d: %s", args, r.status, r.err);
-	CHECK(!run_exists(out));
-	CHECK(!run_exists(tmp));
-	run_free(&r);
+	CHECK(!harness_exists(out));
+	CHECK(!harness_exists(tmp));
+	harness_free(&r);
 }
 
 static void test_bad_input(void)
@@ -107,10 +107,10 @@ static void test_bad_input(void)
 	write_file(config, "{\"rmax\": -1}");
 	snprintf(msg, sizeof msg, "pack: %s: key 'rmax': value -1: expected", config);
 	refused(1, msg, 1, args);
-	run_result r = run_pack("--quiet " SMALL " no/such/dir/out.h5");
+	harness_result r = run_pack("--quiet " SMALL " no/such/dir/out.h5");
 	CHECK(r.status == 1);
 	CHECK(strncmp(r.err, "pack: no/such/dir/out.h5", 24) == 0);
-	run_free(&r);
+	harness_free(&r);
 }
 
 /* Every centre lies inside the specimen, at least a radius less 1 % deep,
@@ -151,11 +151,11 @@ static void test_geometry_sources(void)
 	    {".msh", "--geometry share/geometry/cylinder_20x40.msh --mean-radius 0.0015"},
 	};
 	for (size_t k = 0; k < sizeof sources / sizeof sources[0]; k++) {
-		run_result r = run_pack("--quiet %s %s", sources[k][1], out_path());
+		harness_result r = run_pack("--quiet %s %s", sources[k][1], out_path());
 		CHECK(r.status == 0);
 		if (r.status)
 			fprintf(stderr, "  %s: %s", sources[k][0], r.err);
-		run_free(&r);
+		harness_free(&r);
 		check_valid(out_path(), sources[k][0]);
 	}
 }
@@ -179,29 +179,29 @@ static int same_spheres(const char *p, const char *q)
 static void test_seed(void)
 {
 	const char *one = check_tmp("cli_s1.h5"), *two = check_tmp("cli_s2.h5");
-	run_result r1 = run_pack("--quiet " SMALL " --seed 1 %s", one);
-	run_result r2 = run_pack("--quiet " SMALL " --seed 1 %s", two);
+	harness_result r1 = run_pack("--quiet " SMALL " --seed 1 %s", one);
+	harness_result r2 = run_pack("--quiet " SMALL " --seed 1 %s", two);
 	CHECK(r1.status == 0 && r2.status == 0);
 	CHECK(same_spheres(one, two));
-	run_free(&r1);
-	run_free(&r2);
+	harness_free(&r1);
+	harness_free(&r2);
 	r2 = run_pack("--quiet " SMALL " --seed 2 %s", two);
 	CHECK(r2.status == 0);
 	CHECK(!same_spheres(one, two));
-	run_free(&r2);
+	harness_free(&r2);
 }
 
 static void test_export_import(void)
 {
 	const char *a = check_tmp("cli_a.h5"), *b = check_tmp("cli_b.h5");
 	const char *txt = check_tmp("cli_a.txt");
-	run_result r = run_pack("--quiet " SMALL " --export %s %s", txt, a);
+	harness_result r = run_pack("--quiet " SMALL " --export %s %s", txt, a);
 	CHECK(r.status == 0);
-	run_free(&r);
+	harness_free(&r);
 	r = run_pack(SMALL " --import %s %s", txt, b);
 	CHECK(r.status == 0);
 	CHECK_CONTAINS(r.out, "pack: ");
-	run_free(&r);
+	harness_free(&r);
 	CHECK(same_spheres(a, b));
 	dem_assembly x, y;
 	CHECK(assembly_read(a, &x) == 0 && assembly_read(b, &y) == 0);
@@ -218,19 +218,20 @@ static void test_config(void)
 	write_file(config, "{\"shape\": \"box\", \"length\": 0.012, \"width\": 0.012,"
 	                   " \"height\": 0.012, \"dist\": \"lognormal\", \"radius\": 0.0008,"
 	                   " \"sigma\": 0.2, \"seed\": 7}");
-	run_result r1 = run_pack("--quiet " SMALL " --dist lognormal --radius 0.0008 --sigma 0.2 "
-	                         "--seed 7 %s",
-	                         cli);
-	run_result r2 = run_pack("--quiet --config %s %s", config, file);
+	harness_result r1 =
+	    run_pack("--quiet " SMALL " --dist lognormal --radius 0.0008 --sigma 0.2 "
+	             "--seed 7 %s",
+	             cli);
+	harness_result r2 = run_pack("--quiet --config %s %s", config, file);
 	CHECK(r1.status == 0 && r2.status == 0);
 	CHECK(same_spheres(cli, file));
-	run_free(&r1);
-	run_free(&r2);
+	harness_free(&r1);
+	harness_free(&r2);
 	/* The command line wins over the file. */
 	r2 = run_pack("--quiet --config %s --seed 8 %s", config, file);
 	CHECK(r2.status == 0);
 	CHECK(!same_spheres(cli, file));
-	run_free(&r2);
+	harness_free(&r2);
 }
 
 int main(void)

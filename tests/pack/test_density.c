@@ -73,10 +73,10 @@ static size_t grid_near(const grid *g, const double p[3], long *out, size_t max)
 int main(void)
 {
 	const char *path = check_tmp("reference.h5");
-	run_result r =
+	harness_result r =
 	    run_pack("--quiet --diameter 0.05 --height 0.1 --rmin 0.0005 --rmax 0.0015 %s", path);
 	CHECK(r.status == 0);
-	run_free(&r);
+	harness_free(&r);
 	dem_assembly a;
 	if (assembly_read(path, &a)) {
 		fprintf(stderr, "%s\n", err_msg());

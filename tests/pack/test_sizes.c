@@ -45,9 +45,9 @@ static double volume_median(const double *r, size_t n)
 static void check_sizes(const char *what, const char *args, const psd *d)
 {
 	const char *path = check_tmp("sizes.h5");
-	run_result r = run_pack("--quiet " BOX " %s %s", args, path);
+	harness_result r = run_pack("--quiet " BOX " %s %s", args, path);
 	CHECK(r.status == 0);
-	run_free(&r);
+	harness_free(&r);
 	dem_assembly a;
 	if (assembly_read(path, &a)) {
 		CHECK(0);
@@ -109,9 +109,9 @@ static void test_distributions(void)
 static void test_count_and_mean(void)
 {
 	const char *path = check_tmp("sizes.h5");
-	run_result r = run_pack("--quiet " BOX " --count 3000 %s", path);
+	harness_result r = run_pack("--quiet " BOX " --count 3000 %s", path);
 	CHECK(r.status == 0);
-	run_free(&r);
+	harness_free(&r);
 	dem_assembly a;
 	CHECK(assembly_read(path, &a) == 0);
 	printf("--count 3000: %zu spheres\n", a.n);
@@ -119,7 +119,7 @@ static void test_count_and_mean(void)
 	assembly_free(&a);
 	r = run_pack("--quiet " BOX " --mean-radius 0.0008 %s", path);
 	CHECK(r.status == 0);
-	run_free(&r);
+	harness_free(&r);
 	CHECK(assembly_read(path, &a) == 0);
 	double sum = 0;
 	size_t m = 0;
