@@ -1,5 +1,6 @@
 /* pack: a dense polydisperse sphere assembly inside a specimen, with its
  * packing report (share/doc/pack.md). */
+#include <malloc.h>
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -81,6 +82,12 @@ static void wait_passively(char **argv)
 int main(int argc, char **argv)
 {
 	wait_passively(argv);
+	/* The relaxation loops allocate and free arrays of megabytes at every
+	 * neighbour-list build; served from the heap and kept there, they are
+	 * reused instead of being returned to the kernel and faulted in again,
+	 * page by page, the next time. */
+	mallopt(M_MMAP_THRESHOLD, 1 << 30);
+	mallopt(M_TRIM_THRESHOLD, 1 << 30);
 	pack_options o;
 	options_parse(&o, argc, argv);
 	afile_install_signal_cleanup();
@@ -93,9 +100,6 @@ int main(int argc, char **argv)
 	geometry_spec gs;
 	if (options_geometry(&o, &gs) || geometry_build(&gs, &a.geom))
 		fatal(NULL);
-	surface *surf = surface_new(a.geom.vert, a.geom.nvert, a.geom.tri, a.geom.ntri);
-	if (!surf)
-		fatal("out of memory building the boundary's search tree");
 	psd d = {0}, *target = NULL;
 	double rmean = 0, rmax = 0, *xi = NULL, *ri = NULL;
 	size_t ni = 0;
@@ -115,18 +119,33 @@ int main(int argc, char **argv)
 		rmean = psd_moment(&d, 1);
 		rmax = d.rmax;
 	}
+	/* The periodic cell, on one thread, while another builds the
+	 * boundary's search tree and the distance zones. */
+	surface *surf = NULL;
 	zones z;
-	double depth = fmax(o.band, REPORT_PROFILE_DEPTH + 1) * 2 * rmean + 3 * rmax;
-	zones_build(&z, surf, a.geom.bbox_min, a.geom.bbox_max, 2 * rmean, depth);
-	double t1 = timer_now();
-	a.report.time_geometry = t1 - t0;
-
+	jam_cell cell = {0};
 	packer_stats st = {0};
+	packer_params pp = {(uint64_t)o.seed, o.cell, o.keep, o.band, o.count};
+	double depth = fmax(o.band, REPORT_PROFILE_DEPTH + 1) * 2 * rmean + 3 * rmax;
+#pragma omp parallel sections
+	{
+#pragma omp section
+		{
+			surf = surface_new(a.geom.vert, a.geom.nvert, a.geom.tri, a.geom.ntri);
+			if (!surf)
+				fatal("out of memory building the boundary's search tree");
+			zones_build(&z, surf, a.geom.bbox_min, a.geom.bbox_max, 2 * rmean, depth);
+			a.report.time_geometry = timer_now() - t0;
+		}
+#pragma omp section
+		if (!o.import_path)
+			packer_cell(&cell, &d, &a.geom, &pp, &st);
+	}
 	if (o.import_path) {
 		import_spheres(&o, xi, ri, ni, &S, surf, &z);
 	} else {
-		packer_params pp = {(uint64_t)o.seed, o.cell, o.keep, o.band, o.count};
-		packer_run(&S, &d, &a.geom, surf, &z, &pp, &st);
+		packer_fill(&S, &cell, &d, &a.geom, surf, &z, &pp, &st);
+		jam_free(&cell);
 		a.report.time_cell = st.time_cell;
 		a.report.time_fill = st.time_fill;
 	}

@@ -13,6 +13,7 @@
  * cell, and filling it would add small spheres the size distribution does
  * not have. */
 #include <math.h>
+#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -111,41 +112,46 @@ static void fill(spheres *S, const jam_cell *c, const psd *d, const dem_geometry
 	progress_end(&prog);
 }
 
-void packer_run(spheres *S, psd *d, const dem_geometry *g, const surface *surf, const zones *z,
-                const packer_params *params, packer_stats *st)
+void packer_cell(jam_cell *c, psd *d, const dem_geometry *g, const packer_params *params,
+                 packer_stats *st)
 {
-	memset(st, 0, sizeof *st);
 	double t0 = timer_now();
 	double shape[3];
 	size_t n;
 	cell_shape(d, g, params->cell_max, shape, &n);
-	jam_cell c;
 	progress prog;
 	progress_start(&prog, "iterations", 0);
-	jam_make(&c, d, n, shape, params->seed, CELL_OTOL, &prog);
+	int threads = omp_get_max_threads();
+	omp_set_num_threads(1);
+	jam_make(c, d, n, shape, params->seed, CELL_OTOL, &prog);
+	omp_set_num_threads(threads);
 	progress_end(&prog);
-	st->cell_n = c.n;
-	st->cell_phi = c.phi;
-	st->cell_iter = c.iter;
+	st->cell_n = c->n;
+	st->cell_phi = c->phi;
+	st->cell_iter = c->iter;
 	double vs = 0;
-	for (size_t i = 0; i < c.n; i++)
-		vs += 4.0 / 3.0 * M_PI * c.r[i] * c.r[i] * c.r[i];
+	for (size_t i = 0; i < c->n; i++)
+		vs += 4.0 / 3.0 * M_PI * c->r[i] * c->r[i] * c->r[i];
 	if (params->count > 0) /* the cell's own solid fraction refines the scale */
-		scale_cell(&c, d,
-		           cbrt(c.phi * g->volume / (vs / (double)c.n) / (double)params->count));
+		scale_cell(c, d,
+		           cbrt(c->phi * g->volume / (vs / (double)c->n) / (double)params->count));
+	st->time_cell = timer_now() - t0;
+}
+
+void packer_fill(spheres *S, jam_cell *c, psd *d, const dem_geometry *g, const surface *surf,
+                 const zones *z, const packer_params *params, packer_stats *st)
+{
 	double t1 = timer_now();
-	st->time_cell = t1 - t0;
-	fill(S, &c, d, g, surf, z, params, st);
+	fill(S, c, d, g, surf, z, params, st);
 	/* The wall band loses and gains spheres: up to COUNT_PASSES - 1 more
 	 * passes, each at the scale that corrects the last count. */
 	for (int pass = 1; params->count > 0 && pass < COUNT_PASSES; pass++) {
 		double s = cbrt((double)S->n / (double)params->count);
 		if (fabs(s - 1) <= COUNT_TOL)
 			break;
-		scale_cell(&c, d, s);
-		fill(S, &c, d, g, surf, z, params, st);
+		scale_cell(c, d, s);
+		fill(S, c, d, g, surf, z, params, st);
 	}
-	jam_free(&c);
 	st->time_fill = timer_now() - t1;
 }
 

@@ -9,6 +9,7 @@
 
 #include "lib/assembly.h"
 #include "lib/progress.h"
+#include "pack/jam.h"
 #include "pack/psd.h"
 #include "pack/spheres.h"
 #include "pack/surface.h"
@@ -39,11 +40,18 @@ typedef struct {
  * volume at the solid fraction of a random close packing. */
 double packer_count_scale(const psd *d, double volume, long count);
 
-/* Fill S; with params->count > 0, d is rescaled in place so that the
- * assembly holds count spheres within about 1 % (up to two more tiling
- * passes when the first misses). */
-void packer_run(spheres *S, psd *d, const dem_geometry *g, const surface *surf, const zones *z,
-                const packer_params *params, packer_stats *st);
+/* The periodic cell (pack/jam.h) for d and the specimen g, made on the
+ * calling thread alone (its parallel loops would meet at a barrier several
+ * times per iteration, for a few thousand spheres); with params->count > 0
+ * d and the cell are rescaled so that about count spheres fill g. */
+void packer_cell(jam_cell *c, psd *d, const dem_geometry *g, const packer_params *params,
+                 packer_stats *st);
+
+/* Fill S with the cell tiled over the specimen and repaired along the
+ * wall; with params->count > 0, up to two more passes at corrected scales
+ * (c and d rescaled in place) bring the count within about 1 %. */
+void packer_fill(spheres *S, jam_cell *c, psd *d, const dem_geometry *g, const surface *surf,
+                 const zones *z, const packer_params *params, packer_stats *st);
 
 /* The lines pack prints about how the assembly was made. */
 void packer_print(const packer_stats *st, FILE *out);

@@ -35,6 +35,7 @@ void soft_init(soft_system *s, size_t n, size_t nmobile, double *x, double *r)
 	s->r_built = xmalloc(n * sizeof *s->r_built + 1);
 	s->wall_s0 = xmalloc(n * sizeof *s->wall_s0 + 1);
 	s->wall_xq = xmalloc(3 * n * sizeof *s->wall_xq + 1);
+	s->wall_xb = xmalloc(3 * n * sizeof *s->wall_xb + 1);
 	s->wall_hint = xmalloc(n * sizeof *s->wall_hint + 1);
 	s->wall_margin = xcalloc(n + 1, sizeof *s->wall_margin);
 	s->wall_count = xcalloc(n + 1, 1);
@@ -56,11 +57,13 @@ void soft_free(soft_system *s)
 	free(s->r_built);
 	free(s->wall_s0);
 	free(s->wall_xq);
+	free(s->wall_xb);
 	free(s->wall_hint);
 	free(s->wall_margin);
 	free(s->wall_count);
 	free(s->wall_pool);
 	free(s->wall_dist);
+	free(s->wall_near);
 	memset(s, 0, sizeof *s);
 }
 
@@ -245,66 +248,89 @@ static double triangle_distance(const soft_system *s, int32_t k, const double p[
 	return v3_norm(d);
 }
 
+/* Triangles t[0..m) sorted by their distance from p (then by index), the
+ * distances in dist. */
+static void sort_by_distance(const soft_system *s, const double p[3], int32_t *t, double *dist,
+                             size_t m)
+{
+	double q[3];
+	for (size_t k = 0; k < m; k++) { /* insertion sort: m is small */
+		int32_t tk = t[k];
+		double dk = triangle_distance(s, tk, p, q);
+		size_t at = k;
+		for (; at > 0 && (dist[at - 1] > dk || (dist[at - 1] == dk && t[at - 1] > tk));
+		     at--) {
+			dist[at] = dist[at - 1];
+			t[at] = t[at - 1];
+		}
+		dist[at] = dk;
+		t[at] = tk;
+	}
+}
+
 /* The boundary triangles sphere i may touch before the next build. A query
- * at x_q lists the triangles within r + skin + WALL_MARGIN, nearest first
- * with their distances from x_q (the WALL_MAX nearest, the margin
- * shrinking to what they cover if there are more); the list serves every
- * build while the sphere stays within the margin of x_q. Without a list,
- * the depth bound s_q - |x - x_q| tells whether the sphere can reach the
- * boundary at all. */
+ * at x_q lists the triangles within r + skin + WALL_MARGIN (the WALL_MAX
+ * nearest, the margin shrinking to what they cover if there are more);
+ * the list serves every build while the sphere stays within the margin of
+ * x_q. At every build the list is sorted again by the distances from the
+ * sphere's position then, the base point x_b, so that the bound in
+ * wall_contact() stays tight. Without a list, the depth bound
+ * s_q - |x - x_q| tells whether the sphere can reach the boundary at all. */
 static void wall_update(soft_system *s, size_t i)
 {
-	double d[3];
-	v3_sub(d, s->x + 3 * i, s->wall_xq + 3 * i);
+	double d[3], *xi = s->x + 3 * i;
+	int32_t *pool = s->wall_pool + i * WALL_MAX;
+	double *pdist = s->wall_dist + i * WALL_MAX;
+	v3_sub(d, xi, s->wall_xq + 3 * i);
 	double moved = v3_norm(d), reach = s->r[i] + s->skin;
-	if (s->wall_count[i] && moved <= s->wall_margin[i])
+	v3_copy(s->wall_xb + 3 * i, xi);
+	if (s->wall_count[i] && moved <= s->wall_margin[i]) {
+		sort_by_distance(s, xi, pool, pdist, s->wall_count[i]);
+		s->wall_near[i] = pdist[0];
 		return;
+	}
 	s->wall_count[i] = 0;
+	s->wall_near[i] = INFINITY;
 	if (s->wall_s0[i] - moved > reach)
 		return;
-	v3_copy(s->wall_xq + 3 * i, s->x + 3 * i);
-	s->wall_s0[i] = surface_distance(s->wall, s->x + 3 * i, NULL, &s->wall_hint[i]);
+	v3_copy(s->wall_xq + 3 * i, xi);
+	s->wall_s0[i] = surface_distance(s->wall, xi, NULL, &s->wall_hint[i]);
 	if (s->wall_s0[i] > reach + WALL_MARGIN * s->skin)
 		return;
 	enum { CAP = 4 * WALL_MAX };
 	int32_t buf[CAP];
-	double dist[CAP], q[3], margin = WALL_MARGIN * s->skin;
-	size_t m = surface_near(s->wall, s->x + 3 * i, reach + margin, buf, CAP);
+	double dist[CAP], margin = WALL_MARGIN * s->skin;
+	size_t m = surface_near(s->wall, xi, reach + margin, buf, CAP);
 	m = m < CAP ? m : CAP;
-	for (size_t k = 0; k < m; k++) { /* insertion sort by distance, then index */
-		int32_t t = buf[k];
-		double dk = triangle_distance(s, t, s->x + 3 * i, q);
-		size_t at = k;
-		for (; at > 0 && (dist[at - 1] > dk || (dist[at - 1] == dk && buf[at - 1] > t));
-		     at--) {
-			dist[at] = dist[at - 1];
-			buf[at] = buf[at - 1];
-		}
-		dist[at] = dk;
-		buf[at] = t;
-	}
+	sort_by_distance(s, xi, buf, dist, m);
 	if (m > WALL_MAX) { /* keep the nearest; the list covers less */
 		margin = fmin(margin, dist[WALL_MAX] - reach);
 		m = WALL_MAX;
 	}
-	memcpy(s->wall_pool + i * WALL_MAX, buf, m * sizeof *buf);
-	memcpy(s->wall_dist + i * WALL_MAX, dist, m * sizeof *dist);
+	memcpy(pool, buf, m * sizeof *buf);
+	memcpy(pdist, dist, m * sizeof *dist);
 	s->wall_count[i] = (uint8_t)m;
+	s->wall_near[i] = m ? dist[0] : INFINITY;
 	s->wall_margin[i] = margin;
 }
 
 /* The closest point q of the boundary to sphere i among its listed
  * triangles, if closer than its radius; returns that distance (or
- * INFINITY). A triangle listed at distance d_k from x_q is at least
- * d_k - |x - x_q| from x (the distance is 1-Lipschitz), so the ascending
- * list is cut as soon as that bound reaches the best found or the radius. */
+ * INFINITY). A triangle listed at distance d_k from x_b is at least
+ * d_k - |x - x_b| from x (the distance is 1-Lipschitz), so the ascending
+ * list is cut as soon as that bound reaches the best found or the radius;
+ * most spheres are decided by the first, kept apart from the list so
+ * that the test touches no more memory than a pass over the spheres. */
 static double wall_contact(const soft_system *s, size_t i, double q[3])
 {
-	const int32_t *tl = s->wall_pool + i * WALL_MAX;
-	const double *dl = s->wall_dist + i * WALL_MAX, *xi = s->x + 3 * i;
+	const double *xi = s->x + 3 * i;
 	double d[3], qk[3], best = s->r[i];
-	v3_sub(d, xi, s->wall_xq + 3 * i);
+	v3_sub(d, xi, s->wall_xb + 3 * i);
 	double moved = v3_norm(d), found = INFINITY;
+	if (s->wall_near[i] - moved >= best)
+		return found;
+	const int32_t *tl = s->wall_pool + i * WALL_MAX;
+	const double *dl = s->wall_dist + i * WALL_MAX;
 	for (int k = 0; k < s->wall_count[i] && dl[k] - moved < best; k++) {
 		double dk = triangle_distance(s, tl[k], xi, qk);
 		if (dk < best) {
@@ -320,6 +346,9 @@ void soft_rebuild(soft_system *s)
 	if (s->wall && !s->wall_pool) {
 		s->wall_pool = xmalloc(s->nmobile * WALL_MAX * sizeof *s->wall_pool + 1);
 		s->wall_dist = xmalloc(s->nmobile * WALL_MAX * sizeof *s->wall_dist + 1);
+		s->wall_near = xmalloc(s->nmobile * sizeof *s->wall_near + 1);
+		for (size_t i = 0; i < s->nmobile; i++)
+			s->wall_near[i] = INFINITY;
 	}
 	for (int code = 0; code < 27; code++)
 		for (int k = 0; k < 3; k++)

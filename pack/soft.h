@@ -40,8 +40,7 @@ typedef struct {
 	double *x_built; /* positions when the list was built */
 	double *r_built;
 	/* Boundary triangles near each moving sphere (see wall_update in
-	 * soft.c): wall_count[i] of them at wall_pool + i WALL_MAX, nearest
-	 * first, valid while
+	 * soft.c): wall_count[i] of them at wall_pool + i WALL_MAX, valid while
 	 * the sphere is within wall_margin[i] of wall_xq[i]; wall_s0[i] is a
 	 * lower bound of the signed distance at wall_xq[i]. A caller that knows
 	 * one may store it (with wall_xq = the position) to spare a query. */
@@ -51,8 +50,10 @@ typedef struct {
 	int32_t *wall_hint;
 	uint8_t *wall_count;
 	int32_t *wall_pool;
+	double *wall_xb;   /* [n][3] position at the last build */
 	double *wall_dist; /* [n][WALL_MAX] distance of each listed triangle from
-	                    * wall_xq, ascending */
+	                    * wall_xb, ascending */
+	double *wall_near; /* [n] the first of them (INFINITY: none listed) */
 	int stale;
 	long builds;
 	double *worst; /* [n] if not NULL: each mobile sphere's largest relative
