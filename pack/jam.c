@@ -105,6 +105,7 @@ void jam_make(jam_cell *c, const psd *d, size_t n, const double shape[3], uint64
 	soft_init(&s, n, n, c->x, c->r);
 	memcpy(s.box, c->box, sizeof s.box);
 	s.skin = 0.4 * rmean;
+	s.half = 1; /* the cell is made on one thread (pack/packer.h) */
 	fire_state st;
 	fire_start(&st, &s);
 	double grow = 1, p = P_SQUEEZE;

@@ -125,12 +125,51 @@ typedef struct {
 	int32_t *j;
 	uint8_t *code;
 	size_t n, cap;
+	size_t own; /* half lists: the first `own` are the cell's own spheres */
 } cands;
 
+/* Append the spheres of the cell at coordinates cc (wrapped if periodic). */
+static void cands_add(const soft_system *s, const cells *g, const double *xs, const int cc[3],
+                      int small, cands *c)
+{
+	int code = 13, w[3];
+	double sh[3] = {0, 0, 0};
+	for (int k = 0; k < 3; k++) {
+		w[k] = cc[k] < 0            ? cc[k] + g->dim[k]
+		       : cc[k] >= g->dim[k] ? cc[k] - g->dim[k]
+		                            : cc[k];
+		int o = cc[k] < w[k] ? -1 : cc[k] > w[k] ? 1 : 0;
+		if (periodic(s) && !small) {
+			code += (k == 0 ? 1 : k == 1 ? 3 : 9) * o;
+			sh[k] = o * s->box[k];
+		}
+	}
+	size_t id =
+	    ((size_t)w[2] * (size_t)g->dim[1] + (size_t)w[1]) * (size_t)g->dim[0] + (size_t)w[0];
+	size_t m = g->start[id + 1] - g->start[id];
+	if (c->n + m > c->cap) {
+		c->cap = 2 * (c->n + m);
+		for (int k = 0; k < 4; k++)
+			c->x[k] = xrealloc(c->x[k], c->cap * sizeof *c->x[k]);
+		c->j = xrealloc(c->j, c->cap * sizeof *c->j);
+		c->code = xrealloc(c->code, c->cap);
+	}
+	for (size_t q = g->start[id]; q < g->start[id + 1]; q++, c->n++) {
+		for (int k = 0; k < 3; k++)
+			c->x[k][c->n] = xs[4 * q + k] + sh[k];
+		c->x[3][c->n] = xs[4 * q + 3];
+		c->j[c->n] = g->item[q];
+		c->code[c->n] = (uint8_t)code;
+	}
+}
+
+/* The candidates of the cell at c0: the 27 cells around it; for a half
+ * list, its own cell first and then the 13 cells after it in the order
+ * (z, y, x), so that each pair of cells is met once. */
 static void cands_gather(const soft_system *s, const cells *g, const double *xs, const int c0[3],
                          int small, cands *c)
 {
-	int lo[3], hi[3];
+	int lo[3], hi[3], half = s->half && !small;
 	for (int k = 0; k < 3; k++) {
 		int span = g->dim[k] >= 3 || !periodic(s) ? 1 : 0;
 		lo[k] = c0[k] - span;
@@ -140,41 +179,20 @@ static void cands_gather(const soft_system *s, const cells *g, const double *xs,
 			hi[k] = hi[k] >= g->dim[k] ? g->dim[k] - 1 : hi[k];
 		}
 	}
-	c->n = 0;
+	c->n = c->own = 0;
+	if (half) {
+		cands_add(s, g, xs, c0, small, c);
+		c->own = c->n;
+	}
 	for (int cz = lo[2]; cz <= hi[2]; cz++)
 		for (int cy = lo[1]; cy <= hi[1]; cy++)
 			for (int cx = lo[0]; cx <= hi[0]; cx++) {
-				int cc[3] = {cx, cy, cz}, code = 13, w[3];
-				double sh[3] = {0, 0, 0};
-				for (int k = 0; k < 3; k++) {
-					w[k] = cc[k] < 0            ? cc[k] + g->dim[k]
-					       : cc[k] >= g->dim[k] ? cc[k] - g->dim[k]
-					                            : cc[k];
-					int o = cc[k] < w[k] ? -1 : cc[k] > w[k] ? 1 : 0;
-					if (periodic(s) && !small) {
-						code += (k == 0 ? 1 : k == 1 ? 3 : 9) * o;
-						sh[k] = o * s->box[k];
-					}
-				}
-				size_t id = ((size_t)w[2] * (size_t)g->dim[1] + (size_t)w[1]) *
-				                (size_t)g->dim[0] +
-				            (size_t)w[0];
-				size_t m = g->start[id + 1] - g->start[id];
-				if (c->n + m > c->cap) {
-					c->cap = 2 * (c->n + m);
-					for (int k = 0; k < 4; k++)
-						c->x[k] =
-						    xrealloc(c->x[k], c->cap * sizeof *c->x[k]);
-					c->j = xrealloc(c->j, c->cap * sizeof *c->j);
-					c->code = xrealloc(c->code, c->cap);
-				}
-				for (size_t q = g->start[id]; q < g->start[id + 1]; q++, c->n++) {
-					for (int k = 0; k < 3; k++)
-						c->x[k][c->n] = xs[4 * q + k] + sh[k];
-					c->x[3][c->n] = xs[4 * q + 3];
-					c->j[c->n] = g->item[q];
-					c->code[c->n] = (uint8_t)code;
-				}
+				int cc[3] = {cx, cy, cz};
+				int after = cz != c0[2]   ? cz > c0[2]
+				            : cy != c0[1] ? cy > c0[1]
+				                          : cx > c0[0];
+				if (!half || after)
+					cands_add(s, g, xs, cc, small, c);
 			}
 }
 
@@ -187,7 +205,8 @@ static void cands_free(cands *c)
 }
 
 /* Append the neighbours of sphere i within r_i + r_j + skin among the
- * candidates of its cell to b; returns their number. A loop without
+ * candidates of its cell to b (each pair once for a half list); returns
+ * their number. A loop without
  * branches tests the distances and one more appends the hits (the
  * compiler vectorises the first); a periodic box too short for three
  * cells a side takes the minimum image of each pair instead. */
@@ -200,7 +219,7 @@ static size_t scan_neighbours(const soft_system *s, const cands *c, size_t i, in
 			size_t j = (size_t)c->j[k];
 			double d[3], cut = reach + c->x[3][k];
 			soft_delta(s, i, j, d);
-			if (j == i || v3_dot(d, d) >= cut * cut)
+			if (j == i || (s->half && j < i) || v3_dot(d, d) >= cut * cut)
 				continue;
 			nbuf_reserve(b, 1);
 			b->j[b->n] = (int32_t)j;
@@ -229,7 +248,8 @@ static size_t scan_neighbours(const soft_system *s, const cands *c, size_t i, in
 			int32_t j = c->j[k0 + k];
 			oj[o] = j;
 			oc[o] = c->code[k0 + k];
-			o += hit[k] & ((size_t)j != i);
+			/* of the cell's own spheres, a half list takes the later */
+			o += hit[k] & ((size_t)j != i) & (k0 + k >= c->own || (size_t)j > i);
 		}
 		b->n += o;
 		count += o;
@@ -495,10 +515,54 @@ void soft_update(soft_system *s, int force)
 		soft_rebuild(s);
 }
 
+/* soft_forces() over a half list: each pair once, its force added to
+ * both spheres, in list order on one thread (so, again, the same result
+ * every time). The statistics count each touching pair from both sides,
+ * as the full list does. */
+static void forces_half(soft_system *s, double *f, soft_stats *out)
+{
+	size_t n = s->n;
+	double worst = 0, fmx = 0, sum = 0, count = 0;
+	memset(f, 0, 3 * n * sizeof *f);
+	for (size_t i = 0; i < n; i++) {
+		const double *xi = s->x + 3 * i;
+		double ri = s->r[i], fi[3] = {0, 0, 0};
+		for (size_t q = s->nb_start[i]; q < s->nb_start[i + 1]; q++) {
+			size_t j = (size_t)s->nb[q];
+			const double *xj = s->x + 3 * j, *sh = s->shift[s->nb_shift[q]];
+			double d[3] = {xj[0] - xi[0] + sh[0], xj[1] - xi[1] + sh[1],
+			               xj[2] - xi[2] + sh[2]};
+			double dist = sqrt(v3_dot(d, d)), rj = s->r[j], delta = ri + rj - dist,
+			       touch = delta > 0;
+			double rmin = ri < rj ? ri : rj, inv = touch / (dist * rmin),
+			       c = delta * rmin * inv;
+			v3_axpy(fi, d, -c);
+			v3_axpy(f + 3 * j, d, c);
+			double rel = delta * dist * inv;
+			worst = rel > worst ? rel : worst;
+			sum += 2 * rel;
+			count += 2 * touch;
+		}
+		v3_add(f + 3 * i, f + 3 * i, fi);
+	}
+	for (size_t i = 0; i < n; i++) {
+		double fr = sqrt(v3_dot(f + 3 * i, f + 3 * i)) / s->r[i];
+		fmx = fr > fmx ? fr : fmx;
+	}
+	out->overlap_max = worst;
+	out->overlap_mean = count > 0 ? sum / count : 0;
+	out->contacts = count;
+	out->fmax = fmx;
+}
+
 #define FORCE_BLOCK 1024
 
 void soft_forces(soft_system *s, double *f, soft_stats *out)
 {
+	if (s->half) {
+		forces_half(s, f, out);
+		return;
+	}
 	size_t n = s->nmobile, nblock = (n + FORCE_BLOCK - 1) / FORCE_BLOCK;
 	double *part = xcalloc(2 * nblock + 1, sizeof *part), *xr = s->xr;
 	double worst = 0, fmx = 0;

@@ -29,6 +29,9 @@ typedef struct {
 	const double *wall_vert; /* its triangulation (pack/trimesh.h) */
 	const int32_t *wall_tri;
 	double skin; /* Verlet skin (m) */
+	int half;    /* list each pair once, from its lower index, and gather
+	              * the forces on one thread (every sphere mobile, no
+	              * boundary, no `worst`): half the pairs to visit */
 
 	/* Neighbour list (CSR over mobile spheres), rebuilt on demand. */
 	size_t *nb_start;    /* [n+1] */
