@@ -62,8 +62,9 @@ void soft_free(soft_system *s)
 	free(s->wall_margin);
 	free(s->wall_count);
 	free(s->wall_pool);
-	free(s->wall_dist);
 	free(s->wall_near);
+	free(s->wall_first);
+	free(s->wall_second);
 	memset(s, 0, sizeof *s);
 }
 
@@ -268,24 +269,34 @@ static double triangle_distance(const soft_system *s, int32_t k, const double p[
 	return v3_norm(d);
 }
 
-/* Triangles t[0..m) sorted by their distance from p (then by index), the
- * distances in dist. */
-static void sort_by_distance(const soft_system *s, const double p[3], int32_t *t, double *dist,
-                             size_t m)
+/* The triangles of e[0..m) sorted by their distance from p (then by
+ * index), with that distance rounded down to single precision. */
+static void sort_by_distance(const soft_system *s, const double p[3], wall_entry *e, size_t m)
 {
 	double q[3];
 	for (size_t k = 0; k < m; k++) { /* insertion sort: m is small */
-		int32_t tk = t[k];
-		double dk = triangle_distance(s, tk, p, q);
+		wall_entry ek = e[k];
+		double dk = triangle_distance(s, ek.tri, p, q);
+		ek.dist = (float)dk;
+		if (ek.dist > dk)
+			ek.dist = nextafterf(ek.dist, -INFINITY);
 		size_t at = k;
-		for (; at > 0 && (dist[at - 1] > dk || (dist[at - 1] == dk && t[at - 1] > tk));
-		     at--) {
-			dist[at] = dist[at - 1];
-			t[at] = t[at - 1];
-		}
-		dist[at] = dk;
-		t[at] = tk;
+		for (; at > 0 && (e[at - 1].dist > ek.dist ||
+		                  (e[at - 1].dist == ek.dist && e[at - 1].tri > ek.tri));
+		     at--)
+			e[at] = e[at - 1];
+		e[at] = ek;
 	}
+}
+
+/* The first two entries of sphere i's list, kept apart (see wall_contact). */
+static void wall_inline(soft_system *s, size_t i)
+{
+	const wall_entry *e = s->wall_pool + i * WALL_MAX;
+	int m = s->wall_count[i];
+	s->wall_near[i] = m > 0 ? e[0].dist : INFINITY;
+	s->wall_first[i] = m > 0 ? e[0].tri : -1;
+	s->wall_second[i] = m > 1 ? e[1].dist : INFINITY;
 }
 
 /* The boundary triangles sphere i may touch before the next build. A query
@@ -299,18 +310,17 @@ static void sort_by_distance(const soft_system *s, const double p[3], int32_t *t
 static void wall_update(soft_system *s, size_t i)
 {
 	double d[3], *xi = s->x + 3 * i;
-	int32_t *pool = s->wall_pool + i * WALL_MAX;
-	double *pdist = s->wall_dist + i * WALL_MAX;
+	wall_entry *pool = s->wall_pool + i * WALL_MAX;
 	v3_sub(d, xi, s->wall_xq + 3 * i);
 	double moved = v3_norm(d), reach = s->r[i] + s->skin;
 	v3_copy(s->wall_xb + 3 * i, xi);
 	if (s->wall_count[i] && moved <= s->wall_margin[i]) {
-		sort_by_distance(s, xi, pool, pdist, s->wall_count[i]);
-		s->wall_near[i] = pdist[0];
+		sort_by_distance(s, xi, pool, s->wall_count[i]);
+		wall_inline(s, i);
 		return;
 	}
 	s->wall_count[i] = 0;
-	s->wall_near[i] = INFINITY;
+	wall_inline(s, i);
 	if (s->wall_s0[i] - moved > reach)
 		return;
 	v3_copy(s->wall_xq + 3 * i, xi);
@@ -318,19 +328,21 @@ static void wall_update(soft_system *s, size_t i)
 	if (s->wall_s0[i] > reach + WALL_MARGIN * s->skin)
 		return;
 	enum { CAP = 4 * WALL_MAX };
-	int32_t buf[CAP];
-	double dist[CAP], margin = WALL_MARGIN * s->skin;
-	size_t m = surface_near(s->wall, xi, reach + margin, buf, CAP);
+	int32_t found[CAP];
+	wall_entry buf[CAP];
+	double margin = WALL_MARGIN * s->skin;
+	size_t m = surface_near(s->wall, xi, reach + margin, found, CAP);
 	m = m < CAP ? m : CAP;
-	sort_by_distance(s, xi, buf, dist, m);
+	for (size_t k = 0; k < m; k++)
+		buf[k].tri = found[k];
+	sort_by_distance(s, xi, buf, m);
 	if (m > WALL_MAX) { /* keep the nearest; the list covers less */
-		margin = fmin(margin, dist[WALL_MAX] - reach);
+		margin = fmin(margin, buf[WALL_MAX].dist - reach);
 		m = WALL_MAX;
 	}
 	memcpy(pool, buf, m * sizeof *buf);
-	memcpy(pdist, dist, m * sizeof *dist);
 	s->wall_count[i] = (uint8_t)m;
-	s->wall_near[i] = m ? dist[0] : INFINITY;
+	wall_inline(s, i);
 	s->wall_margin[i] = margin;
 }
 
@@ -338,9 +350,9 @@ static void wall_update(soft_system *s, size_t i)
  * triangles, if closer than its radius; returns that distance (or
  * INFINITY). A triangle listed at distance d_k from x_b is at least
  * d_k - |x - x_b| from x (the distance is 1-Lipschitz), so the ascending
- * list is cut as soon as that bound reaches the best found or the radius;
- * most spheres are decided by the first, kept apart from the list so
- * that the test touches no more memory than a pass over the spheres. */
+ * list is cut as soon as that bound reaches the best found or the radius.
+ * Most spheres are decided by the first two entries, kept apart from the
+ * list so that the test reads memory in sphere order only. */
 static double wall_contact(const soft_system *s, size_t i, double q[3])
 {
 	const double *xi = s->x + 3 * i;
@@ -349,10 +361,16 @@ static double wall_contact(const soft_system *s, size_t i, double q[3])
 	double moved = v3_norm(d), found = INFINITY;
 	if (s->wall_near[i] - moved >= best)
 		return found;
-	const int32_t *tl = s->wall_pool + i * WALL_MAX;
-	const double *dl = s->wall_dist + i * WALL_MAX;
-	for (int k = 0; k < s->wall_count[i] && dl[k] - moved < best; k++) {
-		double dk = triangle_distance(s, tl[k], xi, qk);
+	double d0 = triangle_distance(s, s->wall_first[i], xi, qk);
+	if (d0 < best) {
+		best = found = d0;
+		v3_copy(q, qk);
+	}
+	if (s->wall_second[i] - moved >= best)
+		return found;
+	const wall_entry *e = s->wall_pool + i * WALL_MAX;
+	for (int k = 1; k < s->wall_count[i] && e[k].dist - moved < best; k++) {
+		double dk = triangle_distance(s, e[k].tri, xi, qk);
 		if (dk < best) {
 			best = found = dk;
 			v3_copy(q, qk);
@@ -365,8 +383,9 @@ void soft_rebuild(soft_system *s)
 {
 	if (s->wall && !s->wall_pool) {
 		s->wall_pool = xmalloc(s->nmobile * WALL_MAX * sizeof *s->wall_pool + 1);
-		s->wall_dist = xmalloc(s->nmobile * WALL_MAX * sizeof *s->wall_dist + 1);
 		s->wall_near = xmalloc(s->nmobile * sizeof *s->wall_near + 1);
+		s->wall_first = xmalloc(s->nmobile * sizeof *s->wall_first + 1);
+		s->wall_second = xmalloc(s->nmobile * sizeof *s->wall_second + 1);
 		for (size_t i = 0; i < s->nmobile; i++)
 			s->wall_near[i] = INFINITY;
 	}

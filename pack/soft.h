@@ -19,6 +19,14 @@
 #define WALL_MAX 48   /* boundary triangles kept per sphere */
 #define WALL_MARGIN 5 /* skins a sphere may move before its triangles are listed again */
 
+/* A boundary triangle listed near a sphere, with a lower bound of its
+ * distance (m; single precision, rounded down: a triangle and its
+ * distance share a cache line). */
+typedef struct {
+	float dist;
+	int32_t tri;
+} wall_entry;
+
 typedef struct {
 	size_t n;
 	double *x;               /* [n][3] m */
@@ -43,7 +51,8 @@ typedef struct {
 	double *x_built; /* positions when the list was built */
 	double *r_built;
 	/* Boundary triangles near each moving sphere (see wall_update in
-	 * soft.c): wall_count[i] of them at wall_pool + i WALL_MAX, valid while
+	 * soft.c): wall_count[i] of them at wall_pool + i WALL_MAX, nearest
+	 * first from the position at the last build, wall_xb[i], valid while
 	 * the sphere is within wall_margin[i] of wall_xq[i]; wall_s0[i] is a
 	 * lower bound of the signed distance at wall_xq[i]. A caller that knows
 	 * one may store it (with wall_xq = the position) to spare a query. */
@@ -52,11 +61,11 @@ typedef struct {
 	double *wall_margin;
 	int32_t *wall_hint;
 	uint8_t *wall_count;
-	int32_t *wall_pool;
-	double *wall_xb;   /* [n][3] position at the last build */
-	double *wall_dist; /* [n][WALL_MAX] distance of each listed triangle from
-	                    * wall_xb, ascending */
-	double *wall_near; /* [n] the first of them (INFINITY: none listed) */
+	wall_entry *wall_pool;
+	double *wall_xb;     /* [n][3] position at the last build */
+	double *wall_near;   /* [n] the first listed distance (INFINITY: none), */
+	int32_t *wall_first; /* [n] its triangle, */
+	float *wall_second;  /* [n] and the second distance (INFINITY: none) */
 	int stale;
 	long builds;
 	double *worst; /* [n] if not NULL: each mobile sphere's largest relative
