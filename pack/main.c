@@ -67,10 +67,16 @@ static void import_spheres(const pack_options *o, double *x, double *r, size_t n
 
 /* OpenMP threads spin while they wait for the next parallel loop unless
  * told otherwise; on cores shared with other work a spinning thread holds
- * the core its partner needs, and the FIRE loops, which meet at a barrier
- * a few times per iteration, run several times slower. The policy is read
- * when the OpenMP runtime starts, so pack restarts itself once with
- * passive waiting unless the environment already chose a policy. */
+ * the core its partner needs, and the FIRE loops of the wall band, which
+ * meet at a barrier a few times per iteration, run many times slower
+ * (measured on the reference case with the machine loaded: 20 to 65 s
+ * instead of 3 s). The policy is read from the environment when the
+ * OpenMP runtime starts, before main(), and there is no call to change it
+ * later; setting it earlier still, from the executable's .preinit_array,
+ * does not last, as the C library resets the environment when it starts.
+ * So pack restarts itself once with passive waiting unless the
+ * environment already chose a policy (about 0.15 s, the dynamic loading
+ * of gmsh's libraries done twice). */
 static void wait_passively(char **argv)
 {
 	if (getenv("OMP_WAIT_POLICY"))
