@@ -14,7 +14,6 @@
  * element (a surface mesh); pack/trimesh.c checks it is closed and orients
  * it. */
 #include <errno.h>
-#include <gmshc.h>
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -24,10 +23,13 @@
 
 #include "lib/err.h"
 #include "pack/geometry.h"
+#include "pack/gmshlib.h"
 #include "pack/trimesh.h"
 
 #define CIRCLE_SEGMENTS 160
 #define CURVATURE_SEGMENTS 96 /* elements per 2 pi on curved CAD boundaries */
+
+static const gmsh_library *G; /* set by geometry_build */
 
 /* gmsh's CAD kernels print some errors on stdout themselves; the message
  * that matters reaches us through gmsh's logger. */
@@ -56,9 +58,9 @@ static int gmsh_failed(const char *what)
 {
 	char *msg = NULL;
 	int ierr;
-	gmshLoggerGetLastError(&msg, &ierr);
+	G->gmshLoggerGetLastError(&msg, &ierr);
 	err_set("%s: %s", what, msg && msg[0] ? msg : "gmsh failed");
-	gmshFree(msg);
+	G->gmshFree(msg);
 	return -1;
 }
 
@@ -68,8 +70,8 @@ static int extrude_base(int surf, double h)
 	int ierr, dt[2] = {2, surf}, layers = 1, *out = NULL;
 	double heights = 1;
 	size_t nout;
-	gmshModelGeoExtrude(dt, 2, 0, 0, h, &out, &nout, &layers, 1, &heights, 1, 0, &ierr);
-	gmshFree(out);
+	G->gmshModelGeoExtrude(dt, 2, 0, 0, h, &out, &nout, &layers, 1, &heights, 1, 0, &ierr);
+	G->gmshFree(out);
 	return ierr;
 }
 
@@ -77,19 +79,19 @@ static int make_cylinder(double diameter, double height)
 {
 	int ierr = 0, p[4], arc[4];
 	double r = 0.5 * diameter, z = -0.5 * height;
-	int c = gmshModelGeoAddPoint(0, 0, z, r, -1, &ierr);
+	int c = G->gmshModelGeoAddPoint(0, 0, z, r, -1, &ierr);
 	for (int k = 0; k < 4; k++)
-		p[k] = gmshModelGeoAddPoint(r * cos(k * M_PI / 2), r * sin(k * M_PI / 2), z, r, -1,
-		                            &ierr);
+		p[k] = G->gmshModelGeoAddPoint(r * cos(k * M_PI / 2), r * sin(k * M_PI / 2), z, r,
+		                               -1, &ierr);
 	for (int k = 0; k < 4; k++) {
-		arc[k] = gmshModelGeoAddCircleArc(p[k], c, p[(k + 1) % 4], -1, 0, 0, 0, &ierr);
-		gmshModelGeoMeshSetTransfiniteCurve(arc[k], CIRCLE_SEGMENTS / 4 + 1, "Progression",
-		                                    1, &ierr);
+		arc[k] = G->gmshModelGeoAddCircleArc(p[k], c, p[(k + 1) % 4], -1, 0, 0, 0, &ierr);
+		G->gmshModelGeoMeshSetTransfiniteCurve(arc[k], CIRCLE_SEGMENTS / 4 + 1,
+		                                       "Progression", 1, &ierr);
 	}
-	int loop = gmshModelGeoAddCurveLoop(arc, 4, -1, 0, &ierr);
-	int surf = gmshModelGeoAddPlaneSurface(&loop, 1, -1, &ierr);
+	int loop = G->gmshModelGeoAddCurveLoop(arc, 4, -1, 0, &ierr);
+	int surf = G->gmshModelGeoAddPlaneSurface(&loop, 1, -1, &ierr);
 	ierr = ierr || extrude_base(surf, height);
-	gmshOptionSetNumber("Mesh.MeshSizeMax", r / 4, &ierr);
+	G->gmshOptionSetNumber("Mesh.MeshSizeMax", r / 4, &ierr);
 	return ierr;
 }
 
@@ -99,27 +101,27 @@ static int make_box(const double size[3])
 	double x = 0.5 * size[0], y = 0.5 * size[1], z = -0.5 * size[2];
 	static const double sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
 	for (int k = 0; k < 4; k++)
-		p[k] = gmshModelGeoAddPoint(sx[k] * x, sy[k] * y, z, 0, -1, &ierr);
+		p[k] = G->gmshModelGeoAddPoint(sx[k] * x, sy[k] * y, z, 0, -1, &ierr);
 	for (int k = 0; k < 4; k++) {
-		line[k] = gmshModelGeoAddLine(p[k], p[(k + 1) % 4], -1, &ierr);
-		gmshModelGeoMeshSetTransfiniteCurve(line[k], 2, "Progression", 1, &ierr);
+		line[k] = G->gmshModelGeoAddLine(p[k], p[(k + 1) % 4], -1, &ierr);
+		G->gmshModelGeoMeshSetTransfiniteCurve(line[k], 2, "Progression", 1, &ierr);
 	}
-	int loop = gmshModelGeoAddCurveLoop(line, 4, -1, 0, &ierr);
-	int surf = gmshModelGeoAddPlaneSurface(&loop, 1, -1, &ierr);
-	gmshModelGeoMeshSetTransfiniteSurface(surf, "Left", NULL, 0, &ierr);
+	int loop = G->gmshModelGeoAddCurveLoop(line, 4, -1, 0, &ierr);
+	int surf = G->gmshModelGeoAddPlaneSurface(&loop, 1, -1, &ierr);
+	G->gmshModelGeoMeshSetTransfiniteSurface(surf, "Left", NULL, 0, &ierr);
 	return ierr || extrude_base(surf, size[2]);
 }
 
 static int make_builtin(const geometry_spec *s)
 {
 	int ierr;
-	gmshOptionSetNumber("Mesh.MeshSizeExtendFromBoundary", 0, &ierr);
-	gmshOptionSetNumber("Mesh.MeshSizeFromPoints", 0, &ierr);
+	G->gmshOptionSetNumber("Mesh.MeshSizeExtendFromBoundary", 0, &ierr);
+	G->gmshOptionSetNumber("Mesh.MeshSizeFromPoints", 0, &ierr);
 	int rc = s->kind == SHAPE_BOX ? make_box(s->size) : make_cylinder(s->diameter, s->height);
-	gmshModelGeoSynchronize(&ierr);
+	G->gmshModelGeoSynchronize(&ierr);
 	if (rc || ierr)
 		return gmsh_failed("gmsh: building the built-in shape");
-	gmshModelMeshGenerate(2, &ierr);
+	G->gmshModelMeshGenerate(2, &ierr);
 	return ierr ? gmsh_failed("gmsh: meshing the built-in shape") : 0;
 }
 
@@ -130,25 +132,25 @@ static int open_file(const char *path)
 		return err_set("%s: cannot open: %s", path, strerror(errno));
 	fclose(f);
 	int ierr;
-	gmshOptionSetString("Geometry.OCCTargetUnit", "M", &ierr);
+	G->gmshOptionSetString("Geometry.OCCTargetUnit", "M", &ierr);
 	int saved = quiet_begin();
-	gmshOpen(path, &ierr);
+	G->gmshOpen(path, &ierr);
 	quiet_end(saved);
 	if (ierr)
 		return gmsh_failed(path);
 	size_t *tags = NULL, ntags = 0;
 	double *xyz = NULL, *par = NULL;
 	size_t nxyz, npar;
-	gmshModelMeshGetNodes(&tags, &ntags, &xyz, &nxyz, &par, &npar, -1, -1, 0, 0, &ierr);
-	gmshFree(tags);
-	gmshFree(xyz);
-	gmshFree(par);
+	G->gmshModelMeshGetNodes(&tags, &ntags, &xyz, &nxyz, &par, &npar, -1, -1, 0, 0, &ierr);
+	G->gmshFree(tags);
+	G->gmshFree(xyz);
+	G->gmshFree(par);
 	if (ntags > 0)
 		return 0;
-	gmshOptionSetNumber("Mesh.MeshSizeFromCurvature", CURVATURE_SEGMENTS, &ierr);
-	gmshOptionSetNumber("Mesh.MinimumCirclePoints", CURVATURE_SEGMENTS, &ierr);
+	G->gmshOptionSetNumber("Mesh.MeshSizeFromCurvature", CURVATURE_SEGMENTS, &ierr);
+	G->gmshOptionSetNumber("Mesh.MinimumCirclePoints", CURVATURE_SEGMENTS, &ierr);
 	saved = quiet_begin();
-	gmshModelMeshGenerate(2, &ierr);
+	G->gmshModelMeshGenerate(2, &ierr);
 	quiet_end(saved);
 	return ierr ? gmsh_failed(path) : 0;
 }
@@ -177,36 +179,36 @@ static void collect_faces(int dim, int tag, size_t **faces, size_t *nfaces, size
 {
 	int ierr, *types = NULL;
 	size_t ntypes;
-	gmshModelMeshGetElementTypes(&types, &ntypes, dim, tag, &ierr);
+	G->gmshModelMeshGetElementTypes(&types, &ntypes, dim, tag, &ierr);
 	for (size_t k = 0; k < ntypes; k++) {
 		char *name = NULL;
 		double *local = NULL;
 		size_t nlocal;
 		int edim, order, nnodes, nprimary;
-		gmshModelMeshGetElementProperties(types[k], &name, &edim, &order, &nnodes, &local,
-		                                  &nlocal, &nprimary, &ierr);
-		gmshFree(name);
-		gmshFree(local);
+		G->gmshModelMeshGetElementProperties(types[k], &name, &edim, &order, &nnodes,
+		                                     &local, &nlocal, &nprimary, &ierr);
+		G->gmshFree(name);
+		G->gmshFree(local);
 		if (dim == 2) {
 			size_t *etags = NULL, ne, *nodes = NULL, nn;
-			gmshModelMeshGetElementsByType(types[k], &etags, &ne, &nodes, &nn, tag, 0,
-			                               1, &ierr);
+			G->gmshModelMeshGetElementsByType(types[k], &etags, &ne, &nodes, &nn, tag,
+			                                  0, 1, &ierr);
 			for (size_t e = 0; !ierr && (nprimary == 3 || nprimary == 4) && e < ne; e++)
 				push_face(faces, nfaces, cap, nodes + e * (size_t)nnodes, nprimary);
-			gmshFree(etags);
-			gmshFree(nodes);
+			G->gmshFree(etags);
+			G->gmshFree(nodes);
 			continue;
 		}
 		for (int corners = 3; corners <= 4; corners++) {
 			size_t *nodes = NULL, nn = 0;
-			gmshModelMeshGetElementFaceNodes(types[k], corners, &nodes, &nn, tag, 1, 0,
-			                                 1, &ierr);
+			G->gmshModelMeshGetElementFaceNodes(types[k], corners, &nodes, &nn, tag, 1,
+			                                    0, 1, &ierr);
 			for (size_t f = 0; !ierr && f + (size_t)corners <= nn; f += (size_t)corners)
 				push_face(faces, nfaces, cap, nodes + f, corners);
-			gmshFree(nodes);
+			G->gmshFree(nodes);
 		}
 	}
-	gmshFree(types);
+	G->gmshFree(types);
 }
 
 typedef struct {
@@ -269,18 +271,18 @@ static void boundary_faces(size_t **faces, size_t *nfaces)
 		*nfaces = keep_unshared(*faces, *nfaces);
 		return;
 	}
-	gmshModelGetEntities(&vols, &nvols, 3, &ierr);
+	G->gmshModelGetEntities(&vols, &nvols, 3, &ierr);
 	if (nvols > 0) {
 		int *bnd = NULL;
 		size_t nbnd;
-		gmshModelGetBoundary(vols, nvols, &bnd, &nbnd, 1, 0, 0, &ierr);
+		G->gmshModelGetBoundary(vols, nvols, &bnd, &nbnd, 1, 0, 0, &ierr);
 		for (size_t k = 0; k + 1 < nbnd; k += 2)
 			collect_faces(2, abs(bnd[k + 1]), faces, nfaces, &cap);
-		gmshFree(bnd);
+		G->gmshFree(bnd);
 	} else {
 		collect_faces(2, -1, faces, nfaces, &cap);
 	}
-	gmshFree(vols);
+	G->gmshFree(vols);
 }
 
 /* Node tags to a compact vertex array. */
@@ -290,7 +292,7 @@ static int to_trimesh(const size_t *faces, size_t nfaces, double scale, trimesh 
 	size_t *tags = NULL, ntags;
 	double *xyz = NULL, *par = NULL;
 	size_t nxyz, npar;
-	gmshModelMeshGetNodes(&tags, &ntags, &xyz, &nxyz, &par, &npar, -1, -1, 0, 0, &ierr);
+	G->gmshModelMeshGetNodes(&tags, &ntags, &xyz, &nxyz, &par, &npar, -1, -1, 0, 0, &ierr);
 	size_t maxtag = 0;
 	for (size_t i = 0; i < ntags; i++)
 		maxtag = tags[i] > maxtag ? tags[i] : maxtag;
@@ -314,9 +316,9 @@ static int to_trimesh(const size_t *faces, size_t nfaces, double scale, trimesh 
 		m->tri[k] = (int32_t)slot[faces[k]];
 	}
 	free(slot);
-	gmshFree(tags);
-	gmshFree(xyz);
-	gmshFree(par);
+	G->gmshFree(tags);
+	G->gmshFree(xyz);
+	G->gmshFree(par);
 	return rc;
 }
 
@@ -339,11 +341,13 @@ int geometry_build(const geometry_spec *s, dem_geometry *g)
 {
 	memset(g, 0, sizeof *g);
 	const char *what = s->kind == SHAPE_FILE ? s->file : "built-in shape";
+	if (!(G = gmshlib_load()))
+		return -1;
 	int ierr, threads = omp_get_max_threads();
-	gmshInitialize(0, NULL, 0, &ierr);
-	gmshOptionSetNumber("General.Terminal", 0, &ierr);
-	gmshOptionSetNumber("General.NumThreads", 1, &ierr);
-	gmshLoggerStart(&ierr);
+	G->gmshInitialize(0, NULL, 0, &ierr);
+	G->gmshOptionSetNumber("General.Terminal", 0, &ierr);
+	G->gmshOptionSetNumber("General.NumThreads", 1, &ierr);
+	G->gmshLoggerStart(&ierr);
 	int rc = s->kind == SHAPE_FILE ? open_file(s->file) : make_builtin(s);
 	trimesh m = {0};
 	if (rc == 0) {
@@ -352,8 +356,8 @@ int geometry_build(const geometry_spec *s, dem_geometry *g)
 		rc = to_trimesh(faces, nfaces, s->kind == SHAPE_FILE ? s->scale : 1, &m);
 		free(faces);
 	}
-	gmshLoggerStop(&ierr);
-	gmshFinalize(&ierr);
+	G->gmshLoggerStop(&ierr);
+	G->gmshFinalize(&ierr);
 	/* gmsh sets the OpenMP thread count of the whole process: restore it. */
 	omp_set_num_threads(threads);
 	if (rc || trimesh_close(&m, what)) {

@@ -75,8 +75,8 @@ static void import_spheres(const pack_options *o, double *x, double *r, size_t n
  * later; setting it earlier still, from the executable's .preinit_array,
  * does not last, as the C library resets the environment when it starts.
  * So pack restarts itself once with passive waiting unless the
- * environment already chose a policy (about 0.15 s, the dynamic loading
- * of gmsh's libraries done twice). */
+ * environment already chose a policy; the restart costs a few hundredths
+ * of a second, gmsh's libraries being loaded only later (gmshlib.h). */
 static void wait_passively(char **argv)
 {
 	if (getenv("OMP_WAIT_POLICY"))
