@@ -489,7 +489,8 @@ void soft_rebuild(soft_system *s)
 	s->builds++;
 }
 
-/* The list stays valid while no pair has closed its gap by the skin: a
+/* Positions and radii are also laid out side by side for soft_forces().
+ * The list stays valid while no pair has closed its gap by the skin: a
  * pair's centres approach by at most the sum of their displacements, so
  * the two largest displacements bound every pair (twice the largest, as
  * often used, rebuilds early when one sphere outruns the rest). Both are
@@ -509,6 +510,8 @@ void soft_update(soft_system *s, int force)
 		size_t end = (b + 1) * BLOCK < n ? (b + 1) * BLOCK : n;
 		for (size_t i = b * BLOCK; i < end; i++) {
 			double d[3];
+			v3_copy(s->xr + 4 * i, s->x + 3 * i);
+			s->xr[4 * i + 3] = s->r[i];
 			v3_sub(d, s->x + 3 * i, s->x_built + 3 * i);
 			double m = v3_dot(d, d);
 			m2 = m > m2 ? (m > m1 ? m1 : m) : m2;
@@ -585,13 +588,8 @@ void soft_forces(soft_system *s, double *f, soft_stats *out)
 	size_t n = s->nmobile, nblock = (n + FORCE_BLOCK - 1) / FORCE_BLOCK;
 	double *part = xcalloc(2 * nblock + 1, sizeof *part), *xr = s->xr;
 	double worst = 0, fmx = 0;
-	/* Position and radius side by side: one cache line per neighbour (the
-	 * fixed spheres' were laid out at the last build). */
-#pragma omp parallel for schedule(static) if (n >= PAR_MIN)
-	for (size_t i = 0; i < n; i++) {
-		v3_copy(xr + 4 * i, s->x + 3 * i);
-		xr[4 * i + 3] = s->r[i];
-	}
+	/* Positions and radii side by side in xr, one cache line per
+	 * neighbour, as soft_update() laid them out. */
 #pragma omp parallel for reduction(max : worst, fmx) schedule(static) if (n >= PAR_MIN)
 	for (size_t b = 0; b < nblock; b++) {
 		double sum = 0, count = 0;

@@ -91,7 +91,8 @@ typedef struct {
 	double fmax;         /* max_i |F_i| / r_i */
 } soft_stats;
 
-/* Forces on the mobile spheres (f, [nmobile][3]). */
+/* Forces on the mobile spheres (f, [nmobile][3]) at the positions and
+ * radii of the last soft_update() or soft_rebuild(). */
 void soft_forces(soft_system *s, double *f, soft_stats *st);
 
 /* Minimum-image separation x_j - x_i. */
