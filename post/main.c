@@ -19,6 +19,7 @@ static const struct {
     {"cracks", post_cracks, "crack discs as a VTK series, crack maps and counts"},
     {"vtk", post_vtk, "ParaView files: particles, bonds, cracks, platens (.pvd series)"},
     {"curve", post_curve, "stress-strain, volumetric strain, broken bonds, energies"},
+    {"summary", post_summary, "summary.json: peak, modulus, strengths, bonds broken, timing"},
 };
 enum { NCOMMANDS = sizeof commands / sizeof commands[0] };
 
@@ -73,9 +74,10 @@ int main(int argc, char **argv)
 			argv[1] = argv[0]; /* the command sees "post [options] FILE" */
 			return commands[k].run(argc - 1, argv + 1);
 		}
-	fprintf(stderr,
-	        "%s: unknown command '%s': expected ratios, cracks, vtk or curve (see post "
-	        "--help)\n",
-	        err_program_name(), argv[1]);
+	fprintf(
+	    stderr,
+	    "%s: unknown command '%s': expected ratios, cracks, vtk, curve or summary (see post "
+	    "--help)\n",
+	    err_program_name(), argv[1]);
 	return 2;
 }

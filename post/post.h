@@ -8,6 +8,7 @@ int post_ratios(int argc, char **argv);
 int post_cracks(int argc, char **argv);
 int post_vtk(int argc, char **argv);
 int post_curve(int argc, char **argv);
+int post_summary(int argc, char **argv);
 
 /* The label of a run in legends and tables: the file name without .h5, or
  * the directory name for a file called run.h5 (runs/ucs/run.h5 -> ucs).
