@@ -43,6 +43,20 @@ static double tangent_at_half(const double *x, const double *y, const double *w,
 	return isfinite(s) ? s : slope_crossing(x, y, w, end, 0.5 * wp);
 }
 
+/* The peak of q on the first loading branch: before the axial strain first
+ * falls back by more than UNLOAD_STRAIN (an unloading stage). */
+#define UNLOAD_STRAIN 1e-4
+static size_t first_loading_peak(const double *ea, const double *q, size_t n)
+{
+	size_t kp = 0;
+	double emax = ea[0];
+	for (size_t k = 0; k < n && ea[k] > emax - UNLOAD_STRAIN; k++) {
+		emax = fmax(emax, ea[k]);
+		kp = q[k] > q[kp] ? k : kp;
+	}
+	return kp;
+}
+
 static double ke_ratio(const dem_run *r, const double *w, size_t end, double lo, double hi)
 {
 	const double *ek = run_column_data(r, "energy_kinetic");
@@ -134,10 +148,11 @@ int summary_compute(const dem_run *r, summary_kind kind, double D, double t, sum
 	if (kind == TEST_HYDROSTATIC) {
 		hydrostatic(r, s);
 	} else if (q[kp] > 0) {
-		if (kind == TEST_COMPRESSION) {
-			s->young_modulus = tangent_at_half(ea, q, q, kp, q[kp]);
+		size_t k1 = first_loading_peak(ea, q, n);
+		if (kind == TEST_COMPRESSION && q[k1] > 0) {
+			s->young_modulus = tangent_at_half(ea, q, q, k1, q[k1]);
 			if (er)
-				s->poisson_ratio = -tangent_at_half(ea, er, q, kp, q[kp]);
+				s->poisson_ratio = -tangent_at_half(ea, er, q, k1, q[k1]);
 		}
 		s->ke_ratio_max = ke_ratio(r, q, kp + 1, 0.5 * q[kp], q[kp]);
 	}

@@ -8,7 +8,10 @@
  *   Young's modulus  E  = dq/d(eps_a), least squares over the rows before
  *                         k_p with q in [0.4, 0.6] q_p (the tangent at 50 %
  *                         of the peak; the two rows around 0.5 q_p when the
- *                         band holds fewer than two)
+ *                         band holds fewer than two); with unload-reload
+ *                         cycles, q_p and k_p of the first loading branch
+ *                         (before the axial strain first falls back by
+ *                         more than 1e-4)
  *   Poisson's ratio  nu = -d(eps_r)/d(eps_a) over the same rows (eps_r is
  *                         compression positive, so a bulging specimen has
  *                         nu > 0)

@@ -1,6 +1,7 @@
 /* post summary on run files written here with known histories: a
  * triaxial test whose deviator rises linearly (modulus E0, Poisson ratio
- * NU0) to a peak and softens, a Brazilian test of known peak load, a
+ * NU0) to a peak and softens, the same with an unload-reload cycle
+ * (the modulus is the first loading branch's), a Brazilian test of known peak load, a
  * hydrostatic ramp of known bulk modulus; the figures of summary.json are
  * those of the construction, a fast loading is flagged, and the file is
  * written to --out. */
@@ -33,7 +34,7 @@ static const run_column cols[] = {
 };
 enum { NCOLS = sizeof cols / sizeof cols[0] };
 
-typedef enum { TRIAXIAL, BTS, HYDROSTATIC } kind;
+typedef enum { TRIAXIAL, BTS, HYDROSTATIC, CYCLE } kind;
 
 /* Deviator of the triaxial history: E0 e up to the peak row, then falling
  * linearly to half the peak at the last row. */
@@ -42,6 +43,19 @@ static double deviator(int k)
 	double qp = E0 * DE * PEAK_ROW;
 	return k <= PEAK_ROW ? E0 * DE * k
 	                     : qp * (1 - 0.5 * (k - PEAK_ROW) / (ROWS - 1 - PEAK_ROW));
+}
+
+/* Axial strain and deviator of a history with an unload-reload cycle:
+ * loading at E0 to row 20, unloading at 3 E0 to row 30 (the strain falls
+ * by 2 DE), then loading at 3 E0 to the end (the peak, at the last row). */
+static void cycle(int k, double *e, double *q)
+{
+	if (k <= 20)
+		*e = DE * k, *q = E0 * *e;
+	else if (k <= 30)
+		*e = DE * (20 - 0.2 * (k - 20)), *q = E0 * DE * 20 - 3 * E0 * (DE * 20 - *e);
+	else
+		*e = DE * (18 + (k - 30)), *q = E0 * DE * 14 + 3 * E0 * (*e - DE * 18);
 }
 
 /* Axial force of the Brazilian history: 5 kN at row 30, zero at both ends. */
@@ -60,7 +74,8 @@ static void write_run(const char *path, kind kd, double ke_fraction)
 	static const char *config[] = {
 	    "{\"test\":\"triaxial\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}",
 	    "{\"test\":\"bts\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}",
-	    "{\"test\":\"hydrostatic\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}"};
+	    "{\"test\":\"hydrostatic\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}",
+	    "{\"test\":\"triaxial\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}"};
 	dem_provenance prov;
 	prov_init(&prov, "solve", config[kd], 0);
 	run_writer *w = run_create(path, &prov, &a, cols, NCOLS);
@@ -74,6 +89,11 @@ static void write_run(const char *path, kind kd, double ke_fraction)
 			p = 0, sa = bts_force(k) / (PI * D * D / 4);
 		if (kd == HYDROSTATIC)
 			p = sa = PMAX * k / (ROWS - 1), ev = p / K0, e = ev / 3, er = ev / 3;
+		if (kd == CYCLE) {
+			double qc;
+			cycle(k, &e, &qc);
+			sa = PC + qc, er = -NU0 * e, ev = e + 2 * er;
+		}
 		double row[NCOLS] = {1e-6 * k,  100.0 * k,    e,
 		                     sa,        er,           ev,
 		                     p,         bts_force(k), ke_fraction * (1 + e),
@@ -157,6 +177,13 @@ int main(void)
 	text = cfg_text(c);
 	CHECK_CONTAINS(text, "\"young_modulus\":null");
 	free(text);
+	cfg_free(c);
+
+	/* the modulus of the first loading branch, not of the reloading */
+	write_run(run, CYCLE, 0.01);
+	c = summary_of(dir, run, 0);
+	CHECK_REL(num(c, "young_modulus"), E0, 1e-9);
+	CHECK_REL(num(c, "peak_deviator"), E0 * DE * (14 + 3 * (ROWS - 1 - 30)), 1e-9);
 	cfg_free(c);
 
 	write_run(run, HYDROSTATIC, 0.01);
