@@ -31,4 +31,5 @@ $(OUT)/convergence/cement-ucs-%/run.h5: $(OUT)/convergence/cement-ucs-%/assembly
 convergence: $(foreach r,$(CONVERGENCE),$(addprefix $(OUT)/$(r)/,assembly.h5 run.h5 summary.json curve.csv))
 
 paper: $(PAPER_CASES) $(foreach c,$(PAPER_CASES),$(OUT)/$(c)/summary.json) convergence
-	$(TOP)/tools/validation --runs $(OUT) --convergence $(CONVERGENCE) $(PAPER_CASES)
+	$(TOP)/tools/validation --runs $(OUT) $(addprefix --convergence ,$(CONVERGENCE)) \
+		$(PAPER_CASES)
