@@ -1,7 +1,6 @@
 /* The figures of summary.json (equations in post/summary.h). */
 #include <math.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "lib/err.h"
 #include "post/summary.h"
