@@ -43,27 +43,27 @@ expect() { # expected-programs make-arguments...
 	[ "$got" = "$want" ] || { cat "$tmp/log" >&2; fail "make $*: ran '$got', expected '$want'"; }
 }
 
-expect "pack solve post post post" a
-for f in assembly.h5 assembly.d pack.txt run.h5 run.d report.json curve.csv stress_strain.png \
-	cracks.csv vtk/run.pvd; do
+expect "pack solve post post post post" a
+for f in assembly.h5 assembly.d pack.txt run.h5 run.d report.json summary.json curve.csv \
+	stress_strain.png cracks.csv vtk/run.pvd; do
 	[ -s "$tmp/runs/a/$f" ] || fail "runs/a/$f missing"
 done
 expect "" a
 sleep 1
 touch "$tmp/share/materials/m.json"
-expect "solve post post post" a
+expect "solve post post post post" a
 touch "$tmp/share/specimens/small.json"
-expect "pack solve post post post" a
-expect "pack solve post post post" a SEED=7
+expect "pack solve post post post post" a
+expect "pack solve post post post post" a SEED=7
 expect "" a SEED=7
-expect "pack solve post post post" a
+expect "pack solve post post post post" a
 
 # Side by side: both complete, each with its own files.
 ran -j2 a b > /dev/null || { cat "$tmp/log" >&2; fail "make -j2 a b failed"; }
 [ -s "$tmp/runs/b/vtk/run.pvd" ] || fail "make -j2: runs/b incomplete"
 
 # A run of another run's case with a sphere count of its own.
-expect "pack solve post post post" c COUNT=900
+expect "pack solve post post post post" c COUNT=900
 grep -q -- "--count 300 " "$tmp/runs/c/pack.args" || fail "c.count not used"
 grep -q "cases/a.json" "$tmp/runs/c/run.d" || fail "c.case not used"
 
