@@ -78,7 +78,7 @@ static int parse_lateral(cfg *l, stage *s)
 		return -1;
 	if (s->lateral == LATERAL_PRESSURE &&
 	    (cfg_number(l, "pressure", &s->pressure, "Pa", 0, INFINITY) ||
-	     cfg_choice_or(l, "method", &s->method, method_words, PRESSURE_TRIBUTARY)))
+	     cfg_choice_or(l, "method", &s->method, method_words, PRESSURE_PAPER)))
 		return -1;
 	return 0;
 }

@@ -112,7 +112,7 @@ int main(void)
 	    "\"loading\": [{\"name\": \"confine\", \"ramp\": 0.01, \"axial\": {\"mode\": "
 	    "\"stress\", \"stress\": 1e6}, \"lateral\": {\"mode\": \"pressure\", \"pressure\": "
 	    "1e6, "
-	    "\"method\": \"paper\"}, \"until\": {\"time\": 0.02}},"
+	    "\"method\": \"tributary\"}, \"until\": {\"time\": 0.02}},"
 	    "{\"axial\": {\"mode\": \"strain_rate\", \"rate\": -0.5, \"move\": \"top\"}, "
 	    "\"lateral\": {\"mode\": \"pressure\", \"pressure\": 1e6}, \"until\": "
 	    "{\"stress_axial\": "
@@ -128,11 +128,11 @@ int main(void)
 	CHECK_STR(c.stages[0].name, "confine");
 	CHECK(c.stages[0].axial == AXIAL_STRESS && c.stages[0].target == 1e6 &&
 	      c.stages[0].rate == 1.0 && c.stages[0].ramp == 0.01);
-	CHECK(c.stages[0].lateral == LATERAL_PRESSURE && c.stages[0].method == PRESSURE_PAPER);
+	CHECK(c.stages[0].lateral == LATERAL_PRESSURE && c.stages[0].method == PRESSURE_TRIBUTARY);
 	CHECK(c.stages[0].until.time == 0.02);
 	CHECK(c.stages[1].axial == AXIAL_STRAIN_RATE && c.stages[1].rate == -0.5 &&
 	      c.stages[1].top_only);
-	CHECK(c.stages[1].method == PRESSURE_TRIBUTARY && c.stages[1].until.stress_axial == 2e6);
+	CHECK(c.stages[1].method == PRESSURE_PAPER && c.stages[1].until.stress_axial == 2e6);
 	CHECK(c.stop.strain_axial == 0.01 && c.stop.stress_drop == 0.5);
 	/* The provenance configuration has the material inline. */
 	CHECK_CONTAINS(c.config, "\"law\":\t\"linear\"");
