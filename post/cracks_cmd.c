@@ -179,30 +179,24 @@ int post_cracks(int argc, char **argv)
 	    {"no-png", CLI_FLAG, &no_png, NULL, "", "no figures", 0, 0},
 	    {"no-vtk", CLI_FLAG, &no_vtk, NULL, "", "no VTK series", 0, 0},
 	};
-	const cli_spec spec = {
-	    .usage = "post cracks [options] RUN.h5",
-	    .summary = "The crack log of a run: cracks.csv (every bond failure with its mode,\n"
-	               "time, axial strain, forces, place and orientation), vtk/cracks.pvd (one\n"
-	               "disc per crack, appearing at its time), and figures: cracks_surface.png\n"
-	               "(unrolled lateral surface), cracks_section.png (axial section),\n"
-	               "cracks_count.png (cracks by mode against axial strain) and\n"
-	               "cracks_orientation.png (histogram of crack orientations).",
-	    .opts = opts,
-	    .nopts = sizeof opts / sizeof opts[0],
-	    .min_pos = 1,
-	    .max_pos = 1,
-	};
-	char *pos[1];
-	cli_parse(&spec, argc, argv, pos);
+	const char *file = post_one_file(
+	    "post cracks [options] RUN.h5",
+	    "The crack log of a run: cracks.csv (every bond failure with its mode,\n"
+	    "time, axial strain, forces, place and orientation), vtk/cracks.pvd (one\n"
+	    "disc per crack, appearing at its time), and figures: cracks_surface.png\n"
+	    "(unrolled lateral surface), cracks_section.png (axial section),\n"
+	    "cracks_count.png (cracks by mode against axial strain) and\n"
+	    "cracks_orientation.png (histogram of crack orientations).",
+	    opts, (int)(sizeof opts / sizeof opts[0]), argc, argv);
 	dem_run r;
-	load_run("cracks", pos[0], &r);
+	load_run("cracks", file, &r);
 	specimen sp;
 	specimen_of(&sp, &r.assembly);
 	if (o.depth == 0)
 		o.depth = 4 * sp.mean_radius;
 	if (o.thickness == 0)
 		o.thickness = 4 * sp.mean_radius;
-	char *dir = out_dir(out, pos[0]);
+	char *dir = out_dir(out, file);
 	char *csv = out_path(dir, "cracks.csv");
 	write_csv(csv, &r, &sp);
 	printf("wrote %s (%zu cracks)\n", csv, r.ncracks);
@@ -219,7 +213,7 @@ int post_cracks(int argc, char **argv)
 		free(all), free(times), free(vdir);
 	}
 	if (!no_png && r.ncracks == 0)
-		printf("%s: no cracks in the run: no crack figures drawn\n", pos[0]);
+		printf("%s: no cracks in the run: no crack figures drawn\n", file);
 	else if (!no_png)
 		plot_maps(dir, &r, &sp, &o);
 	free(csv), free(dir);

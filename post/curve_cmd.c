@@ -184,38 +184,32 @@ int post_curve(int argc, char **argv)
 	    {"experiment-label", CLI_STR, &exp_label, "TEXT", "", "legend of those points", 0, 0},
 	    {"no-png", CLI_FLAG, &no_png, NULL, "", "write the CSV only", 0, 0},
 	};
-	const cli_spec spec = {
-	    .usage = "post curve [options] RUN.h5",
-	    .summary = "The history of a run: curve.csv (every history column) and figures:\n"
-	               "stress_strain.png (axial stress against axial and radial strain),\n"
-	               "volumetric.png, bonds.png (broken bonds by mode against axial strain)\n"
-	               "and energy.png, with experimental points overlaid if given.",
-	    .opts = opts,
-	    .nopts = sizeof opts / sizeof opts[0],
-	    .min_pos = 1,
-	    .max_pos = 1,
-	};
-	char *pos[1];
-	cli_parse(&spec, argc, argv, pos);
+	const char *file =
+	    post_one_file("post curve [options] RUN.h5",
+	                  "The history of a run: curve.csv (every history column) and figures:\n"
+	                  "stress_strain.png (axial stress against axial and radial strain),\n"
+	                  "volumetric.png, bonds.png (broken bonds by mode against axial strain)\n"
+	                  "and energy.png, with experimental points overlaid if given.",
+	                  opts, (int)(sizeof opts / sizeof opts[0]), argc, argv);
 	dem_run r;
-	load_run("curve", pos[0], &r);
+	load_run("curve", file, &r);
 	if (r.nrows == 0)
 		fatal("%s: the history table is empty (the run stopped before its first row)",
-		      pos[0]);
-	required(pos[0], &r, "strain_axial");
-	required(pos[0], &r, "stress_axial");
+		      file);
+	required(file, &r, "strain_axial");
+	required(file, &r, "stress_axial");
 	experiment e, *ep = NULL;
 	if (exp_path) {
 		if (experiment_read(exp_path, &e))
 			fatal(NULL);
 		ep = &e;
 	}
-	char *dir = out_dir(out, pos[0]);
+	char *dir = out_dir(out, file);
 	char *csv = out_path(dir, "curve.csv");
 	write_csv(csv, &r);
 	printf("wrote %s (%zu rows, %d columns)\n", csv, r.nrows, r.ncols);
 	if (!no_png)
-		plot_curves(dir, pos[0], &r, ep, exp_label);
+		plot_curves(dir, file, &r, ep, exp_label);
 	if (ep)
 		experiment_free(ep);
 	free(csv), free(dir);

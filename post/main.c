@@ -23,6 +23,20 @@ static const struct {
 };
 enum { NCOMMANDS = sizeof commands / sizeof commands[0] };
 
+const char *post_one_file(const char *usage, const char *summary, const cli_opt *opts, int nopts,
+                          int argc, char **argv)
+{
+	const cli_spec spec = {.usage = usage,
+	                       .summary = summary,
+	                       .opts = opts,
+	                       .nopts = nopts,
+	                       .min_pos = 1,
+	                       .max_pos = 1};
+	char *pos[1];
+	cli_parse(&spec, argc, argv, pos);
+	return pos[0];
+}
+
 char *post_run_label(const char *path)
 {
 	const char *base = strrchr(path, '/');

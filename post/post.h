@@ -4,11 +4,18 @@
 #ifndef DEM_POST_POST_H
 #define DEM_POST_POST_H
 
+#include "lib/cli.h"
+
 int post_ratios(int argc, char **argv);
 int post_cracks(int argc, char **argv);
 int post_vtk(int argc, char **argv);
 int post_curve(int argc, char **argv);
 int post_summary(int argc, char **argv);
+
+/* Parse the options of a command that takes one file (usage and summary
+ * as in lib/cli.h's cli_spec); returns that file's name. */
+const char *post_one_file(const char *usage, const char *summary, const cli_opt *opts, int nopts,
+                          int argc, char **argv);
 
 /* The label of a run in legends and tables: the file name without .h5, or
  * the directory name for a file called run.h5 (runs/ucs/run.h5 -> ucs).

@@ -138,37 +138,31 @@ int post_summary(int argc, char **argv)
 	const cli_opt opts[] = {
 	    {"out", CLI_STR, &out, "DIR", "", "output directory (default: that of the run)", 0, 0},
 	};
-	const cli_spec spec = {
-	    .usage = "post summary [options] RUN.h5",
-	    .summary = "summary.json: the test, material, spheres and bonds, peak stress and\n"
-	               "strain, Young's modulus (tangent at 50 % of the peak) and Poisson's\n"
-	               "ratio, the Brazilian strength, the residual stress, bonds broken by\n"
-	               "mode, wall time and particle-steps per second, and the kinetic/elastic\n"
-	               "energy ratio on the loading branch (a warning when it is too high).",
-	    .opts = opts,
-	    .nopts = sizeof opts / sizeof opts[0],
-	    .min_pos = 1,
-	    .max_pos = 1,
-	};
-	char *pos[1];
-	cli_parse(&spec, argc, argv, pos);
+	const char *file =
+	    post_one_file("post summary [options] RUN.h5",
+	                  "summary.json: the test, material, spheres and bonds, peak stress and\n"
+	                  "strain, Young's modulus (tangent at 50 % of the peak) and Poisson's\n"
+	                  "ratio, the Brazilian strength, the residual stress, bonds broken by\n"
+	                  "mode, wall time and particle-steps per second, and the kinetic/elastic\n"
+	                  "energy ratio on the loading branch (a warning when it is too high).",
+	                  opts, (int)(sizeof opts / sizeof opts[0]), argc, argv);
 	dem_run r;
-	load_run("summary", pos[0], &r);
+	load_run("summary", file, &r);
 	run_names nm = names_of(&r);
 	summary s;
 	if (summary_compute(&r, kind_of(nm.test), r.assembly.geom.diameter, r.assembly.geom.height,
 	                    &s))
-		fatal("%s: %s", pos[0], err_msg());
-	char warning[256], *label = post_run_label(pos[0]);
+		fatal("%s: %s", file, err_msg());
+	char warning[256], *label = post_run_label(file);
 	int slow = s.ke_ratio_max > SUMMARY_KE_RATIO_MAX;
 	if (slow) {
 		snprintf(warning, sizeof warning,
 		         "kinetic/elastic energy ratio %.3g on the loading branch (above %g): the "
 		         "loading is too fast to be quasi-static",
 		         s.ke_ratio_max, SUMMARY_KE_RATIO_MAX);
-		fprintf(stderr, "%s: warning: %s: %s\n", err_program_name(), pos[0], warning);
+		fprintf(stderr, "%s: warning: %s: %s\n", err_program_name(), file, warning);
 	}
-	char *dir = out_dir(out, pos[0]);
+	char *dir = out_dir(out, file);
 	char *path = out_path(dir, "summary.json");
 	write_json(path, label, &r, &nm, &s, slow ? warning : NULL);
 	printf("wrote %s\n", path);

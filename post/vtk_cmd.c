@@ -139,34 +139,28 @@ int post_vtk(int argc, char **argv)
 	     0},
 	    {"every", CLI_INT, &every, "N", "", "every N-th snapshot (the last always)", 1, 1e9},
 	};
-	const cli_spec spec = {
-	    .usage = "post vtk [options] RUN.h5|ASSEMBLY.h5",
-	    .summary = "ParaView files, binary compressed VTK XML. From a run, one frame per\n"
-	               "snapshot: particles_N.vtu (points with radius, displacement, velocity,\n"
-	               "damage, material), bonds_N.vtp (lines with state, forces, damage),\n"
-	               "platens_N.vtp, cracks_N.vtp (discs), a .pvd series for each and run.pvd\n"
-	               "with all of them, and geometry.vtp. From an assembly: particles.vtu and\n"
-	               "geometry.vtp. share/paraview/show_run.py renders a run.",
-	    .opts = opts,
-	    .nopts = sizeof opts / sizeof opts[0],
-	    .min_pos = 1,
-	    .max_pos = 1,
-	};
-	char *pos[1];
-	cli_parse(&spec, argc, argv, pos);
-	file_kind kind = load_kind("vtk", pos[0]);
+	const char *file = post_one_file(
+	    "post vtk [options] RUN.h5|ASSEMBLY.h5",
+	    "ParaView files, binary compressed VTK XML. From a run, one frame per\n"
+	    "snapshot: particles_N.vtu (points with radius, displacement, velocity,\n"
+	    "damage, material), bonds_N.vtp (lines with state, forces, damage),\n"
+	    "platens_N.vtp, cracks_N.vtp (discs), a .pvd series for each and run.pvd\n"
+	    "with all of them, and geometry.vtp. From an assembly: particles.vtu and\n"
+	    "geometry.vtp. share/paraview/show_run.py renders a run.",
+	    opts, (int)(sizeof opts / sizeof opts[0]), argc, argv);
+	file_kind kind = load_kind("vtk", file);
 	char *dir;
 	if (out) {
 		dir = xstrdup(out);
 	} else {
-		char *base = out_dir(NULL, pos[0]);
+		char *base = out_dir(NULL, file);
 		dir = out_path(base, "vtk");
 		free(base);
 	}
 	if (kind == FILE_ASSEMBLY)
-		assembly_files(pos[0], dir);
+		assembly_files(file, dir);
 	else
-		run_files(pos[0], dir, every);
+		run_files(file, dir, every);
 	free(dir);
 	return 0;
 }
