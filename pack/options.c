@@ -69,9 +69,8 @@ static int table(pack_options *o, cli_opt *t)
 	     "the command line win",
 	     0, 0},
 	    {"depfile", CLI_STR, &o->depfile, "FILE", "",
-	     "write a make rule to FILE: OUTPUT depends on the configuration, geometry, grading "
-	     "and "
-	     "import files read",
+	     "write a make rule to FILE: OUTPUT depends on the configuration, geometry, "
+	     "grading and import files read",
 	     0, 0},
 	    {"quiet", CLI_FLAG, &o->quiet, NULL, "", "do not print the summary", 0, 0},
 	};
@@ -111,13 +110,16 @@ static void json_key(const char *name, char *key, size_t n)
 			*p = '_';
 }
 
-/* File names in the --config file are relative to its directory. */
+/* File names given in the --config file are relative to its directory. */
 static void resolve_names(pack_options *o, const char *path)
 {
+	static const char *const keys[] = {"geometry", "grading", "import"};
 	const char **names[] = {&o->geometry, &o->grading, &o->import_path};
 	for (int k = 0; k < 3; k++)
-		if (*names[k])
+		if (cfg_has(o->file, keys[k]) && *names[k]) {
+			free(o->resolved[k]);
 			*names[k] = o->resolved[k] = path_beside(path, *names[k]);
+		}
 }
 
 /* Settings from the --config file, checked against the same bounds as the

@@ -232,6 +232,20 @@ static void test_config(void)
 	CHECK(r2.status == 0);
 	CHECK(!same_spheres(cli, file));
 	harness_free(&r2);
+	/* A geometry named in the file is found beside it, whatever the current
+	 * directory, and the dependency file names both. */
+	const char *geo = check_tmp("cli_cube.geo"), *named = check_tmp("cli_named.json");
+	const char *dep = check_tmp("cli_named.d");
+	write_file(geo, "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 0.012, 0.012, 0.012};\n");
+	write_file(named, "{\"geometry\": \"cli_cube.geo\", \"dist\": \"lognormal\", "
+	                  "\"radius\": 0.0008, \"sigma\": 0.2, \"seed\": 7}");
+	r2 = run_pack("--quiet --config %s --depfile %s %s", named, dep, file);
+	CHECK(r2.status == 0);
+	char *rule = harness_slurp(dep), want[1024];
+	snprintf(want, sizeof want, "%s: %s %s\n", file, named, geo);
+	CHECK(strncmp(rule, want, strlen(want)) == 0);
+	free(rule);
+	harness_free(&r2);
 }
 
 int main(void)
