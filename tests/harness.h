@@ -59,6 +59,18 @@ static inline harness_result harness_vrun(const char *program, const char *fmt, 
 	return r;
 }
 
+/* Run "<program> <args>" with args formatted printf-style. */
+static inline harness_result harness_run(const char *program, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+static inline harness_result harness_run(const char *program, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	harness_result r = harness_vrun(program, fmt, ap);
+	va_end(ap);
+	return r;
+}
+
 static inline void harness_free(harness_result *r)
 {
 	free(r->out);

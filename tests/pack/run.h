@@ -4,22 +4,13 @@
 #define DEM_TESTS_PACK_RUN_H
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdlib.h>
 
 #include "lib/assembly.h"
 #include "tests/harness.h"
 
 /* Run "pack <args>" (args formatted printf-style) from the source root. */
-static inline harness_result run_pack(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
-static inline harness_result run_pack(const char *fmt, ...)
-{
-	va_list ap;
-	va_start(ap, fmt);
-	harness_result r = harness_vrun("pack", fmt, ap);
-	va_end(ap);
-	return r;
-}
+#define run_pack(...) harness_run("pack", __VA_ARGS__)
 
 static const double *run_sort_x;
 static inline int run_cmp_x(const void *a, const void *b)

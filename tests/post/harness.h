@@ -3,7 +3,6 @@
 #ifndef DEM_TESTS_POST_HARNESS_H
 #define DEM_TESTS_POST_HARNESS_H
 
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,15 +12,7 @@
 typedef harness_result post_result;
 
 /* Run "post <args>" (args formatted printf-style). */
-static inline post_result harness_post(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
-static inline post_result harness_post(const char *fmt, ...)
-{
-	va_list ap;
-	va_start(ap, fmt);
-	post_result r = harness_vrun("post", fmt, ap);
-	va_end(ap);
-	return r;
-}
+#define harness_post(...) harness_run("post", __VA_ARGS__)
 
 /* dir (of size n) = a fresh empty scratch directory $TEST_TMPDIR/<name>. */
 static inline void harness_dir(char *dir, size_t n, const char *name)
