@@ -8,7 +8,14 @@
 /* The format versions this build reads (and writes). */
 #define FORMAT_VERSION 1
 
-void h5_quiet(void) { H5Eset_auto2(H5E_DEFAULT, NULL, NULL); }
+/* No error stack printed (the callers report); and HDF5's free lists, which
+ * otherwise keep every block freed while writing (several MB for a snapshot
+ * of 20 000 spheres), capped at 256 KiB each kind. */
+void h5_quiet(void)
+{
+	H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+	H5set_free_list_limits(256 << 10, 64 << 10, 256 << 10, 64 << 10, 256 << 10, 64 << 10);
+}
 
 const char *h5_name(hid_t obj)
 {
@@ -238,13 +245,16 @@ int h5_read_attr_f64v(hid_t obj, const char *name, double *v, size_t n)
 	return read_attr(obj, name, H5T_NATIVE_DOUBLE, v, n);
 }
 
+/* Rows of one chunk (chunked_plist), the piece size of h5_rows. */
+static size_t chunk_rows(size_t cols) { return H5_PIECE_ELEMENTS / (cols ? cols : 1); }
+
 /* Chunked, deflate-compressed creation properties for a dataset of the
  * given shape (rank 1 or 2); extendible along rows when ext. */
 static hid_t chunked_plist(size_t rows, size_t cols, int ext)
 {
 	hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
 	hsize_t chunk[2] = {rows, cols ? cols : 1};
-	hsize_t target = 65536 / (cols ? cols : 1);
+	hsize_t target = chunk_rows(cols);
 	if (ext || chunk[0] > target)
 		chunk[0] = target ? target : 1;
 	if (chunk[0] == 0)
@@ -255,25 +265,76 @@ static hid_t chunked_plist(size_t rows, size_t cols, int ext)
 	return dcpl;
 }
 
-int h5_write(hid_t loc, const char *name, hid_t type, const void *data, size_t rows, size_t cols,
-             const char *unit)
+int h5_rows_open(h5_rows *r, hid_t loc, const char *name, hid_t type, size_t rows, size_t cols,
+                 const char *unit)
 {
+	*r = (h5_rows){.loc = loc, .d = -1, .type = type, .name = name, .rows = rows, .cols = cols};
 	hsize_t dims[2] = {rows, cols};
-	int rank = cols ? 2 : 1;
-	hid_t space = H5Screate_simple(rank, dims, NULL);
+	hid_t space = H5Screate_simple(cols ? 2 : 1, dims, NULL);
 	hid_t dcpl = rows * (cols ? cols : 1) >= 4096 ? chunked_plist(rows, cols, 0) : H5P_DEFAULT;
-	hid_t d = H5Dcreate2(loc, name, type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
-	herr_t rc = d < 0 ? -1 : rows ? H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) : 0;
-	if (rc >= 0 && unit && unit[0])
-		rc = h5_attr_str(d, "unit", unit);
-	if (d >= 0)
-		H5Dclose(d);
+	r->d = H5Dcreate2(loc, name, type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+	if (r->d >= 0 && unit && unit[0] && h5_attr_str(r->d, "unit", unit))
+		r->failed = 1;
 	if (dcpl != H5P_DEFAULT)
 		H5Pclose(dcpl);
 	H5Sclose(space);
-	if (rc < 0)
+	if (r->d < 0 || r->failed) {
+		r->failed = 1;
 		return err_set("%s: cannot write dataset '%s' (disk full?)", h5_name(loc), name);
+	}
 	return 0;
+}
+
+size_t h5_rows_piece(const h5_rows *r)
+{
+	size_t left = r->rows - r->at, piece = chunk_rows(r->cols);
+	return left < piece ? left : piece;
+}
+
+int h5_rows_put(h5_rows *r, const void *data, size_t m)
+{
+	if (r->failed || m == 0)
+		return r->failed ? -1 : 0;
+	if (m > r->rows - r->at) {
+		r->failed = 1;
+		return err_set("%s: dataset '%s': more rows than declared", h5_name(r->loc),
+		               r->name);
+	}
+	hid_t fs = H5Dget_space(r->d);
+	hsize_t start[2] = {r->at, 0}, count[2] = {m, r->cols};
+	H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL);
+	hid_t mem = H5Screate_simple(r->cols ? 2 : 1, count, NULL);
+	herr_t rc = H5Dwrite(r->d, r->type, mem, fs, H5P_DEFAULT, data);
+	H5Sclose(mem);
+	H5Sclose(fs);
+	if (rc < 0) {
+		r->failed = 1;
+		return err_set("%s: cannot write dataset '%s' (disk full?)", h5_name(r->loc),
+		               r->name);
+	}
+	r->at += m;
+	return 0;
+}
+
+int h5_rows_close(h5_rows *r)
+{
+	int rc = r->failed ? -1 : 0;
+	if (!rc && r->at != r->rows)
+		rc = err_set("%s: dataset '%s': %zu of %zu rows written", h5_name(r->loc), r->name,
+		             r->at, r->rows);
+	if (r->d >= 0)
+		H5Dclose(r->d);
+	r->d = -1;
+	return rc;
+}
+
+int h5_write(hid_t loc, const char *name, hid_t type, const void *data, size_t rows, size_t cols,
+             const char *unit)
+{
+	h5_rows r;
+	int rc = h5_rows_open(&r, loc, name, type, rows, cols, unit);
+	rc = rc || h5_rows_put(&r, data, rows);
+	return h5_rows_close(&r) || rc ? -1 : 0;
 }
 
 int h5_read(hid_t loc, const char *name, hid_t type, void **data, size_t *rows, size_t cols)

@@ -8,7 +8,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* Silence HDF5's automatic error printing (called by every open/create). */
+/* Silence HDF5's error stack and cap its free lists (called by h5_create and h5_open). */
 void h5_quiet(void);
 
 /* Create "<final>.tmp" for writing (registered for removal on failure). */
@@ -44,6 +44,22 @@ int h5_read_attr_f64v(hid_t obj, const char *name, double *v, size_t n);
  * compressed. */
 int h5_write(hid_t loc, const char *name, hid_t type, const void *data, size_t rows, size_t cols,
              const char *unit);
+/* The same dataset written a piece at a time, in row order, so that the
+ * whole array never has to be in memory: open it, then put pieces of at
+ * most h5_rows_piece() rows (one chunk) until all rows are written, then
+ * close it (which fails if rows are missing or a put failed). */
+enum { H5_PIECE_ELEMENTS = 65536 }; /* a piece holds at most this many values */
+typedef struct {
+	hid_t loc, d, type;
+	const char *name;
+	size_t rows, cols, at;
+	int failed;
+} h5_rows;
+int h5_rows_open(h5_rows *r, hid_t loc, const char *name, hid_t type, size_t rows, size_t cols,
+                 const char *unit);
+size_t h5_rows_piece(const h5_rows *r);
+int h5_rows_put(h5_rows *r, const void *data, size_t m);
+int h5_rows_close(h5_rows *r);
 /* Read a dataset, checking its rank and (when cols > 0) its column count.
  * *rows gets the row count; the data is allocated (caller frees). Reading a
  * dataset of zero rows gives a valid pointer. */

@@ -170,19 +170,87 @@ run_writer *run_reopen(const char *path, size_t history_rows, size_t crack_rows)
 	return w;
 }
 
-int run_write_bonds(run_writer *w, const dem_bonds *b)
+/* The datasets of the bond table and of a snapshot, in file order (the
+ * field numbers of runfile.h). per_bond: rows are bonds, else particles. */
+enum { F64, I32, U8 };
+typedef struct {
+	const char *name;
+	int type, per_bond;
+	size_t cols;
+	const char *unit;
+} rec_field;
+
+static const rec_field bond_fields[BTAB_NFIELDS] = {
+    {"i", I32, 1, 0, NULL},     {"j", I32, 1, 0, NULL},   {"d0", F64, 1, 0, "m"},
+    {"area", F64, 1, 0, "m^2"}, {"kn", F64, 1, 0, "N/m"}, {"ks", F64, 1, 0, "N/m"},
+};
+static const rec_field snap_fields[SNAP_NFIELDS] = {
+    {"x", F64, 0, 3, "m"},
+    {"v", F64, 0, 3, "m/s"},
+    {"w", F64, 0, 3, "rad/s"},
+    {"bond_state", U8, 1, 0, NULL},
+    {"bond_damage_n", F64, 1, 0, NULL},
+    {"bond_damage_s", F64, 1, 0, NULL},
+    {"bond_fn", F64, 1, 0, "N"},
+    {"bond_fs", F64, 1, 3, "N"},
+};
+
+static size_t row_bytes(const rec_field *f)
+{
+	return (f->cols ? f->cols : 1) * (f->type == F64 ? 8 : f->type == I32 ? 4 : 1);
+}
+
+/* Each field a piece at a time: memory is one piece, not the whole arrays. */
+static int write_fields(hid_t g, const rec_field *fs, int nf, size_t np, size_t nb, run_fill fill,
+                        void *ctx)
+{
+	unsigned char *buf = xmalloc(H5_PIECE_ELEMENTS * sizeof(double));
+	int rc = 0;
+	for (int f = 0; !rc && f < nf; f++) {
+		hid_t type = fs[f].type == F64   ? H5T_NATIVE_DOUBLE
+		             : fs[f].type == I32 ? H5T_NATIVE_INT32
+		                                 : H5T_NATIVE_UINT8;
+		h5_rows r;
+		rc = h5_rows_open(&r, g, fs[f].name, type, fs[f].per_bond ? nb : np, fs[f].cols,
+		                  fs[f].unit);
+		for (size_t m; !rc && (m = h5_rows_piece(&r)) > 0;) {
+			fill(ctx, f, r.at, m, buf);
+			rc = h5_rows_put(&r, buf, m);
+		}
+		rc = h5_rows_close(&r) || rc;
+	}
+	free(buf);
+	return rc ? -1 : 0;
+}
+
+/* A fill from whole arrays, one per field. */
+typedef struct {
+	const rec_field *fs;
+	const void *const *src;
+} arrays;
+
+static void from_arrays(void *ctx, int f, size_t at, size_t m, void *buf)
+{
+	const arrays *a = ctx;
+	size_t row = row_bytes(&a->fs[f]);
+	memcpy(buf, (const unsigned char *)a->src[f] + at * row, m * row);
+}
+
+int run_write_bonds_fill(run_writer *w, size_t n, run_fill fill, void *ctx)
 {
 	hid_t g = h5_group(w->file, "bonds");
 	if (g < 0)
 		return -1;
-	int rc = h5_write(g, "i", H5T_NATIVE_INT32, b->i, b->n, 0, NULL) ||
-	         h5_write(g, "j", H5T_NATIVE_INT32, b->j, b->n, 0, NULL) ||
-	         h5_write(g, "d0", H5T_NATIVE_DOUBLE, b->d0, b->n, 0, "m") ||
-	         h5_write(g, "area", H5T_NATIVE_DOUBLE, b->area, b->n, 0, "m^2") ||
-	         h5_write(g, "kn", H5T_NATIVE_DOUBLE, b->kn, b->n, 0, "N/m") ||
-	         h5_write(g, "ks", H5T_NATIVE_DOUBLE, b->ks, b->n, 0, "N/m");
+	int rc = write_fields(g, bond_fields, BTAB_NFIELDS, 0, n, fill, ctx);
 	H5Gclose(g);
-	return rc ? -1 : 0;
+	return rc;
+}
+
+int run_write_bonds(run_writer *w, const dem_bonds *b)
+{
+	const void *src[BTAB_NFIELDS] = {b->i, b->j, b->d0, b->area, b->kn, b->ks};
+	arrays a = {bond_fields, src};
+	return run_write_bonds_fill(w, b->n, from_arrays, &a);
 }
 
 int run_flush(run_writer *w)
@@ -212,7 +280,7 @@ int run_history(run_writer *w, const double *row)
 	return 0;
 }
 
-int run_snapshot(run_writer *w, const dem_snapshot *s)
+int run_snapshot_fill(run_writer *w, const dem_snapshot *s, run_fill fill, void *ctx)
 {
 	char name[64];
 	snprintf(name, sizeof name, "snapshots/%012" PRId64, s->step);
@@ -222,16 +290,17 @@ int run_snapshot(run_writer *w, const dem_snapshot *s)
 	int rc = h5_attr_i64(g, "step", s->step) || h5_attr_f64(g, "t", s->t) ||
 	         h5_attr_f64(g, "strain_axial", s->strain_axial) ||
 	         h5_attr_f64(g, "stress_axial", s->stress_axial) ||
-	         h5_write(g, "x", H5T_NATIVE_DOUBLE, s->x, s->n, 3, "m") ||
-	         h5_write(g, "v", H5T_NATIVE_DOUBLE, s->v, s->n, 3, "m/s") ||
-	         h5_write(g, "w", H5T_NATIVE_DOUBLE, s->w, s->n, 3, "rad/s") ||
-	         h5_write(g, "bond_state", H5T_NATIVE_UINT8, s->state, s->nbonds, 0, NULL) ||
-	         h5_write(g, "bond_damage_n", H5T_NATIVE_DOUBLE, s->damage_n, s->nbonds, 0, NULL) ||
-	         h5_write(g, "bond_damage_s", H5T_NATIVE_DOUBLE, s->damage_s, s->nbonds, 0, NULL) ||
-	         h5_write(g, "bond_fn", H5T_NATIVE_DOUBLE, s->fn, s->nbonds, 0, "N") ||
-	         h5_write(g, "bond_fs", H5T_NATIVE_DOUBLE, s->fs, s->nbonds, 3, "N");
+	         write_fields(g, snap_fields, SNAP_NFIELDS, s->n, s->nbonds, fill, ctx);
 	H5Gclose(g);
 	return rc ? -1 : 0;
+}
+
+int run_snapshot(run_writer *w, const dem_snapshot *s)
+{
+	const void *src[SNAP_NFIELDS] = {s->x,        s->v,        s->w,  s->state,
+	                                 s->damage_n, s->damage_s, s->fn, s->fs};
+	arrays a = {snap_fields, src};
+	return run_snapshot_fill(w, s, from_arrays, &a);
 }
 
 int run_cracks(run_writer *w, const dem_crack *c, size_t n)

@@ -75,6 +75,26 @@ int run_write_bonds(run_writer *w, const dem_bonds *b);
 /* Append one row (ncols values). Rows are buffered; run_flush writes them. */
 int run_history(run_writer *w, const double *row);
 int run_snapshot(run_writer *w, const dem_snapshot *s);
+/* The same two without the whole arrays in memory: fill(ctx, f, at, m, buf)
+ * writes rows [at, at + m) of field f into buf, in the dataset's type
+ * (double; int32_t for the bond ends; uint8_t for bond_state) and columns
+ * (3 for x, v, w and bond_fs). run_snapshot_fill takes the header, n and
+ * nbonds from s and does not read its arrays. */
+enum { BTAB_I, BTAB_J, BTAB_D0, BTAB_AREA, BTAB_KN, BTAB_KS, BTAB_NFIELDS };
+enum {
+	SNAP_X,
+	SNAP_V,
+	SNAP_W,
+	SNAP_STATE,
+	SNAP_DAMAGE_N,
+	SNAP_DAMAGE_S,
+	SNAP_FN,
+	SNAP_FS,
+	SNAP_NFIELDS
+};
+typedef void (*run_fill)(void *ctx, int f, size_t at, size_t m, void *buf);
+int run_write_bonds_fill(run_writer *w, size_t n, run_fill fill, void *ctx);
+int run_snapshot_fill(run_writer *w, const dem_snapshot *s, run_fill fill, void *ctx);
 int run_cracks(run_writer *w, const dem_crack *c, size_t n);
 int run_flush(run_writer *w);
 hid_t run_hid(run_writer *w);

@@ -93,27 +93,15 @@ static law_pair pair_of(const particles *P, const bond *b)
 	    .ri = P->r[b->i], .rj = P->r[b->j], .mi = P->m[b->i], .mj = P->m[b->j], .d0 = b->d0};
 }
 
-void engine_bond_table(const engine *e, dem_bonds *out)
+void engine_bond_entry(const engine *e, size_t b, int32_t ends[2], law_const *c)
 {
-	const pairlist *L = &e->bonds;
-	out->n = L->n;
-	out->i = xmalloc((L->n + 1) * sizeof *out->i);
-	out->j = xmalloc((L->n + 1) * sizeof *out->j);
-	out->d0 = xmalloc((L->n + 1) * sizeof *out->d0);
-	out->area = xmalloc((L->n + 1) * sizeof *out->area);
-	out->kn = xmalloc((L->n + 1) * sizeof *out->kn);
-	out->ks = xmalloc((L->n + 1) * sizeof *out->ks);
-	for (size_t b = 0; b < L->n; b++) {
-		law_pair q = pair_of(&e->p, &L->rec[b]);
-		law_const c;
-		e->law->constants(e->lp, &q, &c);
-		int32_t oi = e->p.orig[L->rec[b].i], oj = e->p.orig[L->rec[b].j];
-		out->i[b] = oi < oj ? oi : oj;
-		out->j[b] = oi < oj ? oj : oi;
-		out->d0[b] = L->rec[b].d0;
-		out->area[b] = c.area;
-		out->kn[b] = c.kn;
-		out->ks[b] = c.ks;
+	const bond *bd = &e->bonds.rec[b];
+	int32_t oi = e->p.orig[bd->i], oj = e->p.orig[bd->j];
+	ends[0] = oi < oj ? oi : oj;
+	ends[1] = oi < oj ? oj : oi;
+	if (c) {
+		law_pair q = pair_of(&e->p, bd);
+		e->law->constants(e->lp, &q, c);
 	}
 }
 

@@ -94,7 +94,9 @@ static hid_t open_put(hid_t g, const char *name, hid_t type, size_t rows, size_t
 	} else {
 		hid_t sp = H5Screate_simple(rank, dims, maxd);
 		hid_t pl = H5Pcreate(H5P_DATASET_CREATE);
-		hsize_t chunk[2] = {rows > 65536 ? 65536 : rows ? rows : 1, cols ? cols : 1};
+		/* Chunks of at most one piece: HDF5 buffers a whole chunk. */
+		size_t most = H5_PIECE_ELEMENTS / (cols ? cols : 1);
+		hsize_t chunk[2] = {rows > most ? most : rows ? rows : 1, cols ? cols : 1};
 		H5Pset_chunk(pl, rank, chunk);
 		d = H5Dcreate2(g, name, type, sp, H5P_DEFAULT, pl, H5P_DEFAULT);
 		H5Pclose(pl);

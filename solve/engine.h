@@ -230,8 +230,9 @@ int bonds_form(engine *e);
 void bonds_init_history(engine *e);
 void bonds_forces(engine *e, int measure);
 void bonds_collect_cracks(engine *e);
-/* Elastic constants of every bond, with the assembly's particle indices. */
-void engine_bond_table(const engine *e, dem_bonds *out);
+/* Bond b's ends in the assembly's numbering (ends[0] < ends[1]) and, when c
+ * is not NULL, its elastic constants. */
+void engine_bond_entry(const engine *e, size_t b, int32_t ends[2], law_const *c);
 void pairlist_free(pairlist *l);
 void pairlist_csr(pairlist *l, size_t np);
 void pair_sums_total(const pair_sums *blk, size_t nb, pair_sums *out);

@@ -8,6 +8,7 @@
 #include "lib/err.h"
 #include "lib/progress.h"
 #include "solve/case.h"
+#include "solve/report.h"
 #include "solve/run.h"
 
 int main(int argc, char **argv)
@@ -17,6 +18,7 @@ int main(int argc, char **argv)
 	long threads = 0, max_steps = 0;
 	double max_wall = 0;
 	int quiet = 0, show_progress = 0;
+	report_start();
 	const cli_opt opts[] = {
 	    {"assembly", CLI_STR, &assembly, "FILE", "",
 	     "assembly file, instead of the case's \"assembly\"", 0, 0},

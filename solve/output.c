@@ -9,55 +9,102 @@
 #include "lib/err.h"
 #include "solve/output.h"
 
+/* Rows of the bond table (run_fill). */
+static void bond_rows(void *ctx, int f, size_t at, size_t m, void *buf)
+{
+	const engine *e = ctx;
+	int32_t *iv = buf;
+	double *dv = buf;
+	for (size_t k = 0; k < m; k++) {
+		int32_t ends[2];
+		law_const c;
+		int ends_only = f == BTAB_I || f == BTAB_J;
+		engine_bond_entry(e, at + k, ends, ends_only ? NULL : &c);
+		switch (f) {
+		case BTAB_I:
+			iv[k] = ends[0];
+			break;
+		case BTAB_J:
+			iv[k] = ends[1];
+			break;
+		case BTAB_D0:
+			dv[k] = e->bonds.rec[at + k].d0;
+			break;
+		case BTAB_AREA:
+			dv[k] = c.area;
+			break;
+		case BTAB_KN:
+			dv[k] = c.kn;
+			break;
+		default:
+			dv[k] = c.ks;
+			break;
+		}
+	}
+}
+
 int output_bonds(const engine *e, run_writer *w)
 {
-	dem_bonds b;
-	engine_bond_table(e, &b);
-	int rc = run_write_bonds(w, &b);
-	bonds_free(&b);
-	return rc;
+	return run_write_bonds_fill(w, e->bonds.n, bond_rows, (void *)e);
+}
+
+typedef struct {
+	const engine *e;
+	int32_t *internal; /* [n] engine index of each assembly particle */
+} snapshot_ctx;
+
+/* Rows of a snapshot (run_fill): particles in the assembly's order, bonds
+ * in the bond table's. */
+static void snapshot_rows(void *ctx, int f, size_t at, size_t m, void *buf)
+{
+	const snapshot_ctx *c = ctx;
+	const particles *P = &c->e->p;
+	const pairlist *B = &c->e->bonds;
+	double *dv = buf;
+	if (f == SNAP_X || f == SNAP_V || f == SNAP_W) {
+		const double *src = f == SNAP_X ? P->x : f == SNAP_V ? P->v : P->w;
+		for (size_t k = 0; k < m; k++)
+			memcpy(dv + 3 * k, src + 3 * (size_t)c->internal[at + k], 3 * sizeof *dv);
+		return;
+	}
+	for (size_t k = 0; k < m; k++) {
+		const bond *bd = &B->rec[at + k];
+		if (f == SNAP_STATE) {
+			((uint8_t *)buf)[k] = bd->state;
+		} else if (f == SNAP_DAMAGE_N || f == SNAP_DAMAGE_S) {
+			double dn, ds;
+			c->e->law->damage(c->e->lp, bd, &dn, &ds);
+			dv[k] = f == SNAP_DAMAGE_N ? dn : ds;
+		} else {
+			const double *fo = B->f + 6 * (at + k), *xi = P->x + 3 * bd->i,
+			             *xj = P->x + 3 * bd->j;
+			double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
+			double l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+			double fn = (fo[0] * d[0] + fo[1] * d[1] + fo[2] * d[2]) / l;
+			double sign = P->orig[bd->i] < P->orig[bd->j] ? 1 : -1;
+			if (f == SNAP_FN)
+				dv[k] = fn;
+			else
+				for (int q = 0; q < 3; q++)
+					dv[3 * k + q] = sign * (fo[q] - fn * d[q] / l);
+		}
+	}
 }
 
 int output_snapshot(const engine *e, run_writer *w)
 {
 	const particles *P = &e->p;
-	const pairlist *B = &e->bonds;
-	size_t n = P->n, nb = B->n;
 	dem_snapshot s = {.step = e->step,
 	                  .t = e->t,
 	                  .strain_axial = engine_strain(e),
 	                  .stress_axial = engine_stress(e),
-	                  .n = n,
-	                  .nbonds = nb};
-	s.x = xmalloc((3 * n + 1) * sizeof *s.x);
-	s.v = xmalloc((3 * n + 1) * sizeof *s.v);
-	s.w = xmalloc((3 * n + 1) * sizeof *s.w);
-	for (size_t i = 0; i < n; i++) {
-		size_t o = (size_t)P->orig[i];
-		memcpy(s.x + 3 * o, P->x + 3 * i, 3 * sizeof *s.x);
-		memcpy(s.v + 3 * o, P->v + 3 * i, 3 * sizeof *s.v);
-		memcpy(s.w + 3 * o, P->w + 3 * i, 3 * sizeof *s.w);
-	}
-	s.state = xmalloc(nb + 1);
-	s.damage_n = xmalloc((nb + 1) * sizeof *s.damage_n);
-	s.damage_s = xmalloc((nb + 1) * sizeof *s.damage_s);
-	s.fn = xmalloc((nb + 1) * sizeof *s.fn);
-	s.fs = xmalloc((3 * nb + 1) * sizeof *s.fs);
-	for (size_t b = 0; b < nb; b++) {
-		const bond *bd = &B->rec[b];
-		const double *f = B->f + 6 * b, *xi = P->x + 3 * bd->i, *xj = P->x + 3 * bd->j;
-		double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
-		double l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-		double fn = (f[0] * d[0] + f[1] * d[1] + f[2] * d[2]) / l;
-		double sign = P->orig[bd->i] < P->orig[bd->j] ? 1 : -1;
-		s.state[b] = bd->state;
-		e->law->damage(e->lp, bd, &s.damage_n[b], &s.damage_s[b]);
-		s.fn[b] = fn;
-		for (int k = 0; k < 3; k++)
-			s.fs[3 * b + k] = sign * (f[k] - fn * d[k] / l);
-	}
-	int rc = run_snapshot(w, &s);
-	snapshot_free(&s);
+	                  .n = P->n,
+	                  .nbonds = e->bonds.n};
+	snapshot_ctx c = {e, xmalloc((P->n + 1) * sizeof *c.internal)};
+	for (size_t i = 0; i < P->n; i++)
+		c.internal[P->orig[i]] = (int32_t)i;
+	int rc = run_snapshot_fill(w, &s, snapshot_rows, &c);
+	free(c.internal);
 	return rc;
 }
 

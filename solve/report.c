@@ -31,6 +31,11 @@ static long peak_rss(void)
 	return getrusage(RUSAGE_SELF, &u) == 0 ? u.ru_maxrss * 1024L : 0;
 }
 
+/* Resident size before any input is read: the program and its libraries. */
+static long rss_start;
+
+void report_start(void) { rss_start = peak_rss(); }
+
 void report_print(const engine *e, int64_t step0, const char *status, const run_opts *o)
 {
 	double steps = (double)(e->step - step0), wall = e->tm[TM_TOTAL];
@@ -67,9 +72,10 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	        "\", \"particles\": %zu, \"bonds\": %zu, \"threads\": %d, "
 	        "\"steps\": %.0f, \"wall\": %.6g, \"particle_steps_per_s\": %.6g, "
 	        "\"ns_per_bond\": %.6g, \"state_bytes\": %zu, \"peak_rss_bytes\": %ld, "
+	        "\"start_rss_bytes\": %ld, "
 	        "\"rebuilds\": %" PRId64 ", \"dt\": %.6g, \"setup\": %.6g, \"phases\": {",
-	        e->p.n, e->bonds.n, e->team, steps, wall, rate, ns_bond, state, rss, e->rebuilds,
-	        e->dt, e->tm[TM_SETUP]);
+	        e->p.n, e->bonds.n, e->team, steps, wall, rate, ns_bond, state, rss, rss_start,
+	        e->rebuilds, e->dt, e->tm[TM_SETUP]);
 	for (int k = 0; k < TM_TOTAL; k++)
 		fprintf(f, "%s\"%s\": %.6g", k ? ", " : "", phase_names[k], e->tm[k]);
 	fprintf(f, "}}\n");

@@ -10,6 +10,8 @@
 
 /* Bytes of the engine's state (particles, bonds, contacts, lists). */
 size_t engine_bytes(const engine *e);
+/* Note the resident size at start (before the inputs): call first in main. */
+void report_start(void);
 void report_print(const engine *e, int64_t step0, const char *status, const run_opts *o);
 
 #endif

@@ -243,27 +243,45 @@ static int run_loop(engine *e, run_writer *w, const run_opts *o)
 	return code;
 }
 
-int run_engine(engine *e, const dem_assembly *a, const run_opts *o)
+/* The run file, with the assembly embedded. */
+static run_writer *create(engine *e, const dem_assembly *a, const run_opts *o)
 {
 	double t0 = timer_now();
 	dem_provenance prov;
 	prov_init(&prov, "solve", e->cs->config, 0);
 	run_writer *w = run_create(o->output, &prov, a, history_columns, history_ncolumns);
 	prov_free(&prov);
-	if (!w || output_bonds(e, w))
+	if (!w)
+		fatal(NULL);
+	e->tm[TM_SETUP] += timer_now() - t0;
+	return w;
+}
+
+/* Write the bond table, then run. */
+static int bonds_then_loop(engine *e, run_writer *w, const run_opts *o)
+{
+	double t0 = timer_now();
+	if (output_bonds(e, w))
 		fatal(NULL);
 	e->tm[TM_SETUP] += timer_now() - t0;
 	return run_loop(e, w, o);
 }
 
-int run_case(const dem_case *cs, const dem_assembly *a, const run_opts *o)
+int run_engine(engine *e, const dem_assembly *a, const run_opts *o)
+{
+	return bonds_then_loop(e, create(e, a, o), o);
+}
+
+int run_case(const dem_case *cs, dem_assembly *a, const run_opts *o)
 {
 	engine e;
 	double t0 = timer_now();
 	if (engine_setup(&e, cs, a, o->quiet))
 		fatal("%s: %s", cs->source, err_msg());
 	e.tm[TM_SETUP] += timer_now() - t0;
-	int code = run_engine(&e, a, o);
+	run_writer *w = create(&e, a, o);
+	assembly_free(a); /* in the run file now; the engine keeps what it needs */
+	int code = bonds_then_loop(&e, w, o);
 	engine_free(&e);
 	return code;
 }

@@ -18,7 +18,8 @@ typedef struct {
  * file is kept with its status), 3 interrupted (restartable). */
 enum { RUN_OK = 0, RUN_FAILED = 1, RUN_INTERRUPTED = 3 };
 
-int run_case(const dem_case *cs, const dem_assembly *a, const run_opts *o);
+/* Run the case on the assembly, which is freed once the run file holds it. */
+int run_case(const dem_case *cs, dem_assembly *a, const run_opts *o);
 /* The same for an engine already set up from cs and a. */
 struct engine;
 int run_engine(struct engine *e, const dem_assembly *a, const run_opts *o);
