@@ -111,6 +111,11 @@ int main(int argc, char **argv)
 	size_t ni = 0;
 	spheres S = {0};
 	if (o.import_path) {
+		if (o.count > 0 || o.mean_radius > 0)
+			fatal("--import %s: the spheres are taken as listed: --count and "
+			      "--mean-radius "
+			      "do not apply (expected 0)",
+			      o.import_path);
 		if (textio_read(o.import_path, &xi, &ri, &ni))
 			fatal(NULL);
 		for (size_t i = 0; i < ni; i++) {

@@ -97,6 +97,12 @@ static void test_bad_input(void)
 	snprintf(msg, sizeof msg, "pack: %s: sphere 2 at (0.5, 0, 0) m lies outside the specimen\n",
 	         list);
 	refused(1, msg, 0, args);
+	snprintf(args, sizeof args, "--import %s --count 3000", list);
+	snprintf(msg, sizeof msg,
+	         "pack: --import %s: the spheres are taken as listed: --count and --mean-radius do "
+	         "not apply (expected 0)\n",
+	         list);
+	refused(1, msg, 0, args);
 	const char *config = check_tmp("bad_config.json");
 	write_file(config, "{\"diamter\": 0.05}");
 	snprintf(args, sizeof args, "--config %s", config);
