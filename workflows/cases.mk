@@ -60,6 +60,14 @@ shale-ucs.specimen := shale-150x300
 CASES += shale-bts
 shale-bts.specimen := split-cylinder-150x300
 
-# seeds/002 §4.4: JCFPM concrete, 50 x 100 mm, monodisperse r = 1.25 mm.
+# seeds/002 §4.4: JCFPM concrete, 50 x 100 mm, monodisperse r = 1.25 mm, on
+# the thesis' kind of specimen: Yade's randomDensePack (11 576 spheres,
+# solid fraction 0.48; tools/yade-pack), taken as listed whatever COUNT says.
+# The -dense run is the same case on pack's own, denser assembly.
 CASES += jcfpm-concrete-ucs
-jcfpm-concrete-ucs.specimen := jcfpm-50x100
+jcfpm-concrete-ucs.specimen := jcfpm-50x100-yade
+jcfpm-concrete-ucs.count := 0
+
+CASES += jcfpm-concrete-ucs-dense
+jcfpm-concrete-ucs-dense.specimen := jcfpm-50x100
+jcfpm-concrete-ucs-dense.case := jcfpm-concrete-ucs
