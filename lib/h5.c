@@ -265,6 +265,20 @@ static hid_t chunked_plist(size_t rows, size_t cols, int ext)
 	return dcpl;
 }
 
+int h5_slab(hid_t d, hid_t type, size_t at, size_t m, size_t cols, void *buf, int write)
+{
+	hid_t fs = H5Dget_space(d);
+	hsize_t start[2] = {at, 0}, count[2] = {m, cols};
+	herr_t rc = H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL);
+	hid_t mem = H5Screate_simple(cols ? 2 : 1, count, NULL);
+	if (rc >= 0)
+		rc = write ? H5Dwrite(d, type, mem, fs, H5P_DEFAULT, buf)
+		           : H5Dread(d, type, mem, fs, H5P_DEFAULT, buf);
+	H5Sclose(mem);
+	H5Sclose(fs);
+	return rc < 0 ? -1 : 0;
+}
+
 int h5_rows_open(h5_rows *r, hid_t loc, const char *name, hid_t type, size_t rows, size_t cols,
                  const char *unit)
 {
@@ -300,14 +314,7 @@ int h5_rows_put(h5_rows *r, const void *data, size_t m)
 		return err_set("%s: dataset '%s': more rows than declared", h5_name(r->loc),
 		               r->name);
 	}
-	hid_t fs = H5Dget_space(r->d);
-	hsize_t start[2] = {r->at, 0}, count[2] = {m, r->cols};
-	H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL);
-	hid_t mem = H5Screate_simple(r->cols ? 2 : 1, count, NULL);
-	herr_t rc = H5Dwrite(r->d, r->type, mem, fs, H5P_DEFAULT, data);
-	H5Sclose(mem);
-	H5Sclose(fs);
-	if (rc < 0) {
+	if (h5_slab(r->d, r->type, r->at, m, r->cols, (void *)data, 1)) {
 		r->failed = 1;
 		return err_set("%s: cannot write dataset '%s' (disk full?)", h5_name(r->loc),
 		               r->name);
@@ -417,18 +424,11 @@ int h5_append(hid_t loc, const char *name, hid_t type, const void *data, size_t 
 	hsize_t dims[2] = {0, cols};
 	H5Sget_simple_extent_dims(s, dims, NULL);
 	H5Sclose(s);
-	hsize_t start[2] = {dims[0], 0}, count[2] = {rows, cols};
+	size_t at = dims[0];
 	dims[0] += rows;
-	int rank = cols ? 2 : 1;
 	herr_t rc = H5Dset_extent(d, dims);
-	hid_t fs = H5Dget_space(d);
-	hid_t ms = H5Screate_simple(rank, count, NULL);
 	if (rc >= 0)
-		rc = H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL);
-	if (rc >= 0)
-		rc = H5Dwrite(d, type, ms, fs, H5P_DEFAULT, data);
-	H5Sclose(ms);
-	H5Sclose(fs);
+		rc = h5_slab(d, type, at, rows, cols, (void *)data, 1);
 	H5Dclose(d);
 	if (rc < 0)
 		return err_set("%s: cannot append to dataset '%s' (disk full?)", h5_name(loc),

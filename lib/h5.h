@@ -55,6 +55,9 @@ typedef struct {
 	size_t rows, cols, at;
 	int failed;
 } h5_rows;
+/* Write (or read) rows [at, at + m) of an open dataset of cols columns
+ * (0: rank 1) from (into) buf. No message set: the caller names the file. */
+int h5_slab(hid_t d, hid_t type, size_t at, size_t m, size_t cols, void *buf, int write);
 int h5_rows_open(h5_rows *r, hid_t loc, const char *name, hid_t type, size_t rows, size_t cols,
                  const char *unit);
 size_t h5_rows_piece(const h5_rows *r);

@@ -136,16 +136,6 @@ static hid_t h5type(int t)
 
 enum { PIECE = 16384 };
 
-/* Rows [at, at + n) of a dataset as a hyperslab. */
-static hid_t slab(hid_t d, size_t at, size_t n, size_t cols, hid_t *mem)
-{
-	hid_t fs = H5Dget_space(d);
-	hsize_t start[2] = {at, 0}, count[2] = {n, cols};
-	H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL);
-	*mem = H5Screate_simple(cols ? 2 : 1, count, NULL);
-	return fs;
-}
-
 /* Write one field of n records, a piece at a time (no copy of the whole). */
 static int put_field(hid_t g, const field *f, const bond *rec, size_t n)
 {
@@ -159,10 +149,7 @@ static int put_field(hid_t g, const field *f, const bond *rec, size_t n)
 		size_t m = n - at < PIECE ? n - at : PIECE;
 		for (size_t k = 0; k < m; k++)
 			memcpy(buf + k * row, (const unsigned char *)&rec[at + k] + f->offset, row);
-		hid_t mem, fs = slab(d, at, m, f->cols > 1 ? f->cols : 0, &mem);
-		rc = H5Dwrite(d, h5type(f->type), mem, fs, H5P_DEFAULT, buf);
-		H5Sclose(mem);
-		H5Sclose(fs);
+		rc = h5_slab(d, h5type(f->type), at, m, f->cols > 1 ? f->cols : 0, buf, 1);
 	}
 	free(buf);
 	H5Dclose(d);
@@ -194,10 +181,7 @@ static int get_field(hid_t g, const field *f, bond *rec, size_t n)
 	herr_t rc = 0;
 	for (size_t at = 0; rc >= 0 && at < n; at += PIECE) {
 		size_t m = n - at < PIECE ? n - at : PIECE;
-		hid_t mem, fs = slab(d, at, m, cols, &mem);
-		rc = H5Dread(d, h5type(f->type), mem, fs, H5P_DEFAULT, buf);
-		H5Sclose(mem);
-		H5Sclose(fs);
+		rc = h5_slab(d, h5type(f->type), at, m, cols, buf, 0);
 		for (size_t k = 0; rc >= 0 && k < m; k++)
 			memcpy((unsigned char *)&rec[at + k] + f->offset, buf + k * row, row);
 	}
