@@ -65,6 +65,26 @@ static void import_spheres(const pack_options *o, double *x, double *r, size_t n
 	free(r);
 }
 
+/* --grow-to: every radius times one factor, so that the sphere volume is
+ * grow_to times the specimen's. The neighbours then overlap; a bonded model
+ * takes the distance at bonding as the zero-force length, so they carry no
+ * force for it. */
+static double grow_spheres(const pack_options *o, spheres *S, const dem_geometry *g)
+{
+	double vs = 0;
+	for (size_t i = 0; i < S->n; i++)
+		vs += 4.0 / 3.0 * M_PI * S->r[i] * S->r[i] * S->r[i];
+	double phi = vs / g->volume;
+	if (phi > o->grow_to)
+		fatal("--grow-to %g: the spheres already fill %.4f of the specimen: expected a "
+		      "solid fraction above that (or 0)",
+		      o->grow_to, phi);
+	double f = cbrt(o->grow_to / phi);
+	for (size_t i = 0; i < S->n; i++)
+		S->r[i] *= f;
+	return f;
+}
+
 /* OpenMP threads spin while they wait for the next parallel loop unless
  * told otherwise; on cores shared with other work a spinning thread holds
  * the core its partner needs, and the FIRE loops of the wall band, which
@@ -160,6 +180,7 @@ int main(int argc, char **argv)
 		a.report.time_cell = st.time_cell;
 		a.report.time_fill = st.time_fill;
 	}
+	double grown = o.grow_to > 0 ? grow_spheres(&o, &S, &a.geom) : 1;
 	double t2 = timer_now();
 	a.n = S.n;
 	a.x = S.x;
@@ -184,6 +205,10 @@ int main(int argc, char **argv)
 		report_print(&a, stdout);
 		if (!o.import_path)
 			packer_print(&st, stdout);
+		if (o.grow_to > 0)
+			printf(
+			    "  grown            radii x %.4f to solid fraction %.4f (--grow-to)\n",
+			    grown, o.grow_to);
 	}
 	free(S.r0);
 	free(S.lo);

@@ -60,6 +60,11 @@ static int table(pack_options *o, cli_opt *t)
 	     "keep a tiled sphere whose centre lies at least K radii inside", 0, 1},
 	    {"band", CLI_NUM, &o->band, "B", "mean diameters",
 	     "depth of the layer relaxed against the boundary (band and mobile buffer)", 0, 100},
+	    {"grow-to", CLI_NUM, &o->grow_to, "PHI", "",
+	     "grow every sphere about its centre until the solid fraction (overlaps counted "
+	     "twice, as in the porosity of Eq. 22) is PHI, as in meshes of porosity 1 - PHI "
+	     "(0: as packed)",
+	     0, 0.95},
 	    {"import", CLI_STR, &o->import_path, "FILE", "",
 	     "take the spheres from a text file of lines 'x y z r' (m) instead of packing", 0, 0},
 	    {"export", CLI_STR, &o->export_path, "FILE", "",

@@ -15,7 +15,7 @@ typedef struct {
 	double rmin, rmax, radius, fuzz, sigma, mean_radius;
 	long count;
 	long seed, threads, cell;
-	double beta, keep, band;
+	double beta, keep, band, grow_to;
 	const char *export_path, *import_path, *config, *depfile;
 	int quiet;
 	cfg *file;           /* the --config file (owns its strings) */

@@ -217,6 +217,40 @@ static void test_export_import(void)
 	assembly_free(&y);
 }
 
+/* --grow-to scales every radius by one factor about the same centres, to
+ * the solid fraction asked for (recomputed here from the written spheres). */
+static void test_grow(void)
+{
+	const char *a = check_tmp("cli_g0.h5"), *b = check_tmp("cli_g1.h5");
+	harness_result r = run_pack("--quiet " SMALL " %s", a);
+	CHECK(r.status == 0);
+	harness_free(&r);
+	r = run_pack(SMALL " --grow-to 0.7 %s", b);
+	CHECK(r.status == 0);
+	CHECK_CONTAINS(r.out, "to solid fraction 0.7000 (--grow-to)");
+	harness_free(&r);
+	dem_assembly x, y;
+	if (assembly_read(a, &x) || assembly_read(b, &y)) {
+		CHECK(0);
+		return;
+	}
+	CHECK(x.n == y.n && x.n > 50);
+	double f = y.r[0] / x.r[0], vs = 0, worst = 0;
+	for (size_t i = 0; i < x.n && x.n == y.n; i++) {
+		for (int k = 0; k < 3; k++)
+			worst = fmax(worst, fabs(x.x[3 * i + k] - y.x[3 * i + k]));
+		worst = fmax(worst, fabs(y.r[i] / x.r[i] - f));
+		vs += 4.0 / 3.0 * M_PI * y.r[i] * y.r[i] * y.r[i];
+	}
+	CHECK(f > 1.02);
+	CHECK(worst < 1e-12);
+	CHECK_NEAR(vs / y.geom.volume, 0.7, 1e-12);
+	CHECK(y.report.coordination > x.report.coordination);
+	assembly_free(&x);
+	assembly_free(&y);
+	refused(1, "pack: --grow-to 0.3: the spheres already fill 0.", 1, SMALL " --grow-to 0.3");
+}
+
 static void test_config(void)
 {
 	const char *cli = check_tmp("cli_c1.h5"), *file = check_tmp("cli_c2.h5");
@@ -260,6 +294,7 @@ int main(void)
 	test_geometry_sources();
 	test_seed();
 	test_export_import();
+	test_grow();
 	test_config();
 	return check_done();
 }
