@@ -61,9 +61,8 @@ static int table(pack_options *o, cli_opt *t)
 	    {"band", CLI_NUM, &o->band, "B", "mean diameters",
 	     "depth of the layer relaxed against the boundary (band and mobile buffer)", 0, 100},
 	    {"grow-to", CLI_NUM, &o->grow_to, "PHI", "",
-	     "grow every sphere about its centre until the solid fraction (overlaps counted "
-	     "twice, as in the porosity of Eq. 22) is PHI, as in meshes of porosity 1 - PHI "
-	     "(0: as packed)",
+	     "grow every sphere about its centre until the solid fraction (sphere volume over "
+	     "the specimen's, overlaps counted twice) is PHI (0: as packed)",
 	     0, 0.95},
 	    {"import", CLI_STR, &o->import_path, "FILE", "",
 	     "take the spheres from a text file of lines 'x y z r' (m) instead of packing", 0, 0},
