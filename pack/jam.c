@@ -22,18 +22,11 @@
 #include "pack/fire.h"
 #include "pack/jam.h"
 #include "pack/morton.h"
+#include "pack/spheres.h"
 
 static const double PHI_START = 0.50, P_SQUEEZE = 0.4, RATE = 1e-3;
 static const long WINDOW = 50, SQUEEZE_ITER = 1500, RELEASE_ITER = 200, MAX_ITER = 60000;
 static const double STALL = 1e-4;
-
-static double sphere_volume(const double *r, size_t n)
-{
-	double v = 0;
-	for (size_t i = 0; i < n; i++)
-		v += 4.0 / 3.0 * M_PI * r[i] * r[i] * r[i];
-	return v;
-}
 
 /* Pressure-controlled growth: p = (sum over each sphere's contacts of the
  * overlap / smaller radius) / n, a dimensionless pressure; every iteration

@@ -71,10 +71,7 @@ static void import_spheres(const pack_options *o, double *x, double *r, size_t n
  * force for it. */
 static double grow_spheres(const pack_options *o, spheres *S, const dem_geometry *g)
 {
-	double vs = 0;
-	for (size_t i = 0; i < S->n; i++)
-		vs += 4.0 / 3.0 * M_PI * S->r[i] * S->r[i] * S->r[i];
-	double phi = vs / g->volume;
+	double phi = sphere_volume(S->r, S->n) / g->volume;
 	if (phi > o->grow_to)
 		fatal("--grow-to %g: the spheres already fill %.4f of the specimen: expected a "
 		      "solid fraction above that (or 0)",

@@ -129,9 +129,7 @@ void packer_cell(jam_cell *c, psd *d, const dem_geometry *g, const packer_params
 	st->cell_n = c->n;
 	st->cell_phi = c->phi;
 	st->cell_iter = c->iter;
-	double vs = 0;
-	for (size_t i = 0; i < c->n; i++)
-		vs += 4.0 / 3.0 * M_PI * c->r[i] * c->r[i] * c->r[i];
+	double vs = sphere_volume(c->r, c->n);
 	if (params->count > 0) /* the cell's own solid fraction refines the scale */
 		scale_cell(c, d,
 		           cbrt(c->phi * g->volume / (vs / (double)c->n) / (double)params->count));

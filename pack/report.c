@@ -29,6 +29,7 @@
 #include "pack/cells.h"
 #include "pack/geometry.h"
 #include "pack/report.h"
+#include "pack/spheres.h"
 
 static double cap_volume(double r, double t0, double t1)
 {
@@ -334,12 +335,10 @@ void report_compute(dem_assembly *a, const surface *surf, const zones *z, const 
                     double beta)
 {
 	dem_report *rep = &a->report;
-	double vs = 0, rsum = 0;
-	for (size_t i = 0; i < a->n; i++) {
-		vs += 4.0 / 3.0 * M_PI * a->r[i] * a->r[i] * a->r[i];
+	double rsum = 0;
+	for (size_t i = 0; i < a->n; i++)
 		rsum += a->r[i];
-	}
-	rep->solid_fraction = vs / a->geom.volume;
+	rep->solid_fraction = sphere_volume(a->r, a->n) / a->geom.volume;
 	rep->mean_radius = a->n ? rsum / (double)a->n : 0;
 	double dmean = 2 * rep->mean_radius;
 	double *s = depths(a, surf, z, fmax(REPORT_PROFILE_DEPTH, REPORT_CORE_DEPTH) * dmean);

@@ -1,3 +1,4 @@
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -46,4 +47,12 @@ void spheres_free(spheres *S)
 	free(S->lo);
 	free(S->hi);
 	memset(S, 0, sizeof *S);
+}
+
+double sphere_volume(const double *r, size_t n)
+{
+	double v = 0;
+	for (size_t i = 0; i < n; i++)
+		v += 4.0 / 3.0 * M_PI * r[i] * r[i] * r[i];
+	return v;
 }

@@ -19,5 +19,7 @@ void spheres_push(spheres *S, const double x[3], double r, double lo, double hi)
 /* Keep the spheres with keep[i] != 0, in order. */
 void spheres_compact(spheres *S, const unsigned char *keep);
 void spheres_free(spheres *S);
+/* Total volume of n spheres of radii r (m^3). */
+double sphere_volume(const double *r, size_t n);
 
 #endif
