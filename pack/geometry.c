@@ -322,19 +322,31 @@ static int to_trimesh(const size_t *faces, size_t nfaces, double scale, trimesh 
 	return rc;
 }
 
-static void fill_builtin(const geometry_spec *s, dem_geometry *g)
+int geometry_extent(const geometry_spec *s, dem_geometry *g)
 {
+	if (s->kind == SHAPE_FILE)
+		return -1;
+	memset(g, 0, sizeof *g);
+	double edge[3];
 	if (s->kind == SHAPE_BOX) {
 		snprintf(g->shape, sizeof g->shape, "box");
 		memcpy(g->size, s->size, sizeof g->size);
+		memcpy(edge, s->size, sizeof edge);
 		g->height = s->size[2];
 		g->volume = s->size[0] * s->size[1] * s->size[2];
-		return;
+	} else {
+		snprintf(g->shape, sizeof g->shape, "%s",
+		         s->kind == SHAPE_DISC ? "disc" : "cylinder");
+		g->diameter = edge[0] = edge[1] = s->diameter;
+		g->height = edge[2] = s->height;
+		g->volume = M_PI * 0.25 * s->diameter * s->diameter * s->height;
 	}
-	snprintf(g->shape, sizeof g->shape, "%s", s->kind == SHAPE_DISC ? "disc" : "cylinder");
-	g->diameter = s->diameter;
-	g->height = s->height;
-	g->volume = M_PI * 0.25 * s->diameter * s->diameter * s->height;
+	for (int k = 0; k < 3; k++) {
+		g->bbox_max[k] = 0.5 * edge[k];
+		g->bbox_min[k] = -g->bbox_max[k];
+	}
+	g->axis[2] = 1;
+	return 0;
 }
 
 int geometry_build(const geometry_spec *s, dem_geometry *g)
@@ -370,16 +382,17 @@ int geometry_build(const geometry_spec *s, dem_geometry *g)
 		trimesh_free(&m);
 		return err_set("%s: the boundary encloses no volume", what);
 	}
-	g->axis[2] = 1;
-	if (s->kind == SHAPE_FILE) {
+	double area = g->area;
+	if (geometry_extent(s, g) == 0) {
+		g->area = area;
+	} else {
+		g->axis[2] = 1;
 		snprintf(g->shape, sizeof g->shape, "file");
 		snprintf(g->source, sizeof g->source, "%s", s->file);
 		g->volume = volume;
 		g->height = g->bbox_max[2] - g->bbox_min[2];
 		for (int k = 0; k < 3; k++)
 			g->center[k] = 0.5 * (g->bbox_min[k] + g->bbox_max[k]);
-	} else {
-		fill_builtin(s, g);
 	}
 	g->nvert = m.nvert;
 	g->vert = m.vert;

@@ -16,6 +16,11 @@ typedef struct {
 	double scale;     /* SHAPE_FILE: factor applied to the file's coordinates */
 } geometry_spec;
 
+/* A built-in shape's fields known without meshing it: shape, sizes,
+ * volume, bounding box and axis (no boundary: nvert = ntri = 0). Returns
+ * 0, or -1 for a file, leaving g untouched. */
+int geometry_extent(const geometry_spec *s, dem_geometry *g);
+
 /* Fill every field of g. Built-in shapes have their axis along z and are
  * centred on the origin; their volume is exact, while a file's volume is
  * the one its triangulation encloses. STEP files are read in metres

@@ -120,8 +120,14 @@ int main(int argc, char **argv)
 
 	dem_assembly a;
 	memset(&a, 0, sizeof a);
+	/* A built-in shape's size is known before gmsh meshes it: then the
+	 * mesh is made on one thread while the periodic cell is made on the
+	 * other (below); a file is meshed first. */
 	geometry_spec gs;
-	if (options_geometry(&o, &gs) || geometry_build(&gs, &a.geom))
+	if (options_geometry(&o, &gs))
+		fatal(NULL);
+	int builtin = geometry_extent(&gs, &a.geom) == 0;
+	if (!builtin && geometry_build(&gs, &a.geom))
 		fatal(NULL);
 	psd d = {0}, *target = NULL;
 	double rmean = 0, rmax = 0, *xi = NULL, *ri = NULL;
@@ -147,8 +153,9 @@ int main(int argc, char **argv)
 		rmean = psd_moment(&d, 1);
 		rmax = d.rmax;
 	}
-	/* The periodic cell, on one thread, while another builds the
-	 * boundary's search tree and the distance zones. */
+	/* The periodic cell, on one thread, while another meshes a built-in
+	 * shape and builds the boundary's search tree and the distance zones. */
+	dem_geometry mesh = a.geom;
 	surface *surf = NULL;
 	zones z;
 	jam_cell cell = {0};
@@ -159,16 +166,19 @@ int main(int argc, char **argv)
 	{
 #pragma omp section
 		{
-			surf = surface_new(a.geom.vert, a.geom.nvert, a.geom.tri, a.geom.ntri);
+			if (builtin && geometry_build(&gs, &mesh))
+				fatal(NULL);
+			surf = surface_new(mesh.vert, mesh.nvert, mesh.tri, mesh.ntri);
 			if (!surf)
 				fatal("out of memory building the boundary's search tree");
-			zones_build(&z, surf, a.geom.bbox_min, a.geom.bbox_max, 2 * rmean, depth);
+			zones_build(&z, surf, mesh.bbox_min, mesh.bbox_max, 2 * rmean, depth);
 			a.report.time_geometry = timer_now() - t0;
 		}
 #pragma omp section
 		if (!o.import_path)
 			packer_cell(&cell, &d, &a.geom, &pp, &st);
 	}
+	a.geom = mesh;
 	if (o.import_path) {
 		import_spheres(&o, xi, ri, ni, &S, surf, &z);
 	} else {

@@ -2,7 +2,7 @@
  * .brep, .step in millimetres, .msh volume mesh) gives a closed, outward
  * triangulation whose volume, area and signed distances match the shape's
  * own formulas; open and unreadable files are refused with one clear
- * message. */
+ * message. A built-in shape's extent is known before it is meshed. */
 #include "tests/check.h"
 
 #include "lib/err.h"
@@ -214,10 +214,43 @@ static void test_orientation(void)
 	trimesh_free(&m);
 }
 
+/* A built-in shape's extent, known before meshing (pack makes its periodic
+ * cell from it while gmsh meshes), is the one the built mesh reports, and
+ * the mesh fills that box; a file has no extent before it is read. */
+static void test_extent(void)
+{
+	const geometry_spec shapes[3] = {{SHAPE_CYLINDER, 0.05, 0.1, {0, 0, 0}, NULL, 1},
+	                                 {SHAPE_DISC, 0.0378, 0.0219, {0, 0, 0}, NULL, 1},
+	                                 {SHAPE_BOX, 0, 0, {0.02, 0.03, 0.04}, NULL, 1}};
+	for (int k = 0; k < 3; k++) {
+		dem_geometry e, g;
+		CHECK(geometry_extent(&shapes[k], &e) == 0);
+		CHECK(e.nvert == 0 && e.ntri == 0 && e.vert == NULL);
+		CHECK(geometry_build(&shapes[k], &g) == 0);
+		CHECK_STR(e.shape, g.shape);
+		CHECK(e.volume == g.volume && e.diameter == g.diameter && e.height == g.height);
+		trimesh m = {g.nvert, g.ntri, g.vert, g.tri};
+		double v, a, lo[3], hi[3];
+		trimesh_measure(&m, &v, &a, lo, hi);
+		for (int j = 0; j < 3; j++) {
+			CHECK(e.bbox_min[j] == g.bbox_min[j] && e.bbox_max[j] == g.bbox_max[j]);
+			CHECK(e.size[j] == g.size[j] && e.axis[j] == g.axis[j]);
+			CHECK_NEAR(lo[j], e.bbox_min[j], 1e-15);
+			CHECK_NEAR(hi[j], e.bbox_max[j], 1e-15);
+		}
+		free(g.vert);
+		free(g.tri);
+	}
+	geometry_spec file = {SHAPE_FILE, 0, 0, {0, 0, 0}, GEO "cylinder_50x100.geo", 1};
+	dem_geometry g = {.volume = 7};
+	CHECK(geometry_extent(&file, &g) == -1 && g.volume == 7);
+}
+
 int main(void)
 {
 	test_builtin_cylinder();
 	test_builtin_disc_and_box();
+	test_extent();
 	test_files();
 	test_bad_files();
 	test_orientation();
