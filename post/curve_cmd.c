@@ -46,7 +46,23 @@ static const double *required(const char *path, const dem_run *r, const char *na
 	return v;
 }
 
-/* $curve rows: eps_a(%) sigma_a(MPa) eps_r(%) eps_v(%), NaN when absent;
+/* Row k of a curve: eps_a(%) sigma_a(MPa) eps_r(%) eps_v(%), the radial
+ * and volumetric strains NaN when absent, eps_v from eps_a + 2 eps_r when
+ * only the radial strain is there. */
+static void curve_row(FILE *f, const double *ea, const double *sa, const double *er,
+                      const double *ev, size_t k)
+{
+	double v[4] = {100 * ea[k], 1e-6 * sa[k], er ? 100 * er[k] : NAN,
+	               ev   ? 100 * ev[k]
+	               : er ? 100 * (ea[k] + 2 * er[k])
+	                    : NAN};
+	for (int c = 0; c < 4; c++) {
+		plot_num(f, v[c]);
+		fputc(c < 3 ? ' ' : '\n', f);
+	}
+}
+
+/* $curve rows (curve_row);
  * and has_radial, has_volumetric, pc (MPa, the largest confining
  * pressure, 0 without a pressure column). */
 static void curve_data(FILE *f, const char *path, const dem_run *r)
@@ -59,14 +75,7 @@ static void curve_data(FILE *f, const char *path, const dem_run *r)
 	double pmax = 0;
 	fputs("$curve << EOD\n", f);
 	for (size_t k = 0; k < r->nrows; k++) {
-		double v[4] = {100 * ea[k], 1e-6 * sa[k], er ? 100 * er[k] : NAN,
-		               ev   ? 100 * ev[k]
-		               : er ? 100 * (ea[k] + 2 * er[k])
-		                    : NAN};
-		for (int c = 0; c < 4; c++) {
-			plot_num(f, v[c]);
-			fputc(c < 3 ? ' ' : '\n', f);
-		}
+		curve_row(f, ea, sa, er, ev, k);
 		if (pc)
 			pmax = fmax(pmax, pc[k]);
 	}
@@ -78,19 +87,9 @@ static void curve_data(FILE *f, const char *path, const dem_run *r)
 static void experiment_data(FILE *f, const experiment *e, const char *label)
 {
 	fputs("$exp << EOD\n", f);
-	for (size_t k = 0; e && k < e->n; k++) {
-		const double *ea = e->col[EXP_STRAIN_AXIAL], *er = e->col[EXP_STRAIN_RADIAL];
-		const double *ev = e->col[EXP_STRAIN_VOLUMETRIC];
-		double v[4] = {100 * ea[k], 1e-6 * e->col[EXP_STRESS_AXIAL][k],
-		               er ? 100 * er[k] : NAN,
-		               ev   ? 100 * ev[k]
-		               : er ? 100 * (ea[k] + 2 * er[k])
-		                    : NAN};
-		for (int c = 0; c < 4; c++) {
-			plot_num(f, v[c]);
-			fputc(c < 3 ? ' ' : '\n', f);
-		}
-	}
+	for (size_t k = 0; e && k < e->n; k++)
+		curve_row(f, e->col[EXP_STRAIN_AXIAL], e->col[EXP_STRESS_AXIAL],
+		          e->col[EXP_STRAIN_RADIAL], e->col[EXP_STRAIN_VOLUMETRIC], k);
 	fprintf(f, "EOD\nhas_exp = %d\nexp_label = ", e != NULL);
 	plot_quote(f, label);
 	fputc('\n', f);
