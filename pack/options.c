@@ -140,6 +140,12 @@ static int apply_file(pack_options *o, const cli_opt *t, int n, const char *path
 			err_clear();
 			if (cfg_string(c, "grading", &o->grading))
 				return -1;
+		} else { /* read once here, so that its keys count as used */
+			psd check = {0};
+			int rc = psd_grading(&check, o->inline_grading);
+			psd_free(&check);
+			if (rc)
+				return -1;
 		}
 	}
 	for (int k = 0; k < n; k++) {

@@ -286,6 +286,30 @@ static void test_config(void)
 	CHECK(strncmp(rule, want, strlen(want)) == 0);
 	free(rule);
 	harness_free(&r2);
+	/* A grading curve held in the file is the same as one in its own file;
+	 * a misspelt key inside it is refused. */
+	char mix[1024], held[1024], one[1024], two[1024]; /* check_tmp's buffers rotate */
+	snprintf(mix, sizeof mix, "%s", check_tmp("cli_mix.json"));
+	snprintf(held, sizeof held, "%s", check_tmp("cli_held.json"));
+	snprintf(one, sizeof one, "%s", check_tmp("cli_g1.h5"));
+	snprintf(two, sizeof two, "%s", check_tmp("cli_g2.h5"));
+	write_file(mix, "{\"sieve\": [0.0012, 0.0024], \"passing\": [0, 1]}");
+	r1 = run_pack("--quiet " SMALL " --dist grading --grading %s --seed 4 %s", mix, one);
+	write_file(held, "{\"shape\": \"box\", \"length\": 0.012, \"width\": 0.012, "
+	                 "\"height\": 0.012, \"dist\": \"grading\", \"seed\": 4, "
+	                 "\"grading\": {\"sieve\": [0.0012, 0.0024], \"passing\": [0, 1]}}");
+	r2 = run_pack("--quiet --config %s %s", held, two);
+	CHECK(r1.status == 0 && r2.status == 0);
+	CHECK(same_spheres(one, two));
+	harness_free(&r1);
+	harness_free(&r2);
+	write_file(held, "{\"dist\": \"grading\", "
+	                 "\"grading\": {\"sieve\": [0.0012, 0.0024], \"pasing\": [0, 1]}}");
+	r2 = run_pack("--quiet --config %s %s", held, two);
+	char msg[1200];
+	snprintf(msg, sizeof msg, "pack: %s: key 'grading.passing': ", held);
+	CHECK(r2.status == 1 && strncmp(r2.err, msg, strlen(msg)) == 0);
+	harness_free(&r2);
 }
 
 int main(void)
