@@ -77,13 +77,13 @@ int main(int argc, char **argv)
 	              .report = report,
 	              .quiet = quiet};
 	if (restart) {
-		if (npos)
-			fatal("--restart continues the run stored in %s: give no case file",
-			      restart);
-		if (assembly || depfile || strcmp(output, "run.h5") != 0)
-			fatal("--restart continues in %s with its own assembly: --assembly, "
-			      "--output and --depfile do not apply",
-			      restart);
+		if (npos || assembly || depfile || strcmp(output, "run.h5") != 0) {
+			fprintf(stderr, "%s: --restart continues the run stored in %s: %s\n",
+			        err_program_name(), restart,
+			        npos ? "give no case file"
+			             : "--assembly, --output and --depfile do not apply");
+			return 2;
+		}
 		o.output = restart;
 		return run_restart(&o, (int)threads);
 	}
