@@ -56,7 +56,7 @@ int main(int argc, char **argv)
 	    .usage = "solve [options] CASE.json | solve --restart RUN.h5 [options]",
 	    .summary = summary,
 	    .epilog =
-	        "Example:\n  solve --assembly runs/demo/assembly.h5 --output runs/demo/run.h5 "
+	        "Example:\n  solve --assembly runs/demo-ucs/assembly.h5 --output runs/demo-ucs/run.h5 "
 	        "share/cases/demo-ucs.json",
 	    .opts = opts,
 	    .nopts = (int)(sizeof opts / sizeof opts[0]),
