@@ -55,9 +55,8 @@ int main(int argc, char **argv)
 	const cli_spec spec = {
 	    .usage = "solve [options] CASE.json | solve --restart RUN.h5 [options]",
 	    .summary = summary,
-	    .epilog =
-	        "Example:\n  solve --assembly runs/demo-ucs/assembly.h5 --output runs/demo-ucs/run.h5 "
-	        "share/cases/demo-ucs.json",
+	    .epilog = "Example:\n  solve --assembly runs/demo-ucs/assembly.h5 --output "
+	              "runs/demo-ucs/run.h5 share/cases/demo-ucs.json",
 	    .opts = opts,
 	    .nopts = (int)(sizeof opts / sizeof opts[0]),
 	    .min_pos = 0,
