@@ -1,4 +1,5 @@
 #include <errno.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -7,11 +8,13 @@
 #include "lib/err.h"
 #include "version.h"
 
-static _Noreturn void usage_error(const cli_spec *spec, const char *fmt, const char *a,
-                                  const char *b)
+void cli_usage_error(const cli_spec *spec, const char *fmt, ...)
 {
+	va_list ap;
+	va_start(ap, fmt);
 	fprintf(stderr, "%s: ", err_program_name());
-	fprintf(stderr, fmt, a, b);
+	vfprintf(stderr, fmt, ap);
+	va_end(ap);
 	fprintf(stderr, " (usage: %s; see --help)\n", spec->usage);
 	exit(2);
 }
@@ -100,7 +103,7 @@ int cli_parse(const cli_spec *spec, int argc, char **argv, char **pos)
 		const char *a = argv[k];
 		if (options_done || a[0] != '-' || strcmp(a, "-") == 0) {
 			if (npos >= spec->max_pos)
-				usage_error(spec, "unexpected argument '%s'%s", a, "");
+				cli_usage_error(spec, "unexpected argument '%s'", a);
 			pos[npos++] = argv[k];
 			continue;
 		}
@@ -125,20 +128,20 @@ int cli_parse(const cli_spec *spec, int argc, char **argv, char **pos)
 			    strncmp(spec->opts[i].name, name, len) == 0)
 				o = &spec->opts[i];
 		if (!o)
-			usage_error(spec, "unknown option '%s'%s", a, "");
+			cli_usage_error(spec, "unknown option '%s'", a);
 		if (o->kind == CLI_FLAG) {
 			if (eq)
-				usage_error(spec, "option '--%s' takes no value%s", o->name, "");
+				cli_usage_error(spec, "option '--%s' takes no value", o->name);
 			set_value(o, NULL);
 		} else if (eq) {
 			set_value(o, eq + 1);
 		} else if (k + 1 < argc) {
 			set_value(o, argv[++k]);
 		} else {
-			usage_error(spec, "option '--%s' needs a value%s", o->name, "");
+			cli_usage_error(spec, "option '--%s' needs a value", o->name);
 		}
 	}
 	if (npos < spec->min_pos)
-		usage_error(spec, "missing argument%s%s", spec->min_pos > 1 ? "s" : "", "");
+		cli_usage_error(spec, "missing argument%s", spec->min_pos > 1 ? "s" : "");
 	return npos;
 }

@@ -31,5 +31,9 @@ typedef struct {
  * Positional arguments are stored in pos[], their count is returned. */
 int cli_parse(const cli_spec *spec, int argc, char **argv, char **pos);
 void cli_help(const cli_spec *spec);
+/* A usage error: "<program>: <message> (usage: <usage>; see --help)" on
+ * stderr, exit status 2. */
+_Noreturn void cli_usage_error(const cli_spec *spec, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
 
 #endif

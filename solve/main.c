@@ -76,21 +76,16 @@ int main(int argc, char **argv)
 	              .report = report,
 	              .quiet = quiet};
 	if (restart) {
-		if (npos || assembly || depfile || strcmp(output, "run.h5") != 0) {
-			fprintf(stderr, "%s: --restart continues the run stored in %s: %s\n",
-			        err_program_name(), restart,
-			        npos ? "give no case file"
-			             : "--assembly, --output and --depfile do not apply");
-			return 2;
-		}
+		if (npos || assembly || depfile || strcmp(output, "run.h5") != 0)
+			cli_usage_error(&spec, "--restart continues the run stored in %s: %s",
+			                restart,
+			                npos ? "give no case file"
+			                     : "--assembly, --output and --depfile do not apply");
 		o.output = restart;
 		return run_restart(&o, (int)threads);
 	}
-	if (npos != 1) {
-		fprintf(stderr, "%s: missing argument CASE.json (usage: %s; see --help)\n",
-		        err_program_name(), spec.usage);
-		return 2;
-	}
+	if (npos != 1)
+		cli_usage_error(&spec, "missing argument CASE.json");
 	dem_case cs;
 	if (case_load(pos[0], assembly, &cs))
 		fatal(NULL);
