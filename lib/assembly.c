@@ -1,3 +1,4 @@
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -62,7 +63,9 @@ static int read_geometry(hid_t file, dem_geometry *g)
 	return 0;
 }
 
-/* The report's scalars, in file order, with their attribute names. */
+/* The report's scalars, in file order, with their attribute names. Files
+ * written before the REPORT_SCALARS_LATER ones existed lack them; they read
+ * as NaN. */
 #define REPORT_SCALARS(X)      \
 	X(solid_fraction)      \
 	X(solid_fraction_core) \
@@ -80,6 +83,10 @@ static int read_geometry(hid_t file, dem_geometry *g)
 	X(time_cell)           \
 	X(time_fill)           \
 	X(time_report)
+#define REPORT_SCALARS_LATER(X)  \
+	X(coordination_core)     \
+	X(coordination_boundary) \
+	X(unbonded)
 
 static int write_report(hid_t file, const dem_report *r)
 {
@@ -89,6 +96,7 @@ static int write_report(hid_t file, const dem_report *r)
 	int rc = 0;
 #define WRITE_SCALAR(name) rc = rc || h5_attr_f64(h, #name, r->name);
 	REPORT_SCALARS(WRITE_SCALAR)
+	REPORT_SCALARS_LATER(WRITE_SCALAR)
 #undef WRITE_SCALAR
 	rc = rc || h5_write(h, "profile_w", H5T_NATIVE_DOUBLE, r->profile_w, r->nprofile, 0, "m") ||
 	     h5_write(h, "profile_phi", H5T_NATIVE_DOUBLE, r->profile_phi, r->nprofile, 0, NULL) ||
@@ -112,6 +120,13 @@ static int read_report(hid_t file, dem_report *r)
 #define READ_SCALAR(name) rc = rc || h5_read_attr_f64(h, #name, &r->name);
 	REPORT_SCALARS(READ_SCALAR)
 #undef READ_SCALAR
+#define READ_LATER(name)                                         \
+	if (H5Aexists(h, #name) > 0)                             \
+		rc = rc || h5_read_attr_f64(h, #name, &r->name); \
+	else                                                     \
+		r->name = NAN;
+	REPORT_SCALARS_LATER(READ_LATER)
+#undef READ_LATER
 	rc = rc ||
 	     h5_read(h, "profile_w", H5T_NATIVE_DOUBLE, (void **)&r->profile_w, &r->nprofile, 0) ||
 	     h5_read_n(h, "profile_phi", H5T_NATIVE_DOUBLE, (void **)&r->profile_phi, r->nprofile,

@@ -34,15 +34,18 @@ typedef struct {
 
 /* What pack measured of the assembly (share/doc/format.md, /report). */
 typedef struct {
-	double solid_fraction;      /* sphere volume / specimen volume */
-	double solid_fraction_core; /* more than 2 mean diameters from the boundary */
-	double wall_deficit;        /* delta* in mean diameters */
-	double mean_radius;         /* m */
-	double beta;                /* interaction range used for coordination */
-	double coordination;        /* bonds per sphere within (1+beta)(ri+rj) */
-	double alpha;               /* 40 P / N_c (Eq. 22 of Onate et al. 2015) */
-	double fabric_anisotropy;   /* of <n x n> over core contacts */
-	double overlap_max;         /* relative to the smaller radius */
+	double solid_fraction;        /* sphere volume / specimen volume */
+	double solid_fraction_core;   /* more than 2 mean diameters from the boundary */
+	double wall_deficit;          /* delta* in mean diameters */
+	double mean_radius;           /* m */
+	double beta;                  /* interaction range used for coordination */
+	double coordination;          /* bonds per sphere within (1+beta)(ri+rj) */
+	double coordination_core;     /* of the spheres in the core */
+	double coordination_boundary; /* of the spheres less than half a mean diameter deep */
+	double unbonded;              /* spheres without a bond (a count) */
+	double alpha;                 /* 40 P / N_c (Eq. 22 of Onate et al. 2015) */
+	double fabric_anisotropy;     /* of <n x n> over core contacts */
+	double overlap_max;           /* relative to the smaller radius */
 	double overlap_mean;
 	double wall_overlap_max; /* protrusion beyond the boundary / radius */
 	double time;             /* s, wall time of pack */

@@ -14,7 +14,9 @@
  *     delta*   = integral_0^{w_c} (phi_core - phi(w)) dw   (in mean diameters).
  * Contacts: pairs with d_ij <= (1 + beta)(r_i + r_j) (Eq. 16 of Onate et al.
  * 2015) give the coordination N_c = 2 B / N and alpha = 40 P / N_c with P
- * = 1 - phi the porosity (Eq. 22). Fabric F = <n n> over such pairs with
+ * = 1 - phi the porosity (Eq. 22); the same count over the core spheres and
+ * over the boundary layer (centres less than REPORT_LAYER_DEPTH deep), and
+ * the spheres left without any bond. Fabric F = <n n> over such pairs with
  * both spheres in the core; anisotropy sqrt(3/2 D:D) with D = F - I/3,
  * which is the difference of principal values for an axisymmetric fabric
  * (0 isotropic, 1 all contacts along one axis). */
@@ -204,9 +206,31 @@ static void contacts(dem_assembly *a, const double *s, double beta)
 	cells g;
 	cells_build(&g, a->x, n, 2 * (1 + beta) * rmax, NULL);
 	double wc = REPORT_CORE_DEPTH * 2 * rep->mean_radius;
-	enum { BONDS, F_XX, F_YY, F_ZZ, F_XY, F_XZ, F_YZ, NCORE, OV_SUM, OV_N, NSUM, BLOCK = 1024 };
+	enum {
+		BONDS,
+		F_XX,
+		F_YY,
+		F_ZZ,
+		F_XY,
+		F_XZ,
+		F_YZ,
+		NCORE,
+		OV_SUM,
+		OV_N,
+		CORE_SPHERES,
+		CORE_ENDS,
+		LAYER_SPHERES,
+		LAYER_ENDS,
+		NSUM,
+		BLOCK = 1024
+	};
 	size_t nblock = (n + BLOCK - 1) / BLOCK;
 	double *part = xcalloc(NSUM * nblock + 1, sizeof *part);
+	char *bonded = xcalloc(n + 1, 1);
+	char *where = xmalloc(n + 1); /* 'c' core, 'l' boundary layer */
+	double we = REPORT_LAYER_DEPTH * 2 * rep->mean_radius;
+	for (size_t i = 0; i < n; i++)
+		where[i] = s[i] >= wc ? 'c' : s[i] < we ? 'l' : 0;
 	double ov_max = 0, wall_max = 0;
 #pragma omp parallel for schedule(dynamic, 4) reduction(max : ov_max, wall_max)
 	for (size_t b = 0; b < nblock; b++) {
@@ -216,6 +240,8 @@ static void contacts(dem_assembly *a, const double *s, double beta)
 			double ri = a->r[i];
 			if (s[i] < ri)
 				wall_max = fmax(wall_max, (ri - s[i]) / ri);
+			p[CORE_SPHERES] += where[i] == 'c';
+			p[LAYER_SPHERES] += where[i] == 'l';
 			int c0[3];
 			cells_coord(&g, a->x + 3 * i, c0);
 			/* Offset o = (dx + 1) + 3 (dy + 1) + 9 (dz + 1): the own cell
@@ -240,6 +266,12 @@ static void contacts(dem_assembly *a, const double *s, double beta)
 						continue;
 					double dist = sqrt(dd);
 					p[BONDS] += 1;
+					p[CORE_ENDS] += (where[i] == 'c') + (where[j] == 'c');
+					p[LAYER_ENDS] += (where[i] == 'l') + (where[j] == 'l');
+#pragma omp atomic write
+					bonded[i] = 1;
+#pragma omp atomic write
+					bonded[j] = 1;
 					if (dist < sum) {
 						double rel = (sum - dist) / fmin(ri, a->r[j]);
 						p[OV_SUM] += rel;
@@ -270,6 +302,14 @@ static void contacts(dem_assembly *a, const double *s, double beta)
 	rep->beta = beta;
 	rep->coordination = n ? 2 * tot[BONDS] / (double)n : 0;
 	rep->alpha = rep->coordination > 0 ? 40 * (1 - rep->solid_fraction) / rep->coordination : 0;
+	rep->coordination_core = tot[CORE_SPHERES] > 0 ? tot[CORE_ENDS] / tot[CORE_SPHERES] : 0;
+	rep->coordination_boundary =
+	    tot[LAYER_SPHERES] > 0 ? tot[LAYER_ENDS] / tot[LAYER_SPHERES] : 0;
+	rep->unbonded = 0;
+	for (size_t i = 0; i < n; i++)
+		rep->unbonded += !bonded[i];
+	free(bonded);
+	free(where);
 	rep->overlap_max = ov_max;
 	rep->overlap_mean = tot[OV_N] > 0 ? tot[OV_SUM] / tot[OV_N] : 0;
 	rep->wall_overlap_max = wall_max;
@@ -402,6 +442,10 @@ void report_print(const dem_assembly *a, FILE *out)
 	        "  coordination     %.2f bonds per sphere at beta = %.2f; alpha = 40 P/N_c = "
 	        "%.3f\n",
 	        r->coordination, r->beta, r->alpha);
+	fprintf(out,
+	        "                   %.2f in the core, %.2f in the boundary layer; %.0f spheres "
+	        "without a bond\n",
+	        r->coordination_core, r->coordination_boundary, r->unbonded);
 	fprintf(out, "  fabric           anisotropy %.4f in the core\n", r->fabric_anisotropy);
 	fprintf(out,
 	        "  overlaps         max %.3f %%, mean %.3f %% of the smaller radius; "

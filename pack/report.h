@@ -12,6 +12,7 @@
 #include "pack/zones.h"
 
 #define REPORT_CORE_DEPTH 2.0    /* mean diameters: the core lies deeper */
+#define REPORT_LAYER_DEPTH 0.5   /* mean diameters: the boundary layer's centres lie shallower */
 #define REPORT_PROFILE_DEPTH 3.0 /* mean diameters covered by phi(w) */
 #define REPORT_PROFILE_BINS 30
 #define REPORT_PSD_POINTS 41

@@ -167,6 +167,40 @@ int main(void)
 	CHECK_NEAR(a.report.overlap_max, ov, 1e-9);
 	CHECK(aniso < 0.05);
 	CHECK_NEAR(a.report.fabric_anisotropy, aniso, 1e-3);
+
+	/* Bonds per sphere, over all, the core and the boundary layer (centres
+	 * less than half a mean diameter deep), and the spheres without one. */
+	double ends[3] = {0}, members[3] = {0}, unbonded = 0;
+	for (size_t i = 0; i < a.n; i++) {
+		long near[512];
+		size_t nn = grid_near(&g, a.x + 3 * i, near, 512), bonds = 0;
+		for (size_t q = 0; q < nn; q++) {
+			long j = near[q];
+			double d[3] = {a.x[3 * j] - a.x[3 * i], a.x[3 * j + 1] - a.x[3 * i + 1],
+			               a.x[3 * j + 2] - a.x[3 * i + 2]};
+			double sum = (1 + beta) * (a.r[i] + a.r[j]);
+			bonds +=
+			    (size_t)j != i && d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= sum * sum;
+		}
+		double w = depth(a.x + 3 * i);
+		int layer[3] = {1, w >= wc, w < 0.5 * dmean};
+		for (int k = 0; k < 3; k++) {
+			ends[k] += layer[k] * (double)bonds;
+			members[k] += layer[k];
+		}
+		unbonded += bonds == 0;
+	}
+	printf("coordination %.3f, core %.3f, boundary layer %.3f (%.0f spheres), %.0f "
+	       "unbonded (report %.3f %.3f %.3f %.0f)\n",
+	       ends[0] / members[0], ends[1] / members[1], ends[2] / members[2], members[2],
+	       unbonded, a.report.coordination, a.report.coordination_core,
+	       a.report.coordination_boundary, a.report.unbonded);
+	CHECK_NEAR(a.report.coordination, ends[0] / members[0], 1e-12);
+	CHECK_NEAR(a.report.coordination_core, ends[1] / members[1], 0.01);
+	CHECK_NEAR(a.report.coordination_boundary, ends[2] / members[2], 0.01);
+	CHECK(a.report.unbonded == unbonded);
+	CHECK(a.report.coordination_core > a.report.coordination);
+	CHECK(a.report.coordination_boundary < a.report.coordination);
 	free(g.head);
 	free(g.next);
 	assembly_free(&a);
