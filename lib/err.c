@@ -7,11 +7,19 @@
 static _Thread_local char message[2048];
 static const char *program = "dem";
 
+/* Formatted into a copy first, so that an argument may be err_msg() itself. */
+static void set_message(const char *fmt, va_list ap)
+{
+	char text[sizeof message];
+	vsnprintf(text, sizeof text, fmt, ap);
+	memcpy(message, text, sizeof message);
+}
+
 int err_set(const char *fmt, ...)
 {
 	va_list ap;
 	va_start(ap, fmt);
-	vsnprintf(message, sizeof message, fmt, ap);
+	set_message(fmt, ap);
 	va_end(ap);
 	return -1;
 }
@@ -48,7 +56,7 @@ _Noreturn void fatal(const char *fmt, ...)
 	if (fmt) {
 		va_list ap;
 		va_start(ap, fmt);
-		vsnprintf(message, sizeof message, fmt, ap);
+		set_message(fmt, ap);
 		va_end(ap);
 	}
 	fprintf(stderr, "%s: %s\n", program, message[0] ? message : "unknown error");

@@ -12,7 +12,8 @@
 #include <stdarg.h>
 #include <stddef.h>
 
-/* Record the current error (replaces any earlier one). Always returns -1. */
+/* Record the current error (replaces any earlier one; err_msg() may be one
+ * of the arguments). Always returns -1. */
 int err_set(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Prefix the current error with more context: "<context>: <message>". */
 int err_wrap(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
@@ -25,7 +26,7 @@ void err_program(const char *argv0);
 const char *err_program_name(void);
 
 /* Print "<program>: <message>" on stderr and exit with status 1. With fmt ==
- * NULL the current error message is printed. */
+ * NULL the current error message is printed; err_msg() may be an argument. */
 _Noreturn void fatal(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 

@@ -41,10 +41,8 @@ void load_run(const char *cmd, const char *path, dem_run *r)
 		return;
 	if (!strstr(err_msg(), "\"" ASSEMBLY_FORMAT "\""))
 		fatal(NULL);
-	char msg[2048]; /* fatal() formats into the buffer err_msg() points to */
-	snprintf(msg, sizeof msg, "%s", err_msg());
-	fatal("%s (an assembly written by pack: post %s reads a run file written by solve)", msg,
-	      cmd);
+	fatal("%s (an assembly written by pack: post %s reads a run file written by solve)",
+	      err_msg(), cmd);
 }
 
 void load_snapshot(const char *path, const dem_run *r, size_t k, dem_snapshot *s)
