@@ -178,17 +178,23 @@ int assembly_read_groups(hid_t file, dem_assembly *a)
 	return 0;
 }
 
-int assembly_write(const char *path, const dem_assembly *a)
+int assembly_write_with(const char *path, const dem_assembly *a, int (*before)(void *), void *ctx)
 {
 	char tmp[4096];
 	hid_t f = h5_create(path, tmp, sizeof tmp);
 	if (f < 0)
 		return -1;
-	if (prov_write(f, ASSEMBLY_FORMAT, &a->prov) || assembly_write_groups(f, a)) {
+	if (prov_write(f, ASSEMBLY_FORMAT, &a->prov) || assembly_write_groups(f, a) ||
+	    (before && before(ctx))) {
 		h5_discard(f, tmp);
 		return -1;
 	}
 	return h5_commit(f, tmp, path);
+}
+
+int assembly_write(const char *path, const dem_assembly *a)
+{
+	return assembly_write_with(path, a, NULL, NULL);
 }
 
 int assembly_read(const char *path, dem_assembly *a)

@@ -75,6 +75,10 @@ typedef struct {
 } dem_assembly;
 
 int assembly_write(const char *path, const dem_assembly *a);
+/* As assembly_write, with before(ctx) called once the file is complete and
+ * before it replaces `path` (to write files that go with it): if before
+ * fails, the file is discarded and whatever was at `path` stays. */
+int assembly_write_with(const char *path, const dem_assembly *a, int (*before)(void *), void *ctx);
 int assembly_read(const char *path, dem_assembly *a);
 void assembly_free(dem_assembly *a);
 

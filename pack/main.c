@@ -94,6 +94,24 @@ static double grow_spheres(const pack_options *o, spheres *S, const dem_geometry
  * So pack restarts itself once with passive waiting unless the
  * environment already chose a policy; the restart costs a few hundredths
  * of a second, gmsh's libraries being loaded only later (gmshlib.h). */
+/* The files that go with the assembly, written before it replaces the
+ * output: --export and --depfile. */
+typedef struct {
+	const pack_options *o;
+	const dem_assembly *a;
+} side_outputs;
+
+static int write_side_outputs(void *ctx)
+{
+	const side_outputs *s = ctx;
+	const pack_options *o = s->o;
+	const char *inputs[] = {o->config, o->geometry, o->grading, o->import_path};
+	return (o->export_path && textio_write(o->export_path, s->a->x, s->a->r, s->a->n)) ||
+	               (o->depfile && depfile_write(o->depfile, o->output, inputs, 4))
+	           ? -1
+	           : 0;
+}
+
 static void wait_passively(char **argv)
 {
 	if (getenv("OMP_WAIT_POLICY"))
@@ -200,14 +218,9 @@ int main(int argc, char **argv)
 	char *config = options_json(&o);
 	prov_init(&a.prov, "pack", config, (uint64_t)o.seed);
 	free(config);
-	if (assembly_write(o.output, &a))
+	side_outputs side = {&o, &a};
+	if (assembly_write_with(o.output, &a, write_side_outputs, &side))
 		fatal(NULL);
-	const char *inputs[] = {o.config, o.geometry, o.grading, o.import_path};
-	if ((o.export_path && textio_write(o.export_path, a.x, a.r, a.n)) ||
-	    (o.depfile && depfile_write(o.depfile, o.output, inputs, 4))) {
-		unlink(o.output);
-		fatal(NULL);
-	}
 	if (!o.quiet) {
 		report_print(&a, stdout);
 		if (!o.import_path)

@@ -217,6 +217,31 @@ static void test_export_import(void)
 	assembly_free(&y);
 }
 
+/* An --export or --depfile that cannot be written leaves the assembly that
+ * was at the output path as it was, and no temporary file. */
+static void test_side_output_failure(void)
+{
+	char keep[1024], copy[1024], tmp[1100];
+	snprintf(keep, sizeof keep, "%s", check_tmp("cli_keep.h5"));
+	snprintf(copy, sizeof copy, "%s", check_tmp("cli_keep_copy.h5"));
+	snprintf(tmp, sizeof tmp, "%s.tmp", keep);
+	harness_result r = run_pack("--quiet " SMALL " --seed 3 %s", keep);
+	CHECK(r.status == 0);
+	harness_free(&r);
+	r = run_pack("--quiet " SMALL " --seed 3 %s", copy);
+	harness_free(&r);
+	static const char *const side[] = {"--export /nonexistent/x.txt",
+	                                   "--depfile /nonexistent/x.d"};
+	for (int k = 0; k < 2; k++) {
+		r = run_pack("--quiet " SMALL " --seed 4 %s %s", side[k], keep);
+		CHECK(r.status == 1);
+		CHECK_CONTAINS(r.err, "/nonexistent/x.");
+		harness_free(&r);
+		CHECK(same_spheres(keep, copy));
+		CHECK(!harness_exists(tmp));
+	}
+}
+
 /* --grow-to scales every radius by one factor about the same centres, to
  * the solid fraction asked for (recomputed here from the written spheres). */
 static void test_grow(void)
@@ -318,6 +343,7 @@ int main(void)
 	test_geometry_sources();
 	test_seed();
 	test_export_import();
+	test_side_output_failure();
 	test_grow();
 	test_config();
 	return check_done();
