@@ -1,5 +1,9 @@
+#define _XOPEN_SOURCE 700 /* realpath */
+#include <limits.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "lib/err.h"
 #include "lib/path.h"
@@ -13,4 +17,46 @@ char *path_beside(const char *file, const char *name)
 	char *out = xmalloc(n);
 	snprintf(out, n, "%.*s/%s", (int)dir, file, name);
 	return out;
+}
+
+/* name with its directory resolved (the name itself may not exist yet), or
+ * name as given when the directory cannot be. */
+static void canonical(const char *name, char *out, size_t n)
+{
+	const char *slash = strrchr(name, '/');
+	char dir[PATH_MAX], real[PATH_MAX];
+	snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - name) : 1, slash ? name : ".");
+	if (slash == name)
+		snprintf(dir, sizeof dir, "/");
+	if (realpath(dir, real))
+		snprintf(out, n, "%s/%s", real, slash ? slash + 1 : name);
+	else
+		snprintf(out, n, "%s", name);
+}
+
+int path_same(const char *a, const char *b)
+{
+	struct stat sa, sb;
+	if (stat(a, &sa) == 0 && stat(b, &sb) == 0)
+		return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+	char ca[2 * PATH_MAX], cb[2 * PATH_MAX];
+	canonical(a, ca, sizeof ca);
+	canonical(b, cb, sizeof cb);
+	return strcmp(ca, cb) == 0;
+}
+
+int path_check_outputs(const path_role *out, int nout, const path_role *in, int nin)
+{
+	for (int k = 0; k < nout; k++) {
+		if (!out[k].path)
+			continue;
+		for (int j = 0; j < nin + k; j++) {
+			const path_role *o = j < nin ? &in[j] : &out[j - nin];
+			if (o->path && path_same(out[k].path, o->path))
+				return err_set(
+				    "%s %s would overwrite %s %s: expected another file name",
+				    out[k].role, out[k].path, o->role, o->path);
+		}
+	}
+	return 0;
 }

@@ -10,4 +10,19 @@
  * Returns a new string (caller frees). */
 char *path_beside(const char *file, const char *name);
 
+/* Whether a and b name the same file: the same inode when both exist, else
+ * the same name once the directory part is resolved. */
+int path_same(const char *a, const char *b);
+
+/* A file a program reads or writes, with what the user calls it
+ * ("--output", "the assembly"); path may be NULL (not given). */
+typedef struct {
+	const char *role;
+	const char *path;
+} path_role;
+
+/* Refuses (-1, with "<role> <path> would overwrite <role> <path>: ...")
+ * an output that is the same file as an input or as another output. */
+int path_check_outputs(const path_role *out, int nout, const path_role *in, int nin);
+
 #endif

@@ -217,6 +217,14 @@ void options_parse(pack_options *o, int argc, char **argv)
 	char *pos[1];
 	cli_parse(&spec, argc, argv, pos);
 	o->output = pos[0];
+	path_role outs[] = {
+	    {"OUTPUT", o->output}, {"--export", o->export_path}, {"--depfile", o->depfile}};
+	path_role ins[] = {{"--config", o->config},
+	                   {"--geometry", o->geometry},
+	                   {"--grading", o->grading},
+	                   {"--import", o->import_path}};
+	if (path_check_outputs(outs, 3, ins, 4))
+		cli_usage_error(&spec, "%s", err_msg());
 }
 
 void options_free(pack_options *o)

@@ -6,6 +6,7 @@
 #include "lib/cli.h"
 #include "lib/depfile.h"
 #include "lib/err.h"
+#include "lib/path.h"
 #include "lib/progress.h"
 #include "solve/case.h"
 #include "solve/report.h"
@@ -82,6 +83,9 @@ int main(int argc, char **argv)
 			                npos ? "give no case file"
 			                     : "--assembly, --output and --depfile do not apply");
 		o.output = restart;
+		path_role outs[] = {{"--report", report}}, ins[] = {{"--restart", restart}};
+		if (path_check_outputs(outs, 1, ins, 1))
+			cli_usage_error(&spec, "%s", err_msg());
 		return run_restart(&o, (int)threads);
 	}
 	if (npos != 1)
@@ -92,6 +96,12 @@ int main(int argc, char **argv)
 	if (threads > 0)
 		cs.threads = (int)threads;
 	const char *inputs[] = {pos[0], cs.material_file, cs.assembly};
+	path_role outs[] = {{"--output", output}, {"--report", report}, {"--depfile", depfile}};
+	path_role ins[] = {{"the case", pos[0]},
+	                   {"the material", cs.material_file},
+	                   {"the assembly", cs.assembly}};
+	if (path_check_outputs(outs, 3, ins, 3))
+		cli_usage_error(&spec, "%s", err_msg());
 	if (depfile && depfile_write(depfile, output, inputs, 3))
 		fatal(NULL);
 	dem_assembly a;

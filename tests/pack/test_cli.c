@@ -44,6 +44,20 @@ static void refused(int status, const char *message, int prefix, const char *arg
 
 static void test_bad_input(void)
 {
+	/* An output that would overwrite an input or another output. */
+	char clash[2200], message[4400];
+	snprintf(clash, sizeof clash, "--depfile %s", out_path());
+	snprintf(message, sizeof message,
+	         "pack: --depfile %s would overwrite OUTPUT %s: expected another file name "
+	         "(usage: ",
+	         out_path(), out_path());
+	refused(2, message, 1, clash);
+	refused(2, "pack: --depfile ./x.d would overwrite --export x.d: expected another file name",
+	        1, "--export x.d --depfile ./x.d");
+	refused(2,
+	        "pack: --export share/specimens/demo.json would overwrite --config "
+	        "share/specimens/demo.json: expected another file name",
+	        1, "--config share/specimens/demo.json --export share/specimens/demo.json");
 	refused(1, "pack: --rmin 0.002 is larger than --rmax 0.0015: expected rmin <= rmax (m)\n",
 	        0, "--rmin 0.002 --rmax 0.0015");
 	refused(2, "pack: --rmin -0.001: expected a number in [1e-09, 1000] (m)\n", 0,
@@ -278,8 +292,10 @@ static void test_grow(void)
 
 static void test_config(void)
 {
-	const char *cli = check_tmp("cli_c1.h5"), *file = check_tmp("cli_c2.h5");
-	const char *config = check_tmp("cli_config.json");
+	char cli[1024], file[1024], config[1024]; /* check_tmp's buffers rotate */
+	snprintf(cli, sizeof cli, "%s", check_tmp("cli_c1.h5"));
+	snprintf(file, sizeof file, "%s", check_tmp("cli_c2.h5"));
+	snprintf(config, sizeof config, "%s", check_tmp("cli_config.json"));
 	write_file(config, "{\"shape\": \"box\", \"length\": 0.012, \"width\": 0.012,"
 	                   " \"height\": 0.012, \"dist\": \"lognormal\", \"radius\": 0.0008,"
 	                   " \"sigma\": 0.2, \"seed\": 7}");
@@ -306,7 +322,7 @@ static void test_config(void)
 	                  "\"radius\": 0.0008, \"sigma\": 0.2, \"seed\": 7}");
 	r2 = run_pack("--quiet --config %s --depfile %s %s", named, dep, file);
 	CHECK(r2.status == 0);
-	char *rule = harness_slurp(dep), want[1024];
+	char *rule = harness_slurp(dep), want[4096];
 	snprintf(want, sizeof want, "%s: %s %s\n", file, named, geo);
 	CHECK(strncmp(rule, want, strlen(want)) == 0);
 	free(rule);
