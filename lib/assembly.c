@@ -169,12 +169,19 @@ int assembly_read_groups(hid_t file, dem_assembly *a)
 	H5Gclose(p);
 	if (rc || read_geometry(file, &a->geom) || read_report(file, &a->report))
 		return -1;
-	for (size_t i = 0; i < a->n; i++)
-		if (!(a->r[i] > 0))
+	for (size_t i = 0; i < a->n; i++) {
+		if (!(a->r[i] > 0 && isfinite(a->r[i])))
 			return err_set(
 			    "%s: dataset '/particles/r': value %g at row %zu: expected a "
-			    "positive radius (m)",
+			    "finite positive radius (m)",
 			    h5_name(file), a->r[i], i);
+		const double *x = a->x + 3 * i;
+		if (!isfinite(x[0] + x[1] + x[2]))
+			return err_set(
+			    "%s: dataset '/particles/x': row %zu is (%g, %g, %g): expected a "
+			    "finite position (m)",
+			    h5_name(file), i, x[0], x[1], x[2]);
+	}
 	return 0;
 }
 

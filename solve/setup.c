@@ -92,13 +92,23 @@ static int load_particles(engine *e, const dem_assembly *a)
 	for (size_t i = 0; i < n; i++) {
 		int32_t o = P->orig[i];
 		double r = a->r[o];
-		if (!(r > 0) || !isfinite(a->x[3 * o] + a->x[3 * o + 1] + a->x[3 * o + 2]))
-			return err_set("particle %d: radius %g or position not valid", o, r);
+		const double *x = a->x + 3 * o;
+		if (!(r > 0 && isfinite(r)) || !isfinite(x[0] + x[1] + x[2]))
+			return err_set(
+			    "particle %d: radius %g m at (%g, %g, %g) m: expected a finite "
+			    "positive radius and position",
+			    o, r, x[0], x[1], x[2]);
 		memcpy(P->x + 3 * i, a->x + 3 * o, 3 * sizeof *P->x);
 		P->r[i] = r;
 		P->m[i] = rho * 4.0 / 3.0 * DEM_PI * r * r * r;
 		P->inv_m[i] = 1 / P->m[i];
 		P->inv_i[i] = 1 / (0.4 * P->m[i] * r * r);
+		if (!(P->inv_m[i] > 0 && P->inv_i[i] > 0 && isfinite(P->inv_i[i])))
+			return err_set(
+			    "particle %d: mass %g kg from the density %g kg/m^3: expected a "
+			    "finite positive mass and moment of inertia (check the "
+			    "material's density)",
+			    o, P->m[i], rho);
 		P->surf[i] = -1;
 		rsum += r;
 		e->r_max = fmax(e->r_max, r);
@@ -200,6 +210,10 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, int quiet
 	bonds_init_history(e);
 	bond_bounds(e);
 	platens_init(e);
+	if (cs->surface_bin > 0 && cs->surface_bin < 0.2 * e->r_mean)
+		return err_set("surface.bin %g m: expected at least a tenth of the mean sphere "
+		               "diameter (%g m)",
+		               cs->surface_bin, 2 * e->r_mean);
 	surface_init(e);
 	gauge_init(e);
 	geometry_sizes(e, a);
@@ -217,6 +231,16 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, int quiet
 	if (!isfinite(e->dt_crit))
 		return err_set("no bond or contact: the critical time step is undefined "
 		               "(give time_step.dt)");
+	if (!(e->dt_crit > 0))
+		return err_set(
+		    "the critical time step is 0 s, set by particle %d (radius %g m, mass "
+		    "%g kg): the material's stiffness is out of range for its density",
+		    e->p.orig[worst], e->p.r[worst], e->p.m[worst]);
+	if (cs->dt > 0 && cs->dt < 1e-6 * e->dt_crit)
+		return err_set("time step %g s below a millionth of the stable limit %g s: the run "
+		               "would take a million times the steps it needs (raise time_step.dt "
+		               "or leave it out)",
+		               cs->dt, e->dt_crit);
 	e->dt = cs->dt > 0 ? cs->dt : cs->safety * e->dt_crit;
 	if (!quiet)
 		fprintf(

@@ -1,6 +1,8 @@
 /* A failing simulation stops with a diagnosis naming the particle or bond,
  * and the run file written so far stays valid (status "stopped: ..."):
- *   - a time step above the stable limit is refused at start;
+ *   - a time step above the stable limit is refused at start, and so are
+ *     values that would make the run hang or exhaust memory (a time step
+ *     far below it, a stiffness or density out of range, tiny surface bins);
  *   - a NaN in a particle's velocity is traced to the bond whose force it
  *     made non-finite;
  *   - a time step forced above the limit makes the kinetic energy run away;
@@ -23,6 +25,27 @@ static const char *case_text =
     "\"stop\": {\"steps\": 300}}";
 
 static dem_assembly a;
+
+/* Setup refuses the case (the material's density and E, and more keys)
+ * with a message containing `expect`. */
+static void refused_at_setup(const char *density, const char *E, const char *extra,
+                             const char *expect)
+{
+	char json[2048];
+	snprintf(json, sizeof json,
+	         "{\"assembly\": \"-\", \"material\": {\"name\": \"m\", \"law\": \"linear\", "
+	         "\"density\": %s, \"E\": %s, \"nu\": 0.2, \"tensile_strength\": 1e12, "
+	         "\"shear_strength\": 1e12}, %s \"loading\": [{\"axial\": {\"mode\": "
+	         "\"strain_rate\", \"rate\": 1}}], \"stop\": {\"steps\": 300}}",
+	         density, E, extra);
+	dem_case c;
+	harness_case(&c, json);
+	engine e;
+	CHECK(engine_setup(&e, &c, &a, 1) == -1);
+	CHECK_CONTAINS(err_msg(), expect);
+	engine_free(&e);
+	case_free(&c);
+}
 
 /* Run an engine prepared by the caller to its end; returns the status. */
 static char *run_to_end(engine *e, const char *name, int *code)
@@ -56,6 +79,17 @@ int main(void)
 	CHECK_CONTAINS(err_msg(), "lower time_step.dt or leave it out");
 	engine_free(&e);
 	case_free(&c);
+
+	/* Values that would hang, crash or run out of memory: refused at start. */
+	refused_at_setup("2500", "1e10", "\"time_step\": {\"dt\": 1e-300},",
+	                 "time step 1e-300 s below a millionth of the stable limit ");
+	refused_at_setup("2500", "1e308", "", "the critical time step is 0 s, set by particle ");
+	refused_at_setup("1e308", "1e10", "",
+	                 "mass inf kg from the density 1e+308 kg/m^3: expected a finite positive "
+	                 "mass");
+	refused_at_setup("2500", "1e10", "\"surface\": {\"bin\": 1e-12},",
+	                 "surface.bin 1e-12 m: expected at least a tenth of the mean sphere "
+	                 "diameter (0.002 m)");
 
 	/* A skin so wide that no neighbour rebuild (and its time-step check) comes. */
 	snprintf(json, sizeof json, case_text, "\"neighbours\": {\"skin\": 1},", "layers");
