@@ -72,9 +72,11 @@ static double omega_dt(const engine *e, size_t i) { return sqrt(e->p.omega2[i]) 
 int diagnose_runaway(const engine *e, char *msg, size_t n)
 {
 	/* The shadow energy v- · v+ turns negative in a diverging oscillation:
-	 * use the kinetic energy at t + dt/2. */
+	 * use the kinetic energy at t + dt/2. Below ke_noise, motion is the
+	 * rounding of forces that balance (a specimen held at rest), which a
+	 * divergence leaves behind within a few dozen steps. */
 	double input = e->e_initial + fabs(e->e_work), ke = e->psum.ke_new;
-	if (!(ke > 2 * input + 1e-300))
+	if (!(ke > 2 * input + e->ke_noise))
 		return 0;
 	const particles *P = &e->p;
 	size_t worst = 0;

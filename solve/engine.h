@@ -184,6 +184,7 @@ struct engine {
 	double e_damped, e_friction, e_fracture, e_work;
 	double e_initial; /* kinetic + elastic at the start */
 	double ke;        /* shadow kinetic energy of the last step */
+	double ke_noise;  /* kinetic energy of every particle moving 1e-12 r per step */
 
 	/* this step's reductions */
 	pair_sums bsum, csum;

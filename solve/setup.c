@@ -242,6 +242,10 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, int quiet
 		               "or leave it out)",
 		               cs->dt, e->dt_crit);
 	e->dt = cs->dt > 0 ? cs->dt : cs->safety * e->dt_crit;
+	for (size_t i = 0; i < e->p.n; i++) {
+		double v = 1e-12 * e->p.r[i] / e->dt;
+		e->ke_noise += 0.5 * e->p.m[i] * v * v;
+	}
 	if (!quiet)
 		fprintf(
 		    stderr,
