@@ -432,6 +432,12 @@ int checkpoint_read(engine *e, const char *path)
 	     get_field(g, &bond_fields[2], e->bonds.rec, nb) ||
 	     get(g, "bond_force", H5T_NATIVE_DOUBLE, e->bonds.f, nb, 6) || read_surface(g, e) ||
 	     read_pairs(g, e, e->contacts.n) || read_platens(g, e);
+	for (size_t b = 0; !rc && b < nb; b++)
+		if (e->bonds.rec[b].state > BOND_BROKEN_SHEAR)
+			rc =
+			    err_set("%s: checkpoint dataset 'bond_state': value %d at row %zu: "
+			            "expected a bond state from %d to %d",
+			            path, e->bonds.rec[b].state, b, BOND_INTACT, BOND_BROKEN_SHEAR);
 	H5Gclose(g);
 	H5Fclose(f);
 	return rc ? -1 : 0;

@@ -7,8 +7,11 @@
  *   D  interrupted by SIGINT at an arbitrary moment, then restarted;
  * B, C and D must equal A in every history column (but the wall-clock rate),
  * every crack and every snapshot. The interrupted files must be valid run
- * files with status "interrupted". */
+ * files with status "interrupted"; one whose checkpoint is corrupt is
+ * refused. */
+#include <hdf5.h>
 #include <signal.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +21,7 @@
 #include <unistd.h>
 
 #include "tests/check.h"
+#include "tests/harness.h"
 #include "tests/solve/fixture.h"
 #include "tests/solve/harness.h"
 
@@ -62,6 +66,32 @@ static int interrupted_run(const char *out, const char *casefile)
 	return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+/* A copy of the run file `from` whose first bond has state 200. */
+static void corrupt_bond_state(const char *from, const char *to)
+{
+	char *data = harness_slurp(from);
+	struct stat st;
+	FILE *f = fopen(to, "wb");
+	CHECK(data && f && stat(from, &st) == 0 &&
+	      fwrite(data, 1, (size_t)st.st_size, f) == (size_t)st.st_size);
+	if (f)
+		fclose(f);
+	free(data);
+	hid_t h = H5Fopen(to, H5F_ACC_RDWR, H5P_DEFAULT);
+	hid_t d = H5Dopen2(h, "/checkpoint/bond_state", H5P_DEFAULT);
+	hid_t space = H5Dget_space(d);
+	hsize_t n = 0;
+	H5Sget_simple_extent_dims(space, &n, NULL);
+	uint8_t *state = calloc(n + 1, 1);
+	CHECK(n > 0 && H5Dread(d, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, state) >= 0);
+	state[0] = 200;
+	CHECK(H5Dwrite(d, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, state) >= 0);
+	free(state);
+	H5Sclose(space);
+	H5Dclose(d);
+	H5Fclose(h);
+}
+
 int main(void)
 {
 	lattice l = {.kind = LATTICE_FCC,
@@ -79,7 +109,7 @@ int main(void)
 	fixture_write(&a, apath);
 	fprintf(stderr, "%zu particles\n", a.n);
 	CHECK(a.n > 2000);
-	char json[2048], args[2048];
+	char json[2048], args[4096];
 	snprintf(json, sizeof json, case_text, apath);
 	const char *cpath = harness_file("det.json", json);
 
@@ -96,6 +126,16 @@ int main(void)
 	CHECK_STR(c.status, "interrupted");
 	CHECK(c.nrows == 1333 / 50 + 1);
 	run_free(&c);
+	/* A checkpoint holding a bond state that does not exist is refused. */
+	char bad[1024], said[1024];
+	snprintf(bad, sizeof bad, "%s", path("det-bad.h5"));
+	snprintf(said, sizeof said, "%s", path("det-bad.txt"));
+	corrupt_bond_state(path("det-C.h5"), bad);
+	snprintf(args, sizeof args, "--restart %s 2> %s", bad, said);
+	CHECK(solve(args) == 1);
+	char *message = harness_slurp(said);
+	CHECK_CONTAINS(message, "checkpoint dataset 'bond_state': value 200 at row 0: expected");
+	free(message);
 	snprintf(args, sizeof args, "--restart %s", path("det-C.h5"));
 	CHECK(solve(args) == 0);
 	CHECK(interrupted_run(path("det-D.h5"), cpath) == 3);
