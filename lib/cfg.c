@@ -179,8 +179,10 @@ static void range_text(char *buf, size_t n, double lo, double hi, const char *un
 		snprintf(buf, n, "a number >= %g%s", lo, u);
 	else if (lo == -INFINITY)
 		snprintf(buf, n, "a number <= %g%s", hi, u);
+	else if (lo == CFG_POS)
+		snprintf(buf, n, "a number in (0, %g]%s", hi, u);
 	else
-		snprintf(buf, n, "a number in [%g, %g]%s", lo == CFG_POS ? 0 : lo, hi, u);
+		snprintf(buf, n, "a number in [%g, %g]%s", lo, hi, u);
 }
 
 static int check_number(const cfg *c, const char *key, cJSON *v, double *out, const char *unit,

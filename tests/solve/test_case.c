@@ -93,7 +93,7 @@ int main(void)
 	       "bad.json: key 'stop.stress_drop': value 1.5: expected a number in [0, 1]");
 	expect("{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE
 	       ", \"stop\": {\"steps\": 10}, \"time_step\": {\"safety\": 1.5}}",
-	       "bad.json: key 'time_step.safety': value 1.5: expected a number in [0, 1]");
+	       "bad.json: key 'time_step.safety': value 1.5: expected a number in (0, 1]");
 	expect("{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE
 	       ", \"stop\": {\"steps\": 10}, \"axis\": [0, 0, 0]}",
 	       "bad.json: key 'axis': value [0, 0, 0]: expected a non-zero direction");
