@@ -65,7 +65,8 @@ void cfg_free(cfg *c)
 
 cfg *cfg_parse(const char *text, const char *source)
 {
-	cJSON *root = cJSON_Parse(text);
+	/* Nothing but white space may follow the object. */
+	cJSON *root = cJSON_ParseWithOpts(text, NULL, 1);
 	if (!root) {
 		const char *at = cJSON_GetErrorPtr();
 		int line = 1;

@@ -63,6 +63,15 @@ static void test_errors(void)
 
 	CHECK(cfg_parse("{\"a\": 1,\n \"b\": }", "bad.json") == NULL);
 	CHECK_CONTAINS(err_msg(), "bad.json: line 2: not valid JSON");
+	/* Text after the object (two objects, a stray word) is not ignored;
+	 * white space is fine. */
+	CHECK(cfg_parse("{\"a\": 1}\n{}", "two.json") == NULL);
+	CHECK_CONTAINS(err_msg(), "two.json: line 2: not valid JSON");
+	CHECK(cfg_parse("{\"a\": 1} xyz", "junk.json") == NULL);
+	CHECK_CONTAINS(err_msg(), "junk.json: line 1: not valid JSON");
+	c = cfg_parse("{\"a\": 1}\n\n", "ok.json");
+	CHECK(c != NULL);
+	cfg_free(c);
 	CHECK(cfg_parse("[1, 2]", "arr.json") == NULL);
 	CHECK_CONTAINS(err_msg(), "expected a JSON object");
 	CHECK(cfg_load("/nonexistent/x.json") == NULL);
