@@ -229,11 +229,22 @@ int instant_parse(instant *in, const char *snapshot, const char *time, const cha
 			return err_set("--time %s: expected a time in s, >= 0", time);
 		return 0;
 	case AT_STRAIN:
-		return parse_number("strain", strain, "an axial strain (compression positive)",
-		                    &in->value);
+		if (parse_number("strain", strain, "an axial strain > 0 (compression positive)",
+		                 &in->value) ||
+		    !(in->value > 0))
+			return err_set("--strain %s: expected an axial strain > 0 (compression "
+			               "positive)",
+			               strain);
+		return 0;
 	case AT_STRESS:
-		return parse_number("stress", stress,
-		                    "an axial stress in Pa (compression positive)", &in->value);
+		if (parse_number("stress", stress,
+		                 "an axial stress in Pa > 0 (compression positive)", &in->value) ||
+		    !(in->value > 0))
+			return err_set(
+			    "--stress %s: expected an axial stress in Pa > 0 (compression "
+			    "positive)",
+			    stress);
+		return 0;
 	}
 	return 0;
 }

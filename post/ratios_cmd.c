@@ -240,7 +240,7 @@ int post_ratios(int argc, char **argv)
 	int nruns = cli_parse(&spec, argc, argv, pos);
 	instant in;
 	if (instant_parse(&in, at_snap, at_time, at_strain, at_stress))
-		fatal(NULL);
+		cli_usage_error(&spec, "%s", err_msg());
 	ratio_bins bins;
 	if (solid)
 		ratio_bins_solid_angle(&bins, (int)ceil(90.0 / width - 1e-9));

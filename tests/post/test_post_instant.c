@@ -28,6 +28,19 @@ static void expect_error(const char *run, const char *opts, const char *want)
 	harness_free(&r);
 }
 
+/* A bad instant option is a usage error: status 2, the message, the usage. */
+static void expect_usage_error(const char *run, const char *opts, const char *want)
+{
+	post_result r = harness_post("ratios --no-png %s %s", opts, run);
+	CHECK(r.status == 2);
+	char full[1024];
+	snprintf(full, sizeof full, "%s (usage: post ratios", want);
+	CHECK(strncmp(r.err, full, strlen(full)) == 0);
+	if (strncmp(r.err, full, strlen(full)) != 0)
+		fprintf(stderr, "  got: %s", r.err);
+	harness_free(&r);
+}
+
 int main(void)
 {
 	char dir[1024], run[1100], bare[1100], msg[2048];
@@ -84,14 +97,19 @@ int main(void)
 	         "for the last)\n",
 	         run);
 	expect_error(run, "--snapshot 5", msg);
-	expect_error(run, "--snapshot 1 --time 0.001",
-	             "post: --snapshot and --time: give one instant only\n");
-	expect_error(run, "--snapshot 1.5",
-	             "post: --snapshot 1.5: expected an integer snapshot "
-	             "index\n");
-	expect_error(run, "--time -1", "post: --time -1: expected a time in s, >= 0\n");
-	expect_error(
+	expect_usage_error(run, "--snapshot 1 --time 0.001",
+	                   "post: --snapshot and --time: give one instant only");
+	expect_usage_error(run, "--snapshot 1.5",
+	                   "post: --snapshot 1.5: expected an integer snapshot index");
+	expect_usage_error(run, "--time -1", "post: --time -1: expected a time in s, >= 0");
+	expect_usage_error(
 	    run, "--stress 3MPa",
-	    "post: --stress 3MPa: expected an axial stress in Pa (compression positive)\n");
+	    "post: --stress 3MPa: expected an axial stress in Pa > 0 (compression positive)");
+	expect_usage_error(
+	    run, "--stress -5",
+	    "post: --stress -5: expected an axial stress in Pa > 0 (compression positive)");
+	expect_usage_error(
+	    run, "--strain -1",
+	    "post: --strain -1: expected an axial strain > 0 (compression positive)");
 	return check_done();
 }
