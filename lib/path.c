@@ -50,6 +50,10 @@ int path_check_outputs(const path_role *out, int nout, const path_role *in, int 
 	for (int k = 0; k < nout; k++) {
 		if (!out[k].path)
 			continue;
+		struct stat st;
+		if (!out[k].path[0] || (stat(out[k].path, &st) == 0 && S_ISDIR(st.st_mode)))
+			return err_set("%s '%s': expected a file name%s", out[k].role, out[k].path,
+			               out[k].path[0] ? " (this is a directory)" : "");
 		for (int j = 0; j < nin + k; j++) {
 			const path_role *o = j < nin ? &in[j] : &out[j - nin];
 			if (o->path && path_same(out[k].path, o->path))

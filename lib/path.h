@@ -22,7 +22,8 @@ typedef struct {
 } path_role;
 
 /* Refuses (-1, with "<role> <path> would overwrite <role> <path>: ...")
- * an output that is the same file as an input or as another output. */
+ * an output that is the same file as an input or as another output, and
+ * an output name that is empty or an existing directory. */
 int path_check_outputs(const path_role *out, int nout, const path_role *in, int nin);
 
 #endif

@@ -54,6 +54,8 @@ static void test_bad_input(void)
 	refused(2, message, 1, clash);
 	refused(2, "pack: --depfile ./x.d would overwrite --export x.d: expected another file name",
 	        1, "--export x.d --depfile ./x.d");
+	refused(2, "pack: --export '/tmp': expected a file name (this is a directory)", 1,
+	        "--export /tmp");
 	refused(2,
 	        "pack: --export share/specimens/demo.json would overwrite --config "
 	        "share/specimens/demo.json: expected another file name",
