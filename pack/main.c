@@ -49,11 +49,18 @@ static void size_spheres(const pack_options *o, psd *d, const dem_geometry *g)
 	      d->rmax, ext);
 }
 
-/* Imported spheres must have their centres inside the specimen. */
+/* Imported spheres must have their centres inside the specimen and fit in
+ * it. */
 static void import_spheres(const pack_options *o, double *x, double *r, size_t n, spheres *S,
-                           const surface *surf, const zones *z)
+                           const surface *surf, const zones *z, const dem_geometry *g)
 {
+	double ext = smallest_extent(g);
 	for (size_t i = 0; i < n; i++) {
+		if (2 * r[i] >= ext)
+			fatal("%s: sphere %zu of radius %g m does not fit in the specimen: "
+			      "expected a "
+			      "diameter below its smallest extent (%.3g m)",
+			      o->import_path, i + 1, r[i], ext);
 		int32_t hint = z->hint[zones_cell(z, x + 3 * i)];
 		double s = surface_distance(surf, x + 3 * i, NULL, &hint);
 		if (s < 0)
@@ -198,7 +205,7 @@ int main(int argc, char **argv)
 	}
 	a.geom = mesh;
 	if (o.import_path) {
-		import_spheres(&o, xi, ri, ni, &S, surf, &z);
+		import_spheres(&o, xi, ri, ni, &S, surf, &z, &a.geom);
 	} else {
 		packer_fill(&S, &cell, &d, &a.geom, surf, &z, &pp, &st);
 		jam_free(&cell);
@@ -212,6 +219,10 @@ int main(int argc, char **argv)
 	a.r = S.r;
 	a.material = xcalloc(S.n + 1, sizeof *a.material);
 	report_compute(&a, surf, &z, target, o.beta);
+	if (o.import_path && a.report.overlap_max >= 2)
+		fatal("%s: a sphere lies entirely inside another (overlap %.0f %% of the smaller "
+		      "radius): expected distinct spheres",
+		      o.import_path, 100 * a.report.overlap_max);
 	double t3 = timer_now();
 	a.report.time_report = t3 - t2;
 	a.report.time = t3 - t0;

@@ -231,6 +231,23 @@ static void test_export_import(void)
 	CHECK_NEAR(x.report.coordination, y.report.coordination, 1e-15);
 	assembly_free(&x);
 	assembly_free(&y);
+
+	/* Imported spheres must fit in the specimen and be distinct. */
+	char list[1024], args[2200], message[2400];
+	snprintf(list, sizeof list, "%s", check_tmp("cli_bad.txt"));
+	snprintf(args, sizeof args, SMALL " --import %s", list);
+	write_file(list, "0 0 0 0.001\n0.003 0 0 0.006\n");
+	snprintf(message, sizeof message,
+	         "pack: %s: sphere 2 of radius 0.006 m does not fit in the specimen: expected a "
+	         "diameter below its smallest extent (0.012 m)\n",
+	         list);
+	refused(1, message, 0, args);
+	write_file(list, "0 0 0 0.001\n0.003 0 0 0.001\n0 0 0 0.001\n");
+	snprintf(message, sizeof message,
+	         "pack: %s: a sphere lies entirely inside another (overlap 200 %% of the smaller "
+	         "radius): expected distinct spheres\n",
+	         list);
+	refused(1, message, 0, args);
 }
 
 /* An --export or --depfile that cannot be written leaves the assembly that
