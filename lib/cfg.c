@@ -101,11 +101,11 @@ cfg *cfg_load(const char *path)
 		if (len + 1 == cap)
 			text = xrealloc(text, cap *= 2);
 	}
-	int bad = ferror(f);
+	int bad = ferror(f) ? errno : 0;
 	fclose(f);
 	if (bad) {
 		free(text);
-		err_set("%s: read error", path);
+		err_set("%s: cannot read: %s", path, strerror(bad));
 		return NULL;
 	}
 	text[len] = '\0';

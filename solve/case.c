@@ -224,12 +224,12 @@ static int parse_material(cfg *c, const char *source, dem_case *k, char **json)
 		                 "missing: expected a material file name or an object");
 	err_clear();
 	const char *name;
-	if (cfg_string(c, "material", &name))
-		return -1;
+	if (cfg_string_or(c, "material", &name, NULL) || !name || !name[0])
+		return cfg_error(c, "material", "expected a material file name or an object");
 	k->material_file = path_beside(source, name);
 	cfg *mf = cfg_load(k->material_file);
 	if (!mf)
-		return -1;
+		return cfg_error(c, "material", "%s", err_msg());
 	int rc = material_parse(mf, &k->mat) || cfg_check_unused(mf);
 	if (!rc)
 		*json = cfg_text(mf);
@@ -267,6 +267,8 @@ static int load(cfg *c, const char *source, const char *assembly, dem_case *k)
 		rc = cfg_string(c, "assembly", &apath);
 	else if (!rc && cfg_has(c, "assembly"))
 		rc = cfg_string(c, "assembly", &apath);
+	if (!rc && apath && !apath[0])
+		rc = cfg_error(c, "assembly", "empty: expected the assembly file's name");
 	rc = rc || parse_body(c, k) || cfg_check_unused(c);
 	if (!rc) {
 		k->assembly = assembly ? xstrdup(assembly) : path_beside(source, apath);

@@ -40,9 +40,21 @@ int main(void)
 {
 	expect("{\"assembly\": \"a.h5\", " ONE_STAGE ", \"stop\": {\"steps\": 10}}",
 	       "bad.json: key 'material': missing: expected a material file name or an object");
-	expect("{\"assembly\": \"a.h5\", \"material\": \"no-such.json\", " ONE_STAGE
+	/* A material file that cannot be read: the key, then the file as resolved
+	 * beside the case. */
+	const char *got =
+	    error_of("{\"assembly\": \"a.h5\", \"material\": \"no-such.json\", " ONE_STAGE
+	             ", \"stop\": {\"steps\": 10}}");
+	CHECK(strncmp(got, "bad.json: key 'material': ", 26) == 0);
+	char want[1200];
+	snprintf(want, sizeof want, "%s: cannot open: No such file or directory",
+	         check_tmp("no-such.json"));
+	CHECK(strstr(got, want) != NULL);
+	expect("{\"assembly\": \"\", " MAT ", " ONE_STAGE ", \"stop\": {\"steps\": 10}}",
+	       "bad.json: key 'assembly': empty: expected the assembly file's name");
+	expect("{\"assembly\": \"a.h5\", \"material\": [], " ONE_STAGE
 	       ", \"stop\": {\"steps\": 10}}",
-	       "no-such.json: cannot open: No such file or directory");
+	       "bad.json: key 'material': expected a material file name or an object");
 	expect("{\"assembly\": \"a.h5\", \"material\": {\"name\": \"m\", \"law\": \"linear\", "
 	       "\"density\": -5}, " ONE_STAGE "}",
 	       "bad.json: key 'material.density': value -5: expected a positive number (kg/m^3)");
