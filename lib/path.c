@@ -1,9 +1,11 @@
 #define _XOPEN_SOURCE 700 /* realpath */
+#include <errno.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "lib/err.h"
 #include "lib/path.h"
@@ -19,17 +21,27 @@ char *path_beside(const char *file, const char *name)
 	return out;
 }
 
+/* The directory part of name ("." for none); returns what follows it. */
+static const char *dir_of(const char *name, char *dir, size_t n)
+{
+	const char *slash = strrchr(name, '/');
+	if (!slash)
+		snprintf(dir, n, ".");
+	else if (slash == name)
+		snprintf(dir, n, "/");
+	else
+		snprintf(dir, n, "%.*s", (int)(slash - name), name);
+	return slash ? slash + 1 : name;
+}
+
 /* name with its directory resolved (the name itself may not exist yet), or
  * name as given when the directory cannot be. */
 static void canonical(const char *name, char *out, size_t n)
 {
-	const char *slash = strrchr(name, '/');
 	char dir[PATH_MAX], real[PATH_MAX];
-	snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - name) : 1, slash ? name : ".");
-	if (slash == name)
-		snprintf(dir, sizeof dir, "/");
+	const char *base = dir_of(name, dir, sizeof dir);
 	if (realpath(dir, real))
-		snprintf(out, n, "%s/%s", real, slash ? slash + 1 : name);
+		snprintf(out, n, "%s/%s", real, base);
 	else
 		snprintf(out, n, "%s", name);
 }
@@ -61,6 +73,20 @@ int path_check_outputs(const path_role *out, int nout, const path_role *in, int 
 				    "%s %s would overwrite %s %s: expected another file name",
 				    out[k].role, out[k].path, o->role, o->path);
 		}
+	}
+	return 0;
+}
+
+int path_check_writable(const path_role *out, int nout)
+{
+	for (int k = 0; k < nout; k++) {
+		char dir[PATH_MAX];
+		if (!out[k].path)
+			continue;
+		dir_of(out[k].path, dir, sizeof dir);
+		if (access(dir, W_OK | X_OK))
+			return err_set("%s: cannot write in directory %s (%s): %s", out[k].path,
+			               dir, out[k].role, strerror(errno));
 	}
 	return 0;
 }

@@ -25,5 +25,7 @@ typedef struct {
  * an output that is the same file as an input or as another output, and
  * an output name that is empty or an existing directory. */
 int path_check_outputs(const path_role *out, int nout, const path_role *in, int nin);
+/* Refuses (-1) an output in a directory that cannot be written. */
+int path_check_writable(const path_role *out, int nout);
 
 #endif

@@ -86,6 +86,8 @@ int main(int argc, char **argv)
 		path_role outs[] = {{"--report", report}}, ins[] = {{"--restart", restart}};
 		if (path_check_outputs(outs, 1, ins, 1))
 			cli_usage_error(&spec, "%s", err_msg());
+		if (path_check_writable(outs, 1))
+			fatal(NULL);
 		return run_restart(&o, (int)threads);
 	}
 	if (npos != 1)
@@ -102,6 +104,8 @@ int main(int argc, char **argv)
 	                   {"the assembly", cs.assembly}};
 	if (path_check_outputs(outs, 3, ins, 3))
 		cli_usage_error(&spec, "%s", err_msg());
+	if (path_check_writable(outs, 3))
+		fatal(NULL);
 	if (depfile && depfile_write(depfile, output, inputs, 3))
 		fatal(NULL);
 	dem_assembly a;
