@@ -191,6 +191,25 @@ static void scratch_alloc(engine *e)
 	e->scratch = xmalloc((n + 1) * sizeof *e->scratch);
 }
 
+/* Every stage's platen (or end-layer) speed moves the ends by less than a
+ * hundredth of the mean radius per step: faster is an impact, not a test. */
+static int check_speeds(const engine *e)
+{
+	for (int k = 0; k < e->cs->nstages; k++) {
+		const stage *s = &e->cs->stages[k];
+		double v = s->axial == AXIAL_VELOCITY ? fabs(s->velocity) : s->rate * e->height0;
+		if (s->axial == AXIAL_NONE || s->axial == AXIAL_HOLD ||
+		    !(v * e->dt >= 0.01 * e->r_mean))
+			continue;
+		return err_set("loading stage %d: the ends would move %g m per time step (%g m/s), "
+		               "more than a hundredth of the mean sphere radius (%g m): expected a "
+		               "quasi-static loading (lower its %s)",
+		               k + 1, v * e->dt, v, e->r_mean,
+		               s->axial == AXIAL_VELOCITY ? "velocity" : "rate");
+	}
+	return 0;
+}
+
 int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, int quiet)
 {
 	memset(e, 0, sizeof *e);
@@ -242,6 +261,8 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, int quiet
 		               "or leave it out)",
 		               cs->dt, e->dt_crit);
 	e->dt = cs->dt > 0 ? cs->dt : cs->safety * e->dt_crit;
+	if (check_speeds(e))
+		return -1;
 	for (size_t i = 0; i < e->p.n; i++) {
 		double v = 1e-12 * e->p.r[i] / e->dt;
 		e->ke_noise += 0.5 * e->p.m[i] * v * v;

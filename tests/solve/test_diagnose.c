@@ -26,18 +26,18 @@ static const char *case_text =
 
 static dem_assembly a;
 
-/* Setup refuses the case (the material's density and E, and more keys)
- * with a message containing `expect`. */
-static void refused_at_setup(const char *density, const char *E, const char *extra,
-                             const char *expect)
+/* Setup refuses the case (the material's density and E, the strain rate,
+ * and more keys) with a message containing `expect`. */
+static void refused_at_setup(const char *density, const char *E, const char *rate,
+                             const char *extra, const char *expect)
 {
 	char json[2048];
 	snprintf(json, sizeof json,
 	         "{\"assembly\": \"-\", \"material\": {\"name\": \"m\", \"law\": \"linear\", "
 	         "\"density\": %s, \"E\": %s, \"nu\": 0.2, \"tensile_strength\": 1e12, "
 	         "\"shear_strength\": 1e12}, %s \"loading\": [{\"axial\": {\"mode\": "
-	         "\"strain_rate\", \"rate\": 1}}], \"stop\": {\"steps\": 300}}",
-	         density, E, extra);
+	         "\"strain_rate\", \"rate\": %s}}], \"stop\": {\"steps\": 300}}",
+	         density, E, extra, rate);
 	dem_case c;
 	harness_case(&c, json);
 	engine e;
@@ -81,15 +81,18 @@ int main(void)
 	case_free(&c);
 
 	/* Values that would hang, crash or run out of memory: refused at start. */
-	refused_at_setup("2500", "1e10", "\"time_step\": {\"dt\": 1e-300},",
+	refused_at_setup("2500", "1e10", "1", "\"time_step\": {\"dt\": 1e-300},",
 	                 "time step 1e-300 s below a millionth of the stable limit ");
-	refused_at_setup("2500", "1e308", "", "the critical time step is 0 s, set by particle ");
-	refused_at_setup("1e308", "1e10", "",
+	refused_at_setup("2500", "1e308", "1", "",
+	                 "the critical time step is 0 s, set by particle ");
+	refused_at_setup("1e308", "1e10", "1", "",
 	                 "mass inf kg from the density 1e+308 kg/m^3: expected a finite positive "
 	                 "mass");
-	refused_at_setup("2500", "1e10", "\"surface\": {\"bin\": 1e-12},",
+	refused_at_setup("2500", "1e10", "1", "\"surface\": {\"bin\": 1e-12},",
 	                 "surface.bin 1e-12 m: expected at least a tenth of the mean sphere "
 	                 "diameter (0.002 m)");
+
+	refused_at_setup("2500", "1e10", "1e6", "", "loading stage 1: the ends would move ");
 
 	/* A skin so wide that no neighbour rebuild (and its time-step check) comes. */
 	snprintf(json, sizeof json, case_text, "\"neighbours\": {\"skin\": 1},", "layers");
