@@ -323,8 +323,9 @@ int run_restart(const run_opts *o, int threads)
 	dem_run r;
 	if (run_read(o->restart, &r))
 		fatal(NULL);
-	if (strcmp(r.status, "complete") == 0)
-		fatal("%s: the run is complete: nothing to continue", o->restart);
+	if (strcmp(r.status, "interrupted") != 0)
+		fatal("%s: the run has status '%s': only an interrupted run continues", o->restart,
+		      r.status);
 	dem_case cs;
 	if (case_parse_text(r.prov.config, o->restart, &cs))
 		fatal("%s: stored configuration: %s", o->restart, err_msg());

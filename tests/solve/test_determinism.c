@@ -162,6 +162,13 @@ int main(void)
 	CHECK(ra.ncracks > 10);
 	CHECK(ra.nsnap >= 3);
 	run_free(&ra);
+	/* A run that ended (here by its stop rule) does not continue. */
+	snprintf(args, sizeof args, "--restart %s 2> %s", path("det-A.h5"), said);
+	CHECK(solve(args) == 1);
+	message = harness_slurp(said);
+	CHECK_CONTAINS(message, "det-A.h5: the run has status 'stopped: ");
+	CHECK_CONTAINS(message, "': only an interrupted run continues");
+	free(message);
 	CHECK(harness_same_runs(path("det-A.h5"), path("det-B.h5")) == 0);
 	CHECK(harness_same_runs(path("det-A.h5"), path("det-C.h5")) == 0);
 	CHECK(harness_same_runs(path("det-A.h5"), path("det-D.h5")) == 0);
