@@ -184,7 +184,7 @@ static int parse_loading(cfg *c, dem_case *k)
 			return -1;
 		if (s + 1 < n && stop_empty(&k->stages[s].until))
 			return cfg_error(c, "loading",
-			                 "stage %ld: missing 'until': every stage but the "
+			                 "stage %ld: no condition in 'until': every stage but the "
 			                 "last needs a condition that ends it",
 			                 s + 1);
 	}

@@ -94,8 +94,12 @@ int main(void)
 	       "number (Pa)");
 	expect("{\"assembly\": \"a.h5\", " MAT ", \"loading\": [{\"axial\": {\"mode\": \"hold\"}}, "
 	       "{\"axial\": {\"mode\": \"hold\"}}], \"stop\": {\"steps\": 10}}",
-	       "bad.json: key 'loading': stage 1: missing 'until': every stage but the last needs "
-	       "a condition that ends it");
+	       "bad.json: key 'loading': stage 1: no condition in 'until': every stage but the "
+	       "last needs a condition that ends it");
+	expect("{\"assembly\": \"a.h5\", " MAT ", \"loading\": [{\"axial\": {\"mode\": \"hold\"}, "
+	       "\"until\": {}}, {\"axial\": {\"mode\": \"hold\"}}], \"stop\": {\"steps\": 10}}",
+	       "bad.json: key 'loading': stage 1: no condition in 'until': every stage but the "
+	       "last needs a condition that ends it");
 	expect("{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE "}",
 	       "bad.json: key 'stop': missing: the run never ends (give 'stop' or an 'until' in "
 	       "the last stage)");
