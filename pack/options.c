@@ -177,6 +177,43 @@ static int apply_file(pack_options *o, const cli_opt *t, int n, const char *path
 	return 0;
 }
 
+/* A warning for each setting that differs from its default but does not
+ * apply to the chosen shape (or geometry file) and size distribution. */
+static void warn_ignored(const pack_options *o)
+{
+	pack_options d;
+	defaults(&d);
+	int file = o->geometry != NULL, disc = !strcmp(o->shape, "disc");
+	int box = !strcmp(o->shape, "box"), cyl = !strcmp(o->shape, "cylinder");
+	const char *dist = o->dist;
+	char shape[64], sizes[64];
+	snprintf(shape, sizeof shape, file ? "with --geometry" : "to --shape %s", o->shape);
+	snprintf(sizes, sizeof sizes, "to --dist %s", dist);
+	const struct {
+		const char *name;
+		int changed, applies;
+		const char *why;
+	} rules[] = {
+	    {"shape", strcmp(o->shape, d.shape) != 0, !file, "with --geometry"},
+	    {"diameter", o->diameter != d.diameter, !file && (cyl || disc), shape},
+	    {"height", o->height != d.height, !file && (cyl || box), shape},
+	    {"thickness", o->thickness != d.thickness, !file && disc, shape},
+	    {"length", o->length != d.length, !file && box, shape},
+	    {"width", o->width != d.width, !file && box, shape},
+	    {"scale", o->scale != d.scale, file, "without --geometry"},
+	    {"rmin", o->rmin != d.rmin, !strcmp(dist, "uniform"), sizes},
+	    {"rmax", o->rmax != d.rmax, !strcmp(dist, "uniform"), sizes},
+	    {"radius", o->radius != d.radius, !strcmp(dist, "fuzz") || !strcmp(dist, "lognormal"),
+	     sizes},
+	    {"fuzz", o->fuzz != d.fuzz, !strcmp(dist, "fuzz"), sizes},
+	    {"sigma", o->sigma != d.sigma, !strcmp(dist, "lognormal"), sizes},
+	    {"grading", o->grading || o->inline_grading, !strcmp(dist, "grading"), sizes},
+	};
+	for (size_t k = 0; k < sizeof rules / sizeof *rules; k++)
+		if (rules[k].changed && !rules[k].applies)
+			warn("--%s does not apply %s: ignored", rules[k].name, rules[k].why);
+}
+
 void options_parse(pack_options *o, int argc, char **argv)
 {
 	defaults(o);
@@ -217,6 +254,7 @@ void options_parse(pack_options *o, int argc, char **argv)
 	char *pos[1];
 	cli_parse(&spec, argc, argv, pos);
 	o->output = pos[0];
+	warn_ignored(o);
 	path_role outs[] = {
 	    {"OUTPUT", o->output}, {"--export", o->export_path}, {"--depfile", o->depfile}};
 	path_role ins[] = {{"--config", o->config},

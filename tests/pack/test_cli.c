@@ -275,6 +275,31 @@ static void test_side_output_failure(void)
 	}
 }
 
+/* A setting that does not apply to the shape or size distribution chosen is
+ * named in a warning; the settings that do apply give none. */
+static void test_ignored_options(void)
+{
+	static const char *const cases[][2] = {
+	    {"--shape disc --height 0.02", "pack: warning: --height does not apply to --shape "
+	                                   "disc: ignored\n"},
+	    {SMALL " --diameter 0.02", "pack: warning: --diameter does not apply to --shape box: "
+	                               "ignored\n"},
+	    {SMALL " --fuzz 0.2", "pack: warning: --fuzz does not apply to --dist uniform: "
+	                          "ignored\n"},
+	    {SMALL " --scale 2", "pack: warning: --scale does not apply without --geometry: "
+	                         "ignored\n"},
+	    {"--geometry share/geometry/cylinder_50x100.geo --count 300 --diameter 0.03",
+	     "pack: warning: --diameter does not apply with --geometry: ignored\n"},
+	    {SMALL " --dist fuzz --radius 0.0008 --fuzz 0.2", ""},
+	};
+	for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+		harness_result r = run_pack("--quiet %s %s", cases[k][0], out_path());
+		CHECK(r.status == 0);
+		CHECK_STR(r.err, cases[k][1]);
+		harness_free(&r);
+	}
+}
+
 /* --grow-to scales every radius by one factor about the same centres, to
  * the solid fraction asked for (recomputed here from the written spheres). */
 static void test_grow(void)
@@ -379,6 +404,7 @@ int main(void)
 	test_seed();
 	test_export_import();
 	test_side_output_failure();
+	test_ignored_options();
 	test_grow();
 	test_config();
 	return check_done();
