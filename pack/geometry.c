@@ -125,6 +125,21 @@ static int make_builtin(const geometry_spec *s)
 	return ierr ? gmsh_failed("gmsh: meshing the built-in shape") : 0;
 }
 
+/* A geometry file may end the program itself (gmsh's "Exit;" command):
+ * while gmsh reads one, an exit is reported as the error it is. */
+static const char *reading;
+
+static void exit_while_reading(void)
+{
+	if (reading) {
+		fprintf(stderr,
+		        "%s: %s: the geometry file ended the program while gmsh read it (an "
+		        "'Exit' command?): expected a geometry to fill\n",
+		        err_program_name(), reading);
+		_exit(1);
+	}
+}
+
 static int open_file(const char *path)
 {
 	FILE *f = fopen(path, "rb");
@@ -133,8 +148,13 @@ static int open_file(const char *path)
 	fclose(f);
 	int ierr;
 	G->gmshOptionSetString("Geometry.OCCTargetUnit", "M", &ierr);
+	static int registered;
+	if (!registered)
+		registered = !atexit(exit_while_reading);
 	int saved = quiet_begin();
+	reading = path;
 	G->gmshOpen(path, &ierr);
+	reading = NULL;
 	quiet_end(saved);
 	if (ierr)
 		return gmsh_failed(path);

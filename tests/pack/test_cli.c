@@ -74,11 +74,21 @@ static void test_bad_input(void)
 	        "pack: share/geometry/open_box.geo: the boundary is not a closed surface: 24 edges "
 	        "belong to only one triangle (an open surface encloses no volume to fill)\n",
 	        0, "--geometry share/geometry/open_box.geo");
+	/* gmsh's Exit command in a geometry file. */
+	char geo[1024], args[2048], msg[2048];
+	snprintf(geo, sizeof geo, "%s", check_tmp("cli_exit.geo"));
+	write_file(geo, "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 0.012, 0.012, 0.012};\n"
+	                "Exit;\n");
+	snprintf(args, sizeof args, "--geometry %s", geo);
+	snprintf(msg, sizeof msg,
+	         "pack: %s: the geometry file ended the program while gmsh read it (an 'Exit' "
+	         "command?): expected a geometry to fill\n",
+	         geo);
+	refused(1, msg, 0, args);
 	refused(1, "pack: no/such/specimen.step: cannot open: No such file or directory\n", 0,
 	        "--geometry no/such/specimen.step");
 	const char *garbage = check_tmp("garbage.geo");
 	write_file(garbage, "this is not a geometry;\n");
-	char args[2048], msg[2048];
 	snprintf(args, sizeof args, "--geometry %s", garbage);
 	snprintf(msg, sizeof msg, "pack: %s: '%s', line 1: ", garbage, garbage);
 	refused(1, msg, 1, args);
