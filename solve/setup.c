@@ -192,11 +192,17 @@ static void scratch_alloc(engine *e)
 }
 
 /* Every stage's platen (or end-layer) speed moves the ends by less than a
- * hundredth of the mean radius per step: faster is an impact, not a test. */
-static int check_speeds(const engine *e)
+ * hundredth of the mean radius per step: faster is an impact, not a test.
+ * End layers are thinner than half the specimen. */
+static int check_stages(const engine *e)
 {
 	for (int k = 0; k < e->cs->nstages; k++) {
 		const stage *s = &e->cs->stages[k];
+		if (s->axial == AXIAL_LAYERS && s->thickness >= 0.5 * e->height0)
+			return err_set(
+			    "loading stage %d: axial.thickness %g m: expected less than half "
+			    "the specimen's height (%g m)",
+			    k + 1, s->thickness, e->height0);
 		double v = s->axial == AXIAL_VELOCITY ? fabs(s->velocity) : s->rate * e->height0;
 		if (s->axial == AXIAL_NONE || s->axial == AXIAL_HOLD ||
 		    !(v * e->dt >= 0.01 * e->r_mean))
@@ -261,7 +267,7 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, int quiet
 		               "or leave it out)",
 		               cs->dt, e->dt_crit);
 	e->dt = cs->dt > 0 ? cs->dt : cs->safety * e->dt_crit;
-	if (check_speeds(e))
+	if (check_stages(e))
 		return -1;
 	for (size_t i = 0; i < e->p.n; i++) {
 		double v = 1e-12 * e->p.r[i] / e->dt;

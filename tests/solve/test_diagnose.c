@@ -93,6 +93,17 @@ int main(void)
 	                 "diameter (0.002 m)");
 
 	refused_at_setup("2500", "1e10", "1e6", "", "loading stage 1: the ends would move ");
+	/* End layers thicker than half the specimen. */
+	harness_case(&c, "{\"assembly\": \"-\", \"material\": {\"name\": \"m\", \"law\": "
+	                 "\"linear\", \"density\": 2500, \"E\": 1e10, \"nu\": 0.2, "
+	                 "\"tensile_strength\": 1e12, \"shear_strength\": 1e12}, \"loading\": "
+	                 "[{\"axial\": {\"mode\": \"layers\", \"rate\": 1, \"thickness\": 1}}], "
+	                 "\"stop\": {\"steps\": 300}}");
+	CHECK(engine_setup(&e, &c, &a, 1) == -1);
+	CHECK_CONTAINS(err_msg(), "loading stage 1: axial.thickness 1 m: expected less than half "
+	                          "the specimen's height");
+	engine_free(&e);
+	case_free(&c);
 
 	/* A skin so wide that no neighbour rebuild (and its time-step check) comes. */
 	snprintf(json, sizeof json, case_text, "\"neighbours\": {\"skin\": 1},", "layers");
