@@ -186,12 +186,19 @@ int instant_pick(const char *path, const dem_run *r, const instant *in, size_t *
 	return 0;
 }
 
-static int parse_number(const char *opt, const char *text, const char *what, double *out)
+enum { INTEGER, NON_NEGATIVE, POSITIVE };
+
+/* The option's value, a finite number of the kind asked for. */
+static int parse_number(const char *opt, const char *text, const char *what, int kind, double *out)
 {
 	char *end;
 	errno = 0;
 	double v = strtod(text, &end);
-	if (errno || end == text || *end || !isfinite(v))
+	int ok = !errno && end != text && !*end && isfinite(v) &&
+	         (kind == INTEGER        ? v == floor(v)
+	          : kind == NON_NEGATIVE ? v >= 0
+	                                 : v > 0);
+	if (!ok)
 		return err_set("--%s %s: expected %s", opt, text, what);
 	*out = v;
 	return 0;
@@ -219,32 +226,17 @@ int instant_parse(instant *in, const char *snapshot, const char *time, const cha
 	case AT_PEAK:
 		return 0;
 	case AT_SNAPSHOT:
-		if (parse_number("snapshot", snapshot, "an integer snapshot index", &in->value) ||
-		    in->value != floor(in->value))
-			return err_set("--snapshot %s: expected an integer snapshot index",
-			               snapshot);
-		return 0;
+		return parse_number("snapshot", snapshot, "an integer snapshot index", INTEGER,
+		                    &in->value);
 	case AT_TIME:
-		if (parse_number("time", time, "a time in s, >= 0", &in->value) || in->value < 0)
-			return err_set("--time %s: expected a time in s, >= 0", time);
-		return 0;
+		return parse_number("time", time, "a time in s, >= 0", NON_NEGATIVE, &in->value);
 	case AT_STRAIN:
-		if (parse_number("strain", strain, "an axial strain > 0 (compression positive)",
-		                 &in->value) ||
-		    !(in->value > 0))
-			return err_set("--strain %s: expected an axial strain > 0 (compression "
-			               "positive)",
-			               strain);
-		return 0;
+		return parse_number("strain", strain, "an axial strain > 0 (compression positive)",
+		                    POSITIVE, &in->value);
 	case AT_STRESS:
-		if (parse_number("stress", stress,
-		                 "an axial stress in Pa > 0 (compression positive)", &in->value) ||
-		    !(in->value > 0))
-			return err_set(
-			    "--stress %s: expected an axial stress in Pa > 0 (compression "
-			    "positive)",
-			    stress);
-		return 0;
+		return parse_number("stress", stress,
+		                    "an axial stress in Pa > 0 (compression positive)", POSITIVE,
+		                    &in->value);
 	}
 	return 0;
 }
