@@ -1,7 +1,9 @@
-/* File names written inside other files (a case naming its material, a pack
- * configuration naming its geometry) are relative to the directory of the
- * file that names them, so a case or specimen directory can be moved or used
- * from anywhere. */
+/* File names. Those written inside other files (a case naming its
+ * material, a pack configuration naming its geometry) are relative to the
+ * directory of the file that names them, so a case or specimen directory
+ * can be moved or used from anywhere. The outputs a program is asked for
+ * are checked before any work: none may overwrite an input or another
+ * output, and each must be writable. */
 #ifndef DEM_PATH_H
 #define DEM_PATH_H
 
