@@ -158,6 +158,11 @@ int cfg_has(const cfg *c, const char *key)
 
 static void describe(char *buf, size_t n, cJSON *v)
 {
+	if (cJSON_IsNumber(v) && !isfinite(v->valuedouble)) { /* cJSON prints it as null */
+		snprintf(buf, n, "%s (beyond the range of a double)",
+		         v->valuedouble > 0 ? "+inf" : "-inf");
+		return;
+	}
 	char *text = cJSON_PrintUnformatted(v);
 	snprintf(buf, n, "%s", text ? text : "?");
 	if (strlen(buf) > 60)
@@ -434,9 +439,13 @@ int cfg_check_unused(const cfg *c)
 {
 	int k = 0;
 	for (cJSON *m = c->json->child; m; m = m->next, k++) {
-		if (!c->used[k])
+		if (!c->used[k]) {
+			for (cJSON *p = c->json->child; p != m; p = p->next)
+				if (strcmp(p->string, m->string) == 0)
+					return cfg_error(c, m->string, "given twice");
 			return cfg_error(c, m->string,
 			                 "unknown key (misspelt, or not used by this program)");
+		}
 		if (c->children[k] && cfg_check_unused(c->children[k]))
 			return -1;
 		for (size_t i = 0; i < c->nitems[k]; i++)

@@ -72,6 +72,19 @@ static void test_errors(void)
 	c = cfg_parse("{\"a\": 1}\n\n", "ok.json");
 	CHECK(c != NULL);
 	cfg_free(c);
+	/* A key given twice is named as such. */
+	double E;
+	c = cfg_parse("{\"E\": 1, \"E\": 2}", "twice.json");
+	CHECK(c && cfg_number(c, "E", &E, "Pa", CFG_POS, INFINITY) == 0 && E == 1);
+	CHECK(cfg_check_unused(c) == -1);
+	CHECK_STR(err_msg(), "twice.json: key 'E': given twice");
+	cfg_free(c);
+	/* A number too large for a double is named as such, not as null. */
+	c = cfg_parse("{\"E\": 1e400}", "big.json");
+	CHECK(c && cfg_number(c, "E", &E, "Pa", CFG_POS, INFINITY) == -1);
+	CHECK_STR(err_msg(), "big.json: key 'E': value +inf (beyond the range of a double): "
+	                     "expected a positive number (Pa)");
+	cfg_free(c);
 	CHECK(cfg_parse("[1, 2]", "arr.json") == NULL);
 	CHECK_CONTAINS(err_msg(), "expected a JSON object");
 	CHECK(cfg_load("/nonexistent/x.json") == NULL);
