@@ -52,7 +52,7 @@ static law_params *exp_parse(cfg *m)
 	exp_params *p = calloc(1, sizeof *p);
 	double phi_i, phi_c;
 	if (!p || local_parse(m, &p->q) ||
-	    cfg_number(m, "interaction_range", &p->range, "", 1, INFINITY) ||
+	    cfg_number(m, "interaction_range", &p->range, "", 1, 2) ||
 	    cfg_number(m, "cohesion", &p->cohesion, "Pa", 0, INFINITY) ||
 	    cfg_number(m, "friction_angle_deg", &phi_i, "deg", 0, 89) ||
 	    cfg_number(m, "contact_friction_angle_deg", &phi_c, "deg", 0, 89) ||

@@ -59,7 +59,7 @@ static law_params *jcfpm_parse(cfg *m)
 	    cfg_number(m, "cohesion", &p->cohesion, "Pa", 0, INFINITY) ||
 	    cfg_number(m, "friction_angle_deg", &phi_c, "deg", 0, 89) ||
 	    cfg_number_or(m, "bond_friction_angle_deg", &phi_b, phi_c, "deg", 0, 89) ||
-	    cfg_number(m, "interaction_range", &p->range, "", 1, INFINITY)) {
+	    cfg_number(m, "interaction_range", &p->range, "", 1, 2)) {
 		free(p);
 		return NULL;
 	}

@@ -236,7 +236,7 @@ static void test_errors(void)
 	                      "{\"E\": 17e9, \"ks_ratio\": 0.15, \"tensile_strength\": 3.163e6,"
 	                      " \"cohesion\": 9e6, \"friction_angle_deg\": 34.25}",
 	                      "j.json"),
-	          "j.json: key 'interaction_range': missing: expected a number >= 1");
+	          "j.json: key 'interaction_range': missing: expected a number in [1, 2]");
 	CHECK_STR(
 	    drive_error(jc,
 	                "{\"E\": 17e9, \"ks_ratio\": 0.15, \"tensile_strength\": -3.163e6,"
