@@ -42,6 +42,19 @@ static void refused(int status, const char *message, int prefix, const char *arg
 	harness_free(&r);
 }
 
+/* refused(), with `text` first written to the scratch file `name`; `opts`
+ * and `message` are formats naming that file by "%s" (at most twice). */
+static void refused_file(int status, const char *name, const char *text, const char *opts,
+                         const char *message, int prefix)
+{
+	char path[1024], args[2048], msg[4096];
+	snprintf(path, sizeof path, "%s", check_tmp(name));
+	write_file(path, text);
+	snprintf(args, sizeof args, opts, path, path);
+	snprintf(msg, sizeof msg, message, path, path);
+	refused(status, msg, prefix, args);
+}
+
 static void test_bad_input(void)
 {
 	/* An output that would overwrite an input or another output. */
@@ -75,23 +88,17 @@ static void test_bad_input(void)
 	        "belong to only one triangle (an open surface encloses no volume to fill)\n",
 	        0, "--geometry share/geometry/open_box.geo");
 	/* gmsh's Exit command in a geometry file. */
-	char geo[1024], args[2048], msg[2048];
-	snprintf(geo, sizeof geo, "%s", check_tmp("cli_exit.geo"));
-	write_file(geo, "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 0.012, 0.012, 0.012};\n"
-	                "Exit;\n");
-	snprintf(args, sizeof args, "--geometry %s", geo);
-	snprintf(msg, sizeof msg,
-	         "pack: %s: the geometry file ended the program while gmsh read it (an 'Exit' "
-	         "command?): expected a geometry to fill\n",
-	         geo);
-	refused(1, msg, 0, args);
+	refused_file(
+	    1, "cli_exit.geo",
+	    "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 0.012, 0.012, 0.012};\nExit;\n",
+	    "--geometry %s",
+	    "pack: %s: the geometry file ended the program while gmsh read it (an 'Exit' "
+	    "command?): expected a geometry to fill\n",
+	    0);
 	refused(1, "pack: no/such/specimen.step: cannot open: No such file or directory\n", 0,
 	        "--geometry no/such/specimen.step");
-	const char *garbage = check_tmp("garbage.geo");
-	write_file(garbage, "this is not a geometry;\n");
-	snprintf(args, sizeof args, "--geometry %s", garbage);
-	snprintf(msg, sizeof msg, "pack: %s: '%s', line 1: ", garbage, garbage);
-	refused(1, msg, 1, args);
+	refused_file(1, "garbage.geo", "this is not a geometry;\n", "--geometry %s",
+	             "pack: %s: '%s', line 1: ", 1);
 	refused(1, "pack: --count 3: too few spheres: they would need radii up to ", 1,
 	        "--count 3");
 	refused(2, "pack: --count 2000000000: expected an integer in [0, 1e+09]\n", 0,
@@ -106,39 +113,25 @@ static void test_bad_input(void)
 	        "pack: --dist grading: expected --grading FILE.json (sieve sizes and fractions "
 	        "passing)\n",
 	        0, "--dist grading");
-	const char *mix = check_tmp("mix.json");
-	write_file(mix, "{\"sieve\": [0.001, 0.004], \"passing\": [0, 0.9]}");
-	snprintf(args, sizeof args, "--dist grading --grading %s", mix);
-	snprintf(msg, sizeof msg,
-	         "pack: %s: key 'passing': last value 0.9: expected 1 (everything passes the "
-	         "largest sieve)\n",
-	         mix);
-	refused(1, msg, 0, args);
-	const char *list = check_tmp("bad_list.txt");
-	write_file(list, "0 0 0 0.001\n0 0 0.001\n");
-	snprintf(args, sizeof args, "--import %s", list);
-	snprintf(msg, sizeof msg, "pack: %s: line 2: expected four numbers 'x y z r' (m)\n", list);
-	refused(1, msg, 0, args);
-	write_file(list, "0 0 0 0.001\n0.5 0 0 0.001\n");
-	snprintf(msg, sizeof msg, "pack: %s: sphere 2 at (0.5, 0, 0) m lies outside the specimen\n",
-	         list);
-	refused(1, msg, 0, args);
-	snprintf(args, sizeof args, "--import %s --count 3000", list);
-	snprintf(msg, sizeof msg,
-	         "pack: --import %s: the spheres are taken as listed: --count and --mean-radius do "
-	         "not apply (expected 0)\n",
-	         list);
-	refused(1, msg, 0, args);
-	const char *config = check_tmp("bad_config.json");
-	write_file(config, "{\"diamter\": 0.05}");
-	snprintf(args, sizeof args, "--config %s", config);
-	snprintf(msg, sizeof msg,
-	         "pack: %s: key 'diamter': unknown key (misspelt, or not used by this program)\n",
-	         config);
-	refused(1, msg, 0, args);
-	write_file(config, "{\"rmax\": -1}");
-	snprintf(msg, sizeof msg, "pack: %s: key 'rmax': value -1: expected", config);
-	refused(1, msg, 1, args);
+	refused_file(1, "mix.json", "{\"sieve\": [0.001, 0.004], \"passing\": [0, 0.9]}",
+	             "--dist grading --grading %s",
+	             "pack: %s: key 'passing': last value 0.9: expected 1 (everything passes the "
+	             "largest sieve)\n",
+	             0);
+	refused_file(1, "bad_list.txt", "0 0 0 0.001\n0 0 0.001\n", "--import %s",
+	             "pack: %s: line 2: expected four numbers 'x y z r' (m)\n", 0);
+	refused_file(1, "bad_list.txt", "0 0 0 0.001\n0.5 0 0 0.001\n", "--import %s",
+	             "pack: %s: sphere 2 at (0.5, 0, 0) m lies outside the specimen\n", 0);
+	refused_file(1, "bad_list.txt", "0 0 0 0.001\n", "--import %s --count 3000",
+	             "pack: --import %s: the spheres are taken as listed: --count and "
+	             "--mean-radius do not apply (expected 0)\n",
+	             0);
+	refused_file(1, "bad_config.json", "{\"diamter\": 0.05}", "--config %s",
+	             "pack: %s: key 'diamter': unknown key (misspelt, or not used by this "
+	             "program)\n",
+	             0);
+	refused_file(1, "bad_config.json", "{\"rmax\": -1}", "--config %s",
+	             "pack: %s: key 'rmax': value -1: expected", 1);
 	harness_result r = run_pack("--quiet " SMALL " no/such/dir/out.h5");
 	CHECK(r.status == 1);
 	CHECK(strncmp(r.err, "pack: no/such/dir/out.h5", 24) == 0);
@@ -243,21 +236,15 @@ static void test_export_import(void)
 	assembly_free(&y);
 
 	/* Imported spheres must fit in the specimen and be distinct. */
-	char list[1024], args[2200], message[2400];
-	snprintf(list, sizeof list, "%s", check_tmp("cli_bad.txt"));
-	snprintf(args, sizeof args, SMALL " --import %s", list);
-	write_file(list, "0 0 0 0.001\n0.003 0 0 0.006\n");
-	snprintf(message, sizeof message,
-	         "pack: %s: sphere 2 of radius 0.006 m does not fit in the specimen: expected a "
-	         "diameter below its smallest extent (0.012 m)\n",
-	         list);
-	refused(1, message, 0, args);
-	write_file(list, "0 0 0 0.001\n0.003 0 0 0.001\n0 0 0 0.001\n");
-	snprintf(message, sizeof message,
-	         "pack: %s: a sphere lies entirely inside another (overlap 200 %% of the smaller "
-	         "radius): expected distinct spheres\n",
-	         list);
-	refused(1, message, 0, args);
+	refused_file(1, "cli_bad.txt", "0 0 0 0.001\n0.003 0 0 0.006\n", SMALL " --import %s",
+	             "pack: %s: sphere 2 of radius 0.006 m does not fit in the specimen: expected "
+	             "a diameter below its smallest extent (0.012 m)\n",
+	             0);
+	refused_file(1, "cli_bad.txt", "0 0 0 0.001\n0.003 0 0 0.001\n0 0 0 0.001\n",
+	             SMALL " --import %s",
+	             "pack: %s: a sphere lies entirely inside another (overlap 200 %% of the "
+	             "smaller radius): expected distinct spheres\n",
+	             0);
 }
 
 /* An --export or --depfile that cannot be written leaves the assembly that
