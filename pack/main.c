@@ -89,18 +89,6 @@ static double grow_spheres(const pack_options *o, spheres *S, const dem_geometry
 	return f;
 }
 
-/* OpenMP threads spin while they wait for the next parallel loop unless
- * told otherwise; on cores shared with other work a spinning thread holds
- * the core its partner needs, and the FIRE loops of the wall band, which
- * meet at a barrier a few times per iteration, run many times slower
- * (measured on the reference case with the machine loaded: 20 to 65 s
- * instead of 3 s). The policy is read from the environment when the
- * OpenMP runtime starts, before main(), and there is no call to change it
- * later; setting it earlier still, from the executable's .preinit_array,
- * does not last, as the C library resets the environment when it starts.
- * So pack restarts itself once with passive waiting unless the
- * environment already chose a policy; the restart costs a few hundredths
- * of a second, gmsh's libraries being loaded only later (gmshlib.h). */
 /* The files that go with the assembly, written before it replaces the
  * output: --export and --depfile. */
 typedef struct {
@@ -119,6 +107,18 @@ static int write_side_outputs(void *ctx)
 	           : 0;
 }
 
+/* OpenMP threads spin while they wait for the next parallel loop unless
+ * told otherwise; on cores shared with other work a spinning thread holds
+ * the core its partner needs, and the FIRE loops of the wall band, which
+ * meet at a barrier a few times per iteration, run many times slower
+ * (measured on the reference case with the machine loaded: 20 to 65 s
+ * instead of 3 s). The policy is read from the environment when the
+ * OpenMP runtime starts, before main(), and there is no call to change it
+ * later; setting it earlier still, from the executable's .preinit_array,
+ * does not last, as the C library resets the environment when it starts.
+ * So pack restarts itself once with passive waiting unless the
+ * environment already chose a policy; the restart costs a few hundredths
+ * of a second, gmsh's libraries being loaded only later (gmshlib.h). */
 static void wait_passively(char **argv)
 {
 	if (getenv("OMP_WAIT_POLICY"))
