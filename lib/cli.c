@@ -19,6 +19,15 @@ void cli_usage_error(const cli_spec *spec, const char *fmt, ...)
 	exit(2);
 }
 
+void cli_check_outputs(const cli_spec *spec, const path_role *out, int nout, const path_role *in,
+                       int nin)
+{
+	if (path_check_outputs(out, nout, in, nin))
+		cli_usage_error(spec, "%s", err_msg());
+	if (path_check_writable(out, nout))
+		fatal(NULL);
+}
+
 static void default_text(const cli_opt *o, char *buf, size_t n)
 {
 	buf[0] = '\0';

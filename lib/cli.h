@@ -6,6 +6,8 @@
 #ifndef DEM_CLI_H
 #define DEM_CLI_H
 
+#include "lib/path.h"
+
 typedef enum { CLI_FLAG, CLI_INT, CLI_NUM, CLI_STR } cli_kind;
 
 typedef struct {
@@ -35,5 +37,10 @@ void cli_help(const cli_spec *spec);
  * stderr, exit status 2. */
 _Noreturn void cli_usage_error(const cli_spec *spec, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
+/* The outputs asked for, checked before any work (lib/path.h): one that
+ * would overwrite an input or another output, or is no file name, is a
+ * usage error; one in a directory that cannot be written exits with 1. */
+void cli_check_outputs(const cli_spec *spec, const path_role *out, int nout, const path_role *in,
+                       int nin);
 
 #endif

@@ -261,10 +261,7 @@ void options_parse(pack_options *o, int argc, char **argv)
 	                   {"--geometry", o->geometry},
 	                   {"--grading", o->grading},
 	                   {"--import", o->import_path}};
-	if (path_check_outputs(outs, 3, ins, 4))
-		cli_usage_error(&spec, "%s", err_msg());
-	if (path_check_writable(outs, 3))
-		fatal(NULL);
+	cli_check_outputs(&spec, outs, 3, ins, 4);
 }
 
 void options_free(pack_options *o)

@@ -6,7 +6,6 @@
 #include "lib/cli.h"
 #include "lib/depfile.h"
 #include "lib/err.h"
-#include "lib/path.h"
 #include "lib/progress.h"
 #include "solve/case.h"
 #include "solve/report.h"
@@ -84,10 +83,7 @@ int main(int argc, char **argv)
 			                     : "--assembly, --output and --depfile do not apply");
 		o.output = restart;
 		path_role outs[] = {{"--report", report}}, ins[] = {{"--restart", restart}};
-		if (path_check_outputs(outs, 1, ins, 1))
-			cli_usage_error(&spec, "%s", err_msg());
-		if (path_check_writable(outs, 1))
-			fatal(NULL);
+		cli_check_outputs(&spec, outs, 1, ins, 1);
 		return run_restart(&o, (int)threads);
 	}
 	if (npos != 1)
@@ -102,10 +98,7 @@ int main(int argc, char **argv)
 	path_role ins[] = {{"the case", pos[0]},
 	                   {"the material", cs.material_file},
 	                   {"the assembly", cs.assembly}};
-	if (path_check_outputs(outs, 3, ins, 3))
-		cli_usage_error(&spec, "%s", err_msg());
-	if (path_check_writable(outs, 3))
-		fatal(NULL);
+	cli_check_outputs(&spec, outs, 3, ins, 3);
 	if (depfile && depfile_write(depfile, output, inputs, 3))
 		fatal(NULL);
 	dem_assembly a;
