@@ -89,7 +89,10 @@ static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 		}
 	}
 	if (e->ld.layers && (flag & (PF_LAYER_BOTTOM | PF_LAYER_TOP))) {
-		/* Prescribed motion: the reaction is what keeps it (Yade-style loading). */
+		/* Prescribed motion: the reaction R is what keeps it (Yade-style
+		 * loading). R does the work; the axial load measured is the force of
+		 * the bonds and contacts, -F, without the inertia of the layer, which
+		 * would otherwise show the jump to the loading speed as a spike. */
 		int k = flag & PF_LAYER_TOP ? 1 : 0;
 		double m = P->m[i], R[3];
 		for (int c = 0; c < 3; c++) {
@@ -97,8 +100,8 @@ static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 			wn[c] = 0;
 			R[c] = m * (vn[c] - v[c]) / dt - F[c];
 		}
-		double ra = dot3(R, e->axis);
-		s->layer[k] += k == 0 ? ra : -ra;
+		double fa = -dot3(F, e->axis);
+		s->layer[k] += k == 0 ? fa : -fa;
 		s->e_work +=
 		    0.5 * dt *
 		    (R[0] * (v[0] + vn[0]) + R[1] * (v[1] + vn[1]) + R[2] * (v[2] + vn[2]));

@@ -70,6 +70,17 @@ int main(void)
 	CHECK_NEAR(sxx, 0, 1e-9 * szz);
 	CHECK_NEAR(run_column_data(&run, "strain_radial")[last], 0, 1e-12);
 	CHECK(run.bonds.n == (size_t)(3 * n * n * (n - 1)));
+	/* The measured load is the bonds' force on the layers, not the force
+	 * that sets them moving: nothing at the start, and no jump when the
+	 * second stage stops them. */
+	const double *sa = run_column_data(&run, "stress_axial");
+	const double *stage = run_column_data(&run, "stage");
+	CHECK_NEAR(sa[0], 0, 1e-9 * stress);
+	size_t hold = 1;
+	while (hold < last && stage[hold] < 2)
+		hold++;
+	CHECK(stage[hold] == 2);
+	CHECK(sa[hold] >= 0.9 * sa[hold - 1] && sa[hold] <= 1.1 * sa[hold - 1]);
 	run_free(&run);
 	assembly_free(&a);
 	return check_done();
