@@ -58,8 +58,7 @@ static void import_spheres(const pack_options *o, double *x, double *r, size_t n
 	for (size_t i = 0; i < n; i++) {
 		if (2 * r[i] >= ext)
 			fatal("%s: sphere %zu of radius %g m does not fit in the specimen: "
-			      "expected a "
-			      "diameter below its smallest extent (%.3g m)",
+			      "expected a diameter below its smallest extent (%.3g m)",
 			      o->import_path, i + 1, r[i], ext);
 		int32_t hint = z->hint[zones_cell(z, x + 3 * i)];
 		double s = surface_distance(surf, x + 3 * i, NULL, &hint);

@@ -90,12 +90,12 @@ void boundary_begin_stage(engine *e)
 		e->pressure = 0;
 }
 
-/* Closing speed of the platens (m/s) for velocity-driven stages. */
-static double closing_speed(const engine *e)
+double boundary_closing_speed(const engine *e, const stage *s)
 {
-	const stage *s = current(e);
 	return s->axial == AXIAL_VELOCITY ? s->velocity : s->rate * e->height0;
 }
+
+static double closing_speed(const engine *e) { return boundary_closing_speed(e, current(e)); }
 
 void boundary_prepare(engine *e)
 {

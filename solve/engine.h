@@ -262,6 +262,9 @@ void boundary_begin_stage(engine *e);
 void boundary_prepare(engine *e);
 void boundary_finish_step(engine *e);
 void boundary_track_peak(engine *e);
+/* Closing speed of the ends (m/s) in stage s: its velocity, or its rate
+ * times the initial height (for servos, their speed limit). */
+double boundary_closing_speed(const engine *e, const stage *s);
 /* Whether the run goes on; why gets the reason of a change. */
 enum { BOUNDARY_RUNNING, BOUNDARY_NEXT_STAGE, BOUNDARY_COMPLETE, BOUNDARY_STOP };
 int boundary_check(engine *e, char *why, size_t n);

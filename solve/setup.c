@@ -203,7 +203,7 @@ static int check_stages(const engine *e)
 			    "loading stage %d: axial.thickness %g m: expected less than half "
 			    "the specimen's height (%g m)",
 			    k + 1, s->thickness, e->height0);
-		double v = s->axial == AXIAL_VELOCITY ? fabs(s->velocity) : s->rate * e->height0;
+		double v = fabs(boundary_closing_speed(e, s));
 		if (s->axial == AXIAL_NONE || s->axial == AXIAL_HOLD ||
 		    !(v * e->dt >= 0.01 * e->r_mean))
 			continue;
