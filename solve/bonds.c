@@ -8,36 +8,13 @@
 #include <string.h>
 
 #include "lib/err.h"
+#include "solve/blocks.h"
+#include "solve/bonds.h"
 #include "solve/cells.h"
 #include "solve/engine.h"
 #include "solve/kinematics.h"
-
-void pairlist_free(pairlist *l)
-{
-	free(l->rec), free(l->f), free(l->k), free(l->off), free(l->ref);
-	memset(l, 0, sizeof *l);
-}
-
-/* The gather index: for each particle the pairs it belongs to, in pair
- * order, so every particle sums its forces in a fixed order. */
-void pairlist_csr(pairlist *l, size_t np)
-{
-	memset(l->off, 0, (np + 1) * sizeof *l->off);
-	for (size_t b = 0; b < l->n; b++) {
-		l->off[l->rec[b].i + 1]++;
-		l->off[l->rec[b].j + 1]++;
-	}
-	for (size_t p = 0; p < np; p++)
-		l->off[p + 1] += l->off[p];
-	for (size_t b = 0; b < l->n; b++) {
-		/* Pairs are sorted by i, so filling in pair order keeps each list sorted. */
-		l->ref[l->off[l->rec[b].i]++] = (int32_t)(2 * b);
-		l->ref[l->off[l->rec[b].j]++] = (int32_t)(2 * b + 1);
-	}
-	for (size_t p = np; p > 0; p--)
-		l->off[p] = l->off[p - 1];
-	l->off[0] = 0;
-}
+#include "solve/measure.h"
+#include "solve/pairlist.h"
 
 int bonds_form(engine *e)
 {
@@ -147,14 +124,6 @@ static void record_crack(engine *e, crack_buf *cb, size_t b, const law_out *o, c
 	}
 }
 
-/* Love–Weber sums Σ l ⊗ F_i over a pair (l = x_j - x_i, F_i the force on i). */
-void love_add(double love[9], const batch_geom *g, int q, const double f[6])
-{
-	for (int a = 0; a < 3; a++)
-		for (int c = 0; c < 3; c++)
-			love[3 * a + c] += g->d[q] * g->n[a][q] * f[c];
-}
-
 /* One block of bonds [lo, hi). */
 static void bond_block(engine *e, size_t lo, size_t hi, int measure, pair_sums *s, crack_buf *cb)
 {
@@ -190,30 +159,13 @@ static void bond_block(engine *e, size_t lo, size_t hi, int measure, pair_sums *
 	}
 }
 
-/* Sum block results in block order. */
-void pair_sums_total(const pair_sums *blk, size_t nb, pair_sums *out)
-{
-	memset(out, 0, sizeof *out);
-	for (size_t k = 0; k < nb; k++) {
-		out->e_damage += blk[k].e_damage;
-		out->e_friction += blk[k].e_friction;
-		out->e_viscous += blk[k].e_viscous;
-		out->e_elastic += blk[k].e_elastic;
-		for (int c = 0; c < 9; c++)
-			out->love[c] += blk[k].love[c];
-		for (int c = 0; c < 5; c++)
-			out->count[c] += blk[k].count[c];
-	}
-}
-
 void bonds_forces(engine *e, int measure)
 {
 	size_t nb = nblocks(e->bonds.n);
 	crack_buf *cb = &e->thread_cracks[omp_get_thread_num()];
 #pragma omp for schedule(static) nowait
 	for (size_t k = 0; k < nb; k++) {
-		size_t hi = (k + 1) * BLOCK < e->bonds.n ? (k + 1) * BLOCK : e->bonds.n;
-		bond_block(e, k * BLOCK, hi, measure, &e->bblock[k], cb);
+		bond_block(e, k * BLOCK, block_end(k, e->bonds.n), measure, &e->bblock[k], cb);
 	}
 }
 

@@ -14,20 +14,11 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "solve/boundary.h"
 #include "solve/engine.h"
-
-double engine_strain(const engine *e)
-{
-	double gap = e->pl.z[1] - e->pl.z[0];
-	return (e->height0 - gap) / e->height0;
-}
-
-double engine_stress_of(const engine *e, int k) { return e->pl.load[k] / e->area0; }
-
-double engine_stress(const engine *e)
-{
-	return 0.5 * (engine_stress_of(e, 0) + engine_stress_of(e, 1));
-}
+#include "solve/measure.h"
+#include "solve/platens.h"
+#include "solve/surface.h"
 
 static const stage *current(const engine *e) { return &e->cs->stages[e->stage]; }
 

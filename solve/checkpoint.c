@@ -12,6 +12,8 @@
 #include "lib/err.h"
 #include "lib/h5.h"
 #include "solve/checkpoint.h"
+#include "solve/contacts.h"
+#include "solve/pairlist.h"
 
 typedef struct {
 	const char *name;
@@ -310,10 +312,7 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 	L->n = nc;
 	memset(L->f, 0, 6 * nc * sizeof *L->f);
 	pairlist_csr(L, e->p.n);
-	if (nblocks(nc) > e->ncblock) {
-		e->ncblock = nblocks(nc);
-		e->cblock = xrealloc(e->cblock, e->ncblock * sizeof *e->cblock);
-	}
+	contacts_reserve_blocks(e);
 	return 0;
 }
 

@@ -9,28 +9,15 @@
 #include <string.h>
 
 #include "lib/err.h"
+#include "solve/blocks.h"
 #include "solve/cells.h"
+#include "solve/contacts.h"
 #include "solve/engine.h"
 #include "solve/kinematics.h"
+#include "solve/laws/contact.h"
 #include "solve/laws/cundall.h"
-
-/* Normal and shear stiffness and normal damping of a contact between
- * spheres of radii ri, rj and masses mi, mj touching at distance d0. */
-void contact_constants(const engine *e, double ri, double rj, double mi, double mj, double d0,
-                       double k[3])
-{
-	const material *M = &e->cs->mat;
-	law_pair q = {.ri = ri, .rj = rj, .mi = mi, .mj = mj, .d0 = d0};
-	law_const c;
-	e->law->constants(e->lp, &q, &c);
-	if (M->E > 0) {
-		c.kn = c.area * M->E / d0;
-		c.ks = c.kn / (2 * (1 + M->nu));
-	}
-	k[0] = c.kn;
-	k[1] = c.ks;
-	k[2] = 2 * M->damping * sqrt(mi * mj / (mi + mj) * c.kn);
-}
+#include "solve/pairlist.h"
+#include "solve/platens.h"
 
 static int bonded(const engine *e, int32_t i, int32_t j)
 {
@@ -72,8 +59,18 @@ static void add_contact(engine *e, pairlist *L, const pairlist *old, size_t *o, 
 		(*o)++;
 	if (*o < old->n && old->rec[*o].i == i && old->rec[*o].j == j)
 		memcpy(c->t, old->rec[*o].t, sizeof c->t);
-	contact_constants(e, P->r[i], P->r[j], P->m[i], P->m[j], c->d0, L->k + 3 * L->n);
+	contact_constants(&e->cs->mat, e->lp, P->r[i], P->r[j], P->m[i], P->m[j], c->d0,
+	                  L->k + 3 * L->n);
 	L->n++;
+}
+
+void contacts_reserve_blocks(engine *e)
+{
+	size_t nb = nblocks(e->contacts.n);
+	if (nb > e->ncblock) {
+		e->ncblock = nb + nb / 2 + 1;
+		e->cblock = xrealloc(e->cblock, e->ncblock * sizeof *e->cblock);
+	}
 }
 
 void contacts_rebuild(engine *e)
@@ -103,11 +100,7 @@ void contacts_rebuild(engine *e)
 				add_contact(e, L, old, &o, (int32_t)i, js[q]);
 	}
 	pairlist_csr(L, P->n);
-	size_t nb = nblocks(L->n);
-	if (nb > e->ncblock) {
-		e->ncblock = nb + nb / 2 + 1;
-		e->cblock = xrealloc(e->cblock, e->ncblock * sizeof *e->cblock);
-	}
+	contacts_reserve_blocks(e);
 	memcpy(P->x_ref, P->x, 3 * P->n * sizeof *P->x);
 	platens_rebuild(e);
 	e->rebuilds++;
@@ -151,7 +144,6 @@ void contacts_forces(engine *e, int measure)
 	size_t nb = nblocks(e->contacts.n);
 #pragma omp for schedule(static)
 	for (size_t k = 0; k < nb; k++) {
-		size_t hi = (k + 1) * BLOCK < e->contacts.n ? (k + 1) * BLOCK : e->contacts.n;
-		contact_block(e, k * BLOCK, hi, measure, &e->cblock[k]);
+		contact_block(e, k * BLOCK, block_end(k, e->contacts.n), measure, &e->cblock[k]);
 	}
 }

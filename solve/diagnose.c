@@ -5,6 +5,7 @@
 
 #include "lib/err.h"
 #include "solve/diagnose.h"
+#include "solve/timestep.h"
 
 static int finite6(const double *f) { return isfinite(f[0] + f[1] + f[2] + f[3] + f[4] + f[5]); }
 

@@ -13,6 +13,7 @@
 
 #include "solve/engine.h"
 #include "solve/history.h"
+#include "solve/measure.h"
 
 const run_column history_columns[] = {
     {"t", "s"},
@@ -51,11 +52,6 @@ const run_column history_columns[] = {
     {"rate", "1/s"},
 };
 const int history_ncolumns = (int)(sizeof history_columns / sizeof history_columns[0]);
-
-double engine_elastic(const engine *e)
-{
-	return e->bsum.e_elastic + e->csum.e_elastic + e->psum.platen_elastic;
-}
 
 void history_row(const engine *e, double rate, double *row)
 {

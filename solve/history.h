@@ -10,7 +10,5 @@ extern const int history_ncolumns;
 
 /* The row of the last measuring step; rate in steps per wall-clock second. */
 void history_row(const engine *e, double rate, double *row);
-/* Elastic energy of the last measuring step (J). */
-double engine_elastic(const engine *e);
 
 #endif

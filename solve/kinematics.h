@@ -23,7 +23,7 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "solve/engine.h"
+#include "solve/blocks.h"
 #include "solve/law.h"
 
 /* Geometry of a batch of pairs, kept for turning the law's output into
@@ -108,8 +108,5 @@ static inline void batch_force(const law_out *o, const batch_geom *g, int q, dou
 	f[4] = s * (n[2] * o->fs[0] - n[0] * o->fs[2]);
 	f[5] = s * (n[0] * o->fs[1] - n[1] * o->fs[0]);
 }
-
-/* Love–Weber sums Σ (x_j - x_i) ⊗ F_i of pair q (bonds.c). */
-void love_add(double love[9], const batch_geom *g, int q, const double f[6]);
 
 #endif

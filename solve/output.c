@@ -7,6 +7,8 @@
 #include <string.h>
 
 #include "lib/err.h"
+#include "solve/bonds.h"
+#include "solve/measure.h"
 #include "solve/output.h"
 
 /* Rows of the bond table (run_fill). */

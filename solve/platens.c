@@ -12,8 +12,8 @@
 
 #include "lib/err.h"
 #include "solve/engine.h"
-#include "solve/laws/cundall.h"
-#include "solve/platen_contact.h"
+#include "solve/laws/contact.h"
+#include "solve/platens.h"
 
 static double axial(const engine *e, const double *x)
 {
@@ -65,7 +65,8 @@ void platens_rebuild(engine *e)
 			}
 			platen_contact *c = &pl->pc[k][n];
 			double kk[3];
-			contact_constants(e, P->r[i], P->r[i], P->m[i], P->m[i], 2 * P->r[i], kk);
+			contact_constants(&e->cs->mat, e->lp, P->r[i], P->r[i], P->m[i], P->m[i],
+			                  2 * P->r[i], kk);
 			c->kn = 2 * kk[0];
 			c->ks = 2 * kk[1];
 			c->cn = 2 * kk[2];

@@ -12,12 +12,17 @@
 #include "lib/h5.h"
 #include "lib/progress.h"
 #include "lib/timer.h"
+#include "solve/boundary.h"
+#include "solve/case.h"
 #include "solve/checkpoint.h"
 #include "solve/diagnose.h"
+#include "solve/engine.h"
 #include "solve/history.h"
+#include "solve/measure.h"
 #include "solve/output.h"
 #include "solve/report.h"
 #include "solve/run.h"
+#include "solve/step.h"
 
 static volatile sig_atomic_t interrupted;
 

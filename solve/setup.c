@@ -11,7 +11,16 @@
 
 #include "lib/err.h"
 #include "lib/vec3.h"
+#include "solve/blocks.h"
+#include "solve/bonds.h"
+#include "solve/boundary.h"
+#include "solve/cells.h"
+#include "solve/contacts.h"
 #include "solve/engine.h"
+#include "solve/pairlist.h"
+#include "solve/platens.h"
+#include "solve/surface.h"
+#include "solve/timestep.h"
 
 /* Spread the low 21 bits of v to every third bit. */
 static uint64_t spread(uint64_t v)
@@ -294,8 +303,8 @@ void engine_free(engine *e)
 	pairlist_free(&e->contacts_old);
 	platens_free(&e->pl);
 	cells_free(&e->grid);
-	free(e->surf.idx), free(e->surf.area), free(e->surf.best), free(e->surf.best_rho);
-	free(e->gg.idx), free(e->gg.rho0);
+	surface_free(&e->surf);
+	gauge_free(&e->gg);
 	free(e->pblock), free(e->bblock), free(e->cblock), free(e->scratch);
 	for (int t = 0; t < e->nthreads; t++)
 		free(e->thread_cracks[t].c), free(e->thread_cracks[t].bond);

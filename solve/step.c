@@ -20,8 +20,17 @@
 
 #include "lib/timer.h"
 #include "lib/vec3.h"
+#include "solve/blocks.h"
+#include "solve/bonds.h"
+#include "solve/boundary.h"
+#include "solve/contacts.h"
 #include "solve/engine.h"
+#include "solve/measure.h"
+#include "solve/pairlist.h"
 #include "solve/platen_contact.h"
+#include "solve/platens.h"
+#include "solve/step.h"
+#include "solve/surface.h"
 
 static inline void gather(const pairlist *L, int32_t i, double ri, double F[3], double T[3])
 {
@@ -159,7 +168,7 @@ static void particles_integrate(engine *e, int measure)
 		particle_sums *s = &e->pblock[k];
 		memset(s, 0, sizeof *s);
 		s->bad = (double)n;
-		size_t hi = (k + 1) * BLOCK < n ? (k + 1) * BLOCK : n;
+		size_t hi = block_end(k, n);
 		for (size_t i = k * BLOCK; i < hi; i++)
 			integrate_one(e, (int32_t)i, measure, s);
 	}

@@ -25,11 +25,13 @@
  * (a tenth of it, at least a diameter): radial strain = -mean(ρ - ρ0) / R0,
  * compression positive. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "lib/err.h"
 #include "lib/vec3.h"
 #include "solve/engine.h"
+#include "solve/surface.h"
 
 /* Axial coordinate and radial vector of a position. */
 static double frame(const engine *e, const double *x, double rho[3])
@@ -178,6 +180,8 @@ void surface_update(engine *e)
 	S->updated = e->step;
 }
 
+void surface_free(surface *s) { free(s->idx), free(s->area), free(s->best), free(s->best_rho); }
+
 void gauge_init(engine *e)
 {
 	const particles *P = &e->p;
@@ -220,3 +224,5 @@ double gauge_strain(const engine *e)
 	}
 	return -sum / G->n / G->radius0;
 }
+
+void gauge_free(gauge *g) { free(g->idx), free(g->rho0); }

@@ -19,6 +19,7 @@
 #include <math.h>
 
 #include "solve/engine.h"
+#include "solve/timestep.h"
 
 double pair_omega2(double kn, double ks, double mi, double mj, double ii, double ij, double ai,
                    double aj)

@@ -1,0 +1,24 @@
+/* Fixed blocks and batches: what keeps the engine's results independent of
+ * the number of threads (DESIGN.md §4).
+ *
+ * Reductions (energies, platen loads, stresses, bond counts) are summed per
+ * fixed block of BLOCK items (particles, bonds or contacts), and the block
+ * sums are added in block order afterwards, so no sum depends on how the
+ * blocks are shared among threads. Inside a block, pairs are handed to the
+ * laws BATCH at a time. */
+#ifndef DEM_BLOCKS_H
+#define DEM_BLOCKS_H
+
+#include <stddef.h>
+
+enum { BLOCK = 256, BATCH = 32 };
+
+static inline size_t nblocks(size_t n) { return (n + BLOCK - 1) / BLOCK; }
+
+/* End of block k of n items. */
+static inline size_t block_end(size_t k, size_t n)
+{
+	return (k + 1) * BLOCK < n ? (k + 1) * BLOCK : n;
+}
+
+#endif

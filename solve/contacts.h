@@ -1,0 +1,15 @@
+/* Non-bonded contacts from a Verlet list (contacts.c). */
+#ifndef DEM_CONTACTS_H
+#define DEM_CONTACTS_H
+
+typedef struct engine engine;
+
+/* Rebuild the contact list (and the platens' candidates) from the current
+ * positions. */
+void contacts_rebuild(engine *e);
+/* Size the per-block sums for the current contact list. */
+void contacts_reserve_blocks(engine *e);
+/* This step's contact forces, inside the step's parallel region. */
+void contacts_forces(engine *e, int measure);
+
+#endif

@@ -1,0 +1,42 @@
+/* Pair lists: the bonds and the non-bonded contacts are both a flat array of
+ * pair records with one force per pair, computed once per step, and a CSR
+ * index through which every particle gathers the forces of its pairs in a
+ * fixed order (so sums do not depend on the number of threads). Also the
+ * per-block sums over pairs (blocks.h) and the Love–Weber sum of a pair. */
+#ifndef DEM_PAIRLIST_H
+#define DEM_PAIRLIST_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "solve/kinematics.h"
+#include "solve/law.h"
+
+typedef struct {
+	size_t n, cap;
+	bond *rec;
+	double *f;    /* [n][6]: force on i (N), then torque per unit radius (N): the
+	                 torque on i is r_i times it, on j r_j times it */
+	double *k;    /* [n][3] kn, ks, cn of a contact (contacts only) */
+	int32_t *off; /* [np + 1] */
+	int32_t *ref; /* [2n] pair index * 2 + 1 if the particle is its j */
+} pairlist;
+
+/* Sums over one block of pairs. */
+typedef struct {
+	double e_damage, e_friction, e_viscous;
+	double e_elastic; /* measuring steps only */
+	double love[9];   /* Σ (x_c - x_p) ⊗ f, measuring steps only */
+	double count[5];  /* bonds by state / contacts touching */
+} pair_sums;
+
+void pairlist_free(pairlist *l);
+/* Build the gather index of the l->n pairs, sorted by (i, j), over np
+ * particles (l->off and l->ref allocated by the caller). */
+void pairlist_csr(pairlist *l, size_t np);
+/* The sums of nb blocks, added in block order. */
+void pair_sums_total(const pair_sums *blk, size_t nb, pair_sums *out);
+/* Love–Weber sums Σ (x_j - x_i) ⊗ F_i of pair q of a batch. */
+void love_add(double love[9], const batch_geom *g, int q, const double f[6]);
+
+#endif

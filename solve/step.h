@@ -1,0 +1,26 @@
+/* One time step (step.c). */
+#ifndef DEM_STEP_H
+#define DEM_STEP_H
+
+typedef struct engine engine;
+
+/* Sums over one block of particles (blocks.h). */
+typedef struct {
+	double ke;     /* shadow kinetic energy (v- · v+) */
+	double ke_new; /* kinetic energy at t + dt/2 (for diagnoses) */
+	double e_damped, e_work;
+	double load[2], ksum[2], ntouch[2];
+	double layer[2];         /* N, reaction of the end layers */
+	double lateral_force;    /* N, Σ |confinement force| */
+	double constraint_force; /* N, Σ radial reaction of constrained particles */
+	double platen_friction, platen_viscous, platen_elastic;
+	double love[9];
+	double disp2; /* max squared displacement since the rebuild */
+	double bad;   /* lowest particle index with a non-finite state, or n */
+} particle_sums;
+
+/* One time step; measure != 0 also computes what the history needs
+ * (elastic energy, Love–Weber sums, bond counts). */
+void engine_step(engine *e, int measure);
+
+#endif

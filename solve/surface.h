@@ -1,0 +1,38 @@
+/* The lateral surface of the specimen and the radial strain gauge (surface.c). */
+#ifndef DEM_SURFACE_H
+#define DEM_SURFACE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct engine engine;
+
+typedef struct {
+	int ntheta, nz;
+	double bin; /* m */
+	size_t n, cap;
+	int32_t *idx;        /* surface particles */
+	double *area;        /* m^2, tributary area of each */
+	int32_t *best;       /* [ntheta * nz] outermost particle of each bin */
+	double *best_rho;    /* its outer radial distance */
+	double lateral_area; /* m^2, current lateral area from the bins */
+	double radius;       /* m, mean outer radius */
+	double volume;       /* m^3, enclosed by the bins */
+	long updated;        /* step of the last update */
+} surface;
+
+typedef struct {
+	size_t n;
+	int32_t *idx;
+	double *rho0;   /* m, initial radial distance */
+	double radius0; /* m, initial outer radius */
+} gauge;
+
+void surface_init(engine *e);
+void surface_update(engine *e);
+void surface_free(surface *s);
+void gauge_init(engine *e);
+double gauge_strain(const engine *e);
+void gauge_free(gauge *g);
+
+#endif
