@@ -21,8 +21,8 @@ int bonds_form(engine *e)
 	particles *P = &e->p;
 	double range = e->law->bond_range(e->lp);
 	cells g = {0};
-	cells_build(&g, P->x, P->n, range * 2 * e->r_max);
-	pairlist *L = &e->bonds;
+	cells_build(&g, P->x, P->n, range * 2 * e->frame.r_max);
+	pairlist *L = &e->pairs.bonds;
 	enum { CAP = 4096 };
 	int32_t js[CAP];
 	/* Count first, so the bond array is allocated once at its size. */
@@ -72,7 +72,7 @@ static law_pair pair_of(const particles *P, const bond *b)
 
 void engine_bond_entry(const engine *e, size_t b, int32_t ends[2], law_const *c)
 {
-	const bond *bd = &e->bonds.rec[b];
+	const bond *bd = &e->pairs.bonds.rec[b];
 	int32_t oi = e->p.orig[bd->i], oj = e->p.orig[bd->j];
 	ends[0] = oi < oj ? oi : oj;
 	ends[1] = oi < oj ? oj : oi;
@@ -84,9 +84,9 @@ void engine_bond_entry(const engine *e, size_t b, int32_t ends[2], law_const *c)
 
 void bonds_init_history(engine *e)
 {
-	for (size_t b = 0; b < e->bonds.n; b++) {
-		law_pair q = pair_of(&e->p, &e->bonds.rec[b]);
-		e->law->init(e->lp, &q, &e->bonds.rec[b]);
+	for (size_t b = 0; b < e->pairs.bonds.n; b++) {
+		law_pair q = pair_of(&e->p, &e->pairs.bonds.rec[b]);
+		e->law->init(e->lp, &q, &e->pairs.bonds.rec[b]);
 	}
 }
 
@@ -100,9 +100,9 @@ static void record_crack(engine *e, crack_buf *cb, size_t b, const law_out *o, c
 		cb->c = xrealloc(cb->c, cb->cap * sizeof *cb->c);
 		cb->bond = xrealloc(cb->bond, cb->cap * sizeof *cb->bond);
 	}
-	const bond *bd = &e->bonds.rec[b];
+	const bond *bd = &e->pairs.bonds.rec[b];
 	const particles *P = &e->p;
-	const double *f = e->bonds.f + 6 * b;
+	const double *f = e->pairs.bonds.f + 6 * b;
 	double fn = f[0] * n[0] + f[1] * n[1] + f[2] * n[2];
 	double fs[3] = {f[0] - fn * n[0], f[1] - fn * n[1], f[2] - fn * n[2]};
 	int32_t oi = P->orig[bd->i], oj = P->orig[bd->j];
@@ -110,8 +110,8 @@ static void record_crack(engine *e, crack_buf *cb, size_t b, const law_out *o, c
 	double ai = d * P->r[bd->i] / (P->r[bd->i] + P->r[bd->j]);
 	dem_crack *c = &cb->c[cb->n];
 	cb->bond[cb->n++] = (int32_t)b;
-	*c = (dem_crack){.t = e->t,
-	                 .step = e->step,
+	*c = (dem_crack){.t = e->clock.t,
+	                 .step = e->clock.step,
 	                 .i = oi < oj ? oi : oj,
 	                 .j = oi < oj ? oj : oi,
 	                 .mode = o->failed,
@@ -128,7 +128,7 @@ static void record_crack(engine *e, crack_buf *cb, size_t b, const law_out *o, c
 static void bond_block(engine *e, size_t lo, size_t hi, int measure, pair_sums *s, crack_buf *cb)
 {
 	const particles *P = &e->p;
-	pairlist *L = &e->bonds;
+	pairlist *L = &e->pairs.bonds;
 	law_pair pair[BATCH];
 	law_kin kin[BATCH];
 	law_out out[BATCH];
@@ -136,8 +136,8 @@ static void bond_block(engine *e, size_t lo, size_t hi, int measure, pair_sums *
 	memset(s, 0, sizeof *s);
 	for (size_t b0 = lo; b0 < hi; b0 += BATCH) {
 		int nq = (int)(hi - b0 < BATCH ? hi - b0 : BATCH);
-		batch_kinematics(P->x, P->v, P->w, P->r, P->m, &L->rec[b0], nq, e->dt, pair, kin,
-		                 &g);
+		batch_kinematics(P->x, P->v, P->w, P->r, P->m, &L->rec[b0], nq, e->clock.dt, pair,
+		                 kin, &g);
 		for (int q = 0; q < nq; q++)
 			out[q].fn_viscous = out[q].e_damage = out[q].e_friction = 0;
 		e->law->force_batch(e->lp, nq, pair, &L->rec[b0], kin, out);
@@ -149,7 +149,7 @@ static void bond_block(engine *e, size_t lo, size_t hi, int measure, pair_sums *
 			batch_force(&out[q], &g, q, f);
 			s->e_damage += out[q].e_damage;
 			s->e_friction += out[q].e_friction;
-			s->e_viscous += out[q].fn_viscous * kin[q].vn * e->dt;
+			s->e_viscous += out[q].fn_viscous * kin[q].vn * e->clock.dt;
 			if (measure) {
 				s->e_elastic += e->law->energy(e->lp, &pair[q], &L->rec[b]);
 				love_add(s->love, &g, q, f);
@@ -161,23 +161,24 @@ static void bond_block(engine *e, size_t lo, size_t hi, int measure, pair_sums *
 
 void bonds_forces(engine *e, int measure)
 {
-	size_t nb = nblocks(e->bonds.n);
-	crack_buf *cb = &e->thread_cracks[omp_get_thread_num()];
+	size_t nb = nblocks(e->pairs.bonds.n);
+	crack_buf *cb = &e->out.thread_cracks[omp_get_thread_num()];
 #pragma omp for schedule(static) nowait
 	for (size_t k = 0; k < nb; k++) {
-		bond_block(e, k * BLOCK, block_end(k, e->bonds.n), measure, &e->bblock[k], cb);
+		bond_block(e, k * BLOCK, block_end(k, e->pairs.bonds.n), measure,
+		           &e->scratch.bblock[k], cb);
 	}
 }
 
-/* Move this step's failures from the thread buffers to e->cracks, in bond
+/* Move this step's failures from the thread buffers to e->out.cracks, in bond
  * order (whatever thread found them). */
 void bonds_collect_cracks(engine *e)
 {
-	crack_buf *cb = &e->cracks;
+	crack_buf *cb = &e->out.cracks;
 	size_t first = cb->n;
 	double strain = engine_strain(e);
 	for (int t = 0; t < e->nthreads; t++) {
-		crack_buf *tc = &e->thread_cracks[t];
+		crack_buf *tc = &e->out.thread_cracks[t];
 		for (size_t k = 0; k < tc->n; k++) {
 			if (cb->n == cb->cap) {
 				cb->cap = cb->cap ? 2 * cb->cap : 256;

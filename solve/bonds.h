@@ -23,7 +23,7 @@ int bonds_form(engine *e);
 void bonds_init_history(engine *e);
 /* This step's bond forces, inside the step's parallel region. */
 void bonds_forces(engine *e, int measure);
-/* Move this step's failures to e->cracks, in bond order. */
+/* Move this step's failures to e->out.cracks, in bond order. */
 void bonds_collect_cracks(engine *e);
 /* Bond b's ends in the assembly's numbering (ends[0] < ends[1]) and, when c
  * is not NULL, its elastic constants. */

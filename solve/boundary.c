@@ -20,7 +20,7 @@
 #include "solve/platens.h"
 #include "solve/surface.h"
 
-static const stage *current(const engine *e) { return &e->cs->stages[e->stage]; }
+static const stage *current(const engine *e) { return &e->cs->stages[e->prog.stage]; }
 
 static int uses_platens(int axial) { return axial != AXIAL_NONE && axial != AXIAL_LAYERS; }
 
@@ -28,7 +28,7 @@ static int uses_platens(int axial) { return axial != AXIAL_NONE && axial != AXIA
 static double ramped(const engine *e, double from, double to)
 {
 	double ramp = current(e)->ramp;
-	double f = ramp > 0 ? (e->t - e->stage_t) / ramp : 1;
+	double f = ramp > 0 ? (e->clock.t - e->prog.stage_t) / ramp : 1;
 	return f >= 1 ? to : from + (to - from) * f;
 }
 
@@ -36,11 +36,11 @@ static void select_layers(engine *e, double thickness)
 {
 	particles *P = &e->p;
 	double lo = INFINITY, hi = -INFINITY;
-	double *z = e->scratch;
+	double *z = e->scratch.z;
 	for (size_t i = 0; i < P->n; i++) {
 		z[i] = 0;
 		for (int k = 0; k < 3; k++)
-			z[i] += (P->x[3 * i + k] - e->center[k]) * e->axis[k];
+			z[i] += (P->x[3 * i + k] - e->frame.center[k]) * e->frame.axis[k];
 		lo = fmin(lo, z[i] - P->r[i]);
 		hi = fmax(hi, z[i] + P->r[i]);
 	}
@@ -51,39 +51,39 @@ static void select_layers(engine *e, double thickness)
 		else if (z[i] + P->r[i] >= hi - thickness)
 			P->flag[i] |= PF_LAYER_TOP;
 	}
-	e->layers_selected = 1;
+	e->prog.layers_selected = 1;
 }
 
 void boundary_begin_stage(engine *e)
 {
 	const stage *s = current(e);
-	int was = e->pl.active;
-	e->pl.active = uses_platens(s->axial);
-	if (e->pl.active != was)
-		e->rebuild = 1;
-	e->stage_step = e->step;
-	e->stage_t = e->t;
-	e->stage_strain0 = engine_strain(e);
-	e->stage_stress0 = engine_stress(e);
-	e->stage_pressure0 = e->pressure;
-	e->stage_peak = -INFINITY;
-	if (s->axial == AXIAL_LAYERS && !e->layers_selected)
-		select_layers(e, s->thickness > 0 ? s->thickness : 2 * e->r_mean);
+	int was = e->bc.pl.active;
+	e->bc.pl.active = uses_platens(s->axial);
+	if (e->bc.pl.active != was)
+		e->pairs.rebuild = 1;
+	e->prog.stage_step = e->clock.step;
+	e->prog.stage_t = e->clock.t;
+	e->prog.stage_strain0 = engine_strain(e);
+	e->prog.stage_stress0 = engine_stress(e);
+	e->prog.stage_pressure0 = e->prog.pressure;
+	e->prog.stage_peak = -INFINITY;
+	if (s->axial == AXIAL_LAYERS && !e->prog.layers_selected)
+		select_layers(e, s->thickness > 0 ? s->thickness : 2 * e->frame.r_mean);
 	particles *P = &e->p;
 	for (size_t i = 0; i < P->n; i++)
 		P->flag[i] &= (uint8_t)~PF_CONSTRAINED;
 	if (s->lateral == LATERAL_CONSTRAINT) {
 		surface_update(e);
-		for (size_t k = 0; k < e->surf.n; k++)
-			P->flag[e->surf.idx[k]] |= PF_CONSTRAINED;
+		for (size_t k = 0; k < e->bc.surf.n; k++)
+			P->flag[e->bc.surf.idx[k]] |= PF_CONSTRAINED;
 	}
 	if (s->lateral != LATERAL_PRESSURE)
-		e->pressure = 0;
+		e->prog.pressure = 0;
 }
 
 double boundary_closing_speed(const engine *e, const stage *s)
 {
-	return s->axial == AXIAL_VELOCITY ? s->velocity : s->rate * e->height0;
+	return s->axial == AXIAL_VELOCITY ? s->velocity : s->rate * e->frame.height0;
 }
 
 static double closing_speed(const engine *e) { return boundary_closing_speed(e, current(e)); }
@@ -91,12 +91,12 @@ static double closing_speed(const engine *e) { return boundary_closing_speed(e, 
 void boundary_prepare(engine *e)
 {
 	const stage *s = current(e);
-	loads *ld = &e->ld;
+	loads *ld = &e->bc.loads;
 	ld->lateral = s->lateral;
 	ld->method = s->method;
 	if (s->lateral == LATERAL_PRESSURE)
-		e->pressure = ramped(e, e->stage_pressure0, s->pressure);
-	ld->pressure = e->pressure;
+		e->prog.pressure = ramped(e, e->prog.stage_pressure0, s->pressure);
+	ld->pressure = e->prog.pressure;
 	ld->layers = s->axial == AXIAL_LAYERS;
 	if (ld->layers) {
 		double v = closing_speed(e);
@@ -123,13 +123,13 @@ void boundary_finish_step(engine *e)
 	}
 	case AXIAL_STRESS:
 	case AXIAL_FORCE: {
-		double target = s->axial == AXIAL_STRESS ? s->target * e->area0 : s->target;
-		target = ramped(e, e->stage_stress0 * e->area0, target);
-		double vmax = s->rate * e->height0;
+		double target = s->axial == AXIAL_STRESS ? s->target * e->frame.area0 : s->target;
+		target = ramped(e, e->prog.stage_stress0 * e->frame.area0, target);
+		double vmax = s->rate * e->frame.height0;
 		for (int k = s->top_only ? 1 : 0; k < 2; k++) {
-			double err = target - e->pl.load[k];
-			double v = e->pl.ksum[k] > 0
-			               ? e->cs->servo_gain * err / (e->pl.ksum[k] * e->dt)
+			double err = target - e->bc.pl.load[k];
+			double v = e->bc.pl.ksum[k] > 0
+			               ? e->cs->servo_gain * err / (e->bc.pl.ksum[k] * e->clock.dt)
 			               : (err > 0 ? vmax : -vmax);
 			v = v > vmax ? vmax : v < -vmax ? -vmax : v;
 			vel[k] = k == 0 ? v : -v;
@@ -161,9 +161,9 @@ static int rule_holds(const engine *e, const stop_rule *r, double strain0, doubl
 		return snprintf(why, n, "axial stress fell below %g of the peak %g Pa",
 		                r->stress_drop, peak),
 		       1;
-	if (!isnan(r->time) && e->t - t0 >= r->time * (1 - 1e-12))
+	if (!isnan(r->time) && e->clock.t - t0 >= r->time * (1 - 1e-12))
 		return snprintf(why, n, "time %g s reached", r->time), 1;
-	if (r->steps && e->step - s0 >= r->steps)
+	if (r->steps && e->clock.step - s0 >= r->steps)
 		return snprintf(why, n, "%ld steps done", r->steps), 1;
 	return 0;
 }
@@ -171,25 +171,27 @@ static int rule_holds(const engine *e, const stop_rule *r, double strain0, doubl
 void boundary_track_peak(engine *e)
 {
 	double stress = engine_stress(e);
-	e->peak = stress > e->peak ? stress : e->peak;
-	e->stage_peak = stress > e->stage_peak ? stress : e->stage_peak;
+	e->prog.peak = stress > e->prog.peak ? stress : e->prog.peak;
+	e->prog.stage_peak = stress > e->prog.stage_peak ? stress : e->prog.stage_peak;
 }
 
 int boundary_check(engine *e, char *why, size_t n)
 {
-	if (rule_holds(e, &e->cs->stop, 0, 0, e->peak, e->drop_armed, 0, 0, why, n))
+	if (rule_holds(e, &e->cs->stop, 0, 0, e->prog.peak, e->prog.drop_armed, 0, 0, why, n))
 		return BOUNDARY_STOP;
 	const stage *s = current(e);
 	char reason[256];
-	if (!rule_holds(e, &s->until, e->stage_strain0, e->stage_stress0, e->stage_peak,
-	                e->drop_armed, e->stage_t, e->stage_step, reason, sizeof reason))
+	if (!rule_holds(e, &s->until, e->prog.stage_strain0, e->prog.stage_stress0,
+	                e->prog.stage_peak, e->prog.drop_armed, e->prog.stage_t, e->prog.stage_step,
+	                reason, sizeof reason))
 		return BOUNDARY_RUNNING;
-	if (e->stage + 1 == e->cs->nstages) {
-		snprintf(why, n, "end of the loading program (stage %d: %s)", e->stage + 1, reason);
+	if (e->prog.stage + 1 == e->cs->nstages) {
+		snprintf(why, n, "end of the loading program (stage %d: %s)", e->prog.stage + 1,
+		         reason);
 		return BOUNDARY_COMPLETE;
 	}
-	snprintf(why, n, "stage %d ended: %s", e->stage + 1, reason);
-	e->stage++;
+	snprintf(why, n, "stage %d ended: %s", e->prog.stage + 1, reason);
+	e->prog.stage++;
 	boundary_begin_stage(e);
 	return BOUNDARY_NEXT_STAGE;
 }

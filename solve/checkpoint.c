@@ -27,52 +27,52 @@ typedef struct {
 static int scalars(engine *e, scalar *s)
 {
 	scalar t[] = {
-	    {"t", &e->t, 0, 0, 0},
-	    {"dt", &e->dt, 0, 0, 0},
-	    {"dt_crit", &e->dt_crit, 0, 0, 0},
-	    {"stage_t", &e->stage_t, 0, 0, 0},
-	    {"stage_strain0", &e->stage_strain0, 0, 0, 0},
-	    {"stage_stress0", &e->stage_stress0, 0, 0, 0},
-	    {"stage_pressure0", &e->stage_pressure0, 0, 0, 0},
-	    {"stage_peak", &e->stage_peak, 0, 0, 0},
-	    {"peak", &e->peak, 0, 0, 0},
-	    {"pressure", &e->pressure, 0, 0, 0},
-	    {"energy_damped", &e->e_damped, 0, 0, 0},
-	    {"energy_friction", &e->e_friction, 0, 0, 0},
-	    {"energy_fracture", &e->e_fracture, 0, 0, 0},
-	    {"energy_work", &e->e_work, 0, 0, 0},
-	    {"energy_initial", &e->e_initial, 0, 0, 0},
-	    {"energy_kinetic", &e->ke, 0, 0, 0},
-	    {"snapshot_strain", &e->last_snapshot_strain, 0, 0, 0},
-	    {"platen_z0", &e->pl.z[0], 0, 0, 0},
-	    {"platen_z1", &e->pl.z[1], 0, 0, 0},
-	    {"platen_v0", &e->pl.vel[0], 0, 0, 0},
-	    {"platen_v1", &e->pl.vel[1], 0, 0, 0},
-	    {"platen_load0", &e->pl.load[0], 0, 0, 0},
-	    {"platen_load1", &e->pl.load[1], 0, 0, 0},
-	    {"platen_k0", &e->pl.ksum[0], 0, 0, 0},
-	    {"platen_k1", &e->pl.ksum[1], 0, 0, 0},
-	    {"platen_zref0", &e->pl.z_ref[0], 0, 0, 0},
-	    {"platen_zref1", &e->pl.z_ref[1], 0, 0, 0},
-	    {"lateral_area", &e->surf.lateral_area, 0, 0, 0},
-	    {"surface_radius", &e->surf.radius, 0, 0, 0},
-	    {"surface_volume", &e->surf.volume, 0, 0, 0},
-	    {"step", 0, &e->step, 0, 0},
-	    {"stage_step", 0, &e->stage_step, 0, 0},
-	    {"surface_updated", 0, &e->surf.updated, 0, 0},
-	    {"rebuilds", 0, &e->rebuilds, 0, 0},
-	    {"stage", 0, 0, &e->stage, 0},
-	    {"layers_selected", 0, 0, &e->layers_selected, 0},
-	    {"drop_armed", 0, 0, &e->drop_armed, 0},
-	    {"rebuild", 0, 0, &e->rebuild, 0},
-	    {"platens_active", 0, 0, &e->pl.active, 0},
-	    {"history_rows", 0, 0, 0, &e->history_rows},
-	    {"crack_rows", 0, 0, 0, &e->crack_rows},
-	    {"snapshot_strain_next", 0, 0, 0, &e->snapshot_strain_next},
-	    {"surface_n", 0, 0, 0, &e->surf.n},
-	    {"contacts_n", 0, 0, 0, &e->contacts.n},
-	    {"platen_n0", 0, 0, 0, &e->pl.ncand[0]},
-	    {"platen_n1", 0, 0, 0, &e->pl.ncand[1]},
+	    {"t", &e->clock.t, 0, 0, 0},
+	    {"dt", &e->clock.dt, 0, 0, 0},
+	    {"dt_crit", &e->clock.dt_crit, 0, 0, 0},
+	    {"stage_t", &e->prog.stage_t, 0, 0, 0},
+	    {"stage_strain0", &e->prog.stage_strain0, 0, 0, 0},
+	    {"stage_stress0", &e->prog.stage_stress0, 0, 0, 0},
+	    {"stage_pressure0", &e->prog.stage_pressure0, 0, 0, 0},
+	    {"stage_peak", &e->prog.stage_peak, 0, 0, 0},
+	    {"peak", &e->prog.peak, 0, 0, 0},
+	    {"pressure", &e->prog.pressure, 0, 0, 0},
+	    {"energy_damped", &e->energy.damped, 0, 0, 0},
+	    {"energy_friction", &e->energy.friction, 0, 0, 0},
+	    {"energy_fracture", &e->energy.fracture, 0, 0, 0},
+	    {"energy_work", &e->energy.work, 0, 0, 0},
+	    {"energy_initial", &e->energy.initial, 0, 0, 0},
+	    {"energy_kinetic", &e->energy.kinetic, 0, 0, 0},
+	    {"snapshot_strain", &e->out.last_snapshot_strain, 0, 0, 0},
+	    {"platen_z0", &e->bc.pl.z[0], 0, 0, 0},
+	    {"platen_z1", &e->bc.pl.z[1], 0, 0, 0},
+	    {"platen_v0", &e->bc.pl.vel[0], 0, 0, 0},
+	    {"platen_v1", &e->bc.pl.vel[1], 0, 0, 0},
+	    {"platen_load0", &e->bc.pl.load[0], 0, 0, 0},
+	    {"platen_load1", &e->bc.pl.load[1], 0, 0, 0},
+	    {"platen_k0", &e->bc.pl.ksum[0], 0, 0, 0},
+	    {"platen_k1", &e->bc.pl.ksum[1], 0, 0, 0},
+	    {"platen_zref0", &e->bc.pl.z_ref[0], 0, 0, 0},
+	    {"platen_zref1", &e->bc.pl.z_ref[1], 0, 0, 0},
+	    {"lateral_area", &e->bc.surf.lateral_area, 0, 0, 0},
+	    {"surface_radius", &e->bc.surf.radius, 0, 0, 0},
+	    {"surface_volume", &e->bc.surf.volume, 0, 0, 0},
+	    {"step", 0, &e->clock.step, 0, 0},
+	    {"stage_step", 0, &e->prog.stage_step, 0, 0},
+	    {"surface_updated", 0, &e->bc.surf.updated, 0, 0},
+	    {"rebuilds", 0, &e->pairs.rebuilds, 0, 0},
+	    {"stage", 0, 0, &e->prog.stage, 0},
+	    {"layers_selected", 0, 0, &e->prog.layers_selected, 0},
+	    {"drop_armed", 0, 0, &e->prog.drop_armed, 0},
+	    {"rebuild", 0, 0, &e->pairs.rebuild, 0},
+	    {"platens_active", 0, 0, &e->bc.pl.active, 0},
+	    {"history_rows", 0, 0, 0, &e->out.history_rows},
+	    {"crack_rows", 0, 0, 0, &e->out.crack_rows},
+	    {"snapshot_strain_next", 0, 0, 0, &e->out.snapshot_strain_next},
+	    {"surface_n", 0, 0, 0, &e->bc.surf.n},
+	    {"contacts_n", 0, 0, 0, &e->pairs.contacts.n},
+	    {"platen_n0", 0, 0, 0, &e->bc.pl.ncand[0]},
+	    {"platen_n1", 0, 0, 0, &e->bc.pl.ncand[1]},
 	};
 	int n = (int)(sizeof t / sizeof t[0]);
 	if (s)
@@ -222,17 +222,17 @@ static int write_platens(hid_t g, const engine *e)
 {
 	int rc = 0;
 	for (int k = 0; !rc && k < 2; k++) {
-		size_t n = e->pl.ncand[k];
+		size_t n = e->bc.pl.ncand[k];
 		double *pc = xmalloc((6 * n + 1) * sizeof *pc);
 		for (size_t c = 0; c < n; c++) {
-			const platen_contact *p = &e->pl.pc[k][c];
+			const platen_contact *p = &e->bc.pl.pc[k][c];
 			double v[6] = {p->t[0], p->t[1], p->t[2], p->kn, p->ks, p->cn};
 			memcpy(pc + 6 * c, v, sizeof v);
 		}
 		char who[32], con[32];
 		snprintf(who, sizeof who, "platen%d_particle", k);
 		snprintf(con, sizeof con, "platen%d_contact", k);
-		rc = put(g, who, H5T_NATIVE_INT32, e->pl.who[k], n, 0) ||
+		rc = put(g, who, H5T_NATIVE_INT32, e->bc.pl.who[k], n, 0) ||
 		     put(g, con, H5T_NATIVE_DOUBLE, pc, n, 6);
 		free(pc);
 	}
@@ -261,12 +261,12 @@ int checkpoint_write(engine *e, hid_t file)
 	     put(g, "w", H5T_NATIVE_DOUBLE, P->w, n, 3) ||
 	     put(g, "x_ref", H5T_NATIVE_DOUBLE, P->x_ref, n, 3) ||
 	     put(g, "flag", H5T_NATIVE_UINT8, P->flag, n, 0) ||
-	     put(g, "surface_particle", H5T_NATIVE_INT32, e->surf.idx, e->surf.n, 0) ||
-	     put(g, "surface_area", H5T_NATIVE_DOUBLE, e->surf.area, e->surf.n, 0) ||
-	     put_fields(g, bond_fields, 3, &e->bonds) ||
-	     put(g, "bond_force", H5T_NATIVE_DOUBLE, e->bonds.f, e->bonds.n, 6) ||
-	     put_fields(g, contact_fields, 3, &e->contacts) ||
-	     put(g, "contact_k", H5T_NATIVE_DOUBLE, e->contacts.k, e->contacts.n, 3) ||
+	     put(g, "surface_particle", H5T_NATIVE_INT32, e->bc.surf.idx, e->bc.surf.n, 0) ||
+	     put(g, "surface_area", H5T_NATIVE_DOUBLE, e->bc.surf.area, e->bc.surf.n, 0) ||
+	     put_fields(g, bond_fields, 3, &e->pairs.bonds) ||
+	     put(g, "bond_force", H5T_NATIVE_DOUBLE, e->pairs.bonds.f, e->pairs.bonds.n, 6) ||
+	     put_fields(g, contact_fields, 3, &e->pairs.contacts) ||
+	     put(g, "contact_k", H5T_NATIVE_DOUBLE, e->pairs.contacts.k, e->pairs.contacts.n, 3) ||
 	     write_platens(g, e) || h5_attr_i64(g, "complete", 1);
 	H5Gclose(g);
 	if (!rc && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
@@ -287,7 +287,7 @@ static int get(hid_t g, const char *name, hid_t type, void *dst, size_t rows, si
 
 static int read_pairs(hid_t g, engine *e, size_t nc)
 {
-	pairlist *L = &e->contacts;
+	pairlist *L = &e->pairs.contacts;
 	if (nc > L->cap) {
 		L->cap = nc;
 		L->rec = xrealloc(L->rec, nc * sizeof *L->rec);
@@ -320,29 +320,30 @@ static int read_platens(hid_t g, engine *e)
 {
 	particles *P = &e->p;
 	for (int k = 0; k < 2; k++) {
-		size_t n = e->pl.ncand[k];
-		if (n > e->pl.cap[k]) {
-			e->pl.cap[k] = n;
-			e->pl.pc[k] = xrealloc(e->pl.pc[k], n * sizeof *e->pl.pc[k]);
-			e->pl.pc_old[k] = xrealloc(e->pl.pc_old[k], n * sizeof *e->pl.pc_old[k]);
-			e->pl.who[k] = xrealloc(e->pl.who[k], n * sizeof *e->pl.who[k]);
+		size_t n = e->bc.pl.ncand[k];
+		if (n > e->bc.pl.cap[k]) {
+			e->bc.pl.cap[k] = n;
+			e->bc.pl.pc[k] = xrealloc(e->bc.pl.pc[k], n * sizeof *e->bc.pl.pc[k]);
+			e->bc.pl.pc_old[k] =
+			    xrealloc(e->bc.pl.pc_old[k], n * sizeof *e->bc.pl.pc_old[k]);
+			e->bc.pl.who[k] = xrealloc(e->bc.pl.who[k], n * sizeof *e->bc.pl.who[k]);
 		}
 		double *pc = xmalloc((6 * n + 1) * sizeof *pc);
 		char who[32], con[32];
 		snprintf(who, sizeof who, "platen%d_particle", k);
 		snprintf(con, sizeof con, "platen%d_contact", k);
-		int rc = get(g, who, H5T_NATIVE_INT32, e->pl.who[k], n, 0) ||
+		int rc = get(g, who, H5T_NATIVE_INT32, e->bc.pl.who[k], n, 0) ||
 		         get(g, con, H5T_NATIVE_DOUBLE, pc, n, 6);
 		for (size_t i = 0; i < P->n; i++)
 			P->pslot[k][i] = -1;
 		for (size_t c = 0; !rc && c < n; c++) {
-			int32_t p = e->pl.who[k][c];
+			int32_t p = e->bc.pl.who[k][c];
 			if (p < 0 || (size_t)p >= P->n) {
 				rc = err_set("%s: checkpoint platen contact: particle out of range",
 				             h5_name(g));
 				break;
 			}
-			platen_contact *q = &e->pl.pc[k][c];
+			platen_contact *q = &e->bc.pl.pc[k][c];
 			memcpy(q->t, pc + 6 * c, sizeof q->t);
 			q->kn = pc[6 * c + 3];
 			q->ks = pc[6 * c + 4];
@@ -358,7 +359,7 @@ static int read_platens(hid_t g, engine *e)
 
 static int read_surface(hid_t g, engine *e)
 {
-	surface *S = &e->surf;
+	surface *S = &e->bc.surf;
 	particles *P = &e->p;
 	if (S->n > S->cap)
 		return err_set("%s: checkpoint surface larger than its bins", h5_name(g));
@@ -411,7 +412,7 @@ int checkpoint_read(engine *e, const char *path)
 		}
 	}
 	particles *P = &e->p;
-	size_t n = P->n, nb = e->bonds.n;
+	size_t n = P->n, nb = e->pairs.bonds.n;
 	int32_t *orig = rc ? NULL : xmalloc((n + 1) * sizeof *orig);
 	rc = rc || get(g, "orig", H5T_NATIVE_INT32, orig, n, 0);
 	if (!rc && memcmp(orig, P->orig, n * sizeof *orig))
@@ -419,24 +420,24 @@ int checkpoint_read(engine *e, const char *path)
 		             "restartable with this version)",
 		             path);
 	free(orig);
-	if (!rc && (e->stage < 0 || e->stage >= e->cs->nstages))
-		rc = err_set("%s: checkpoint stage %d out of range", path, e->stage);
+	if (!rc && (e->prog.stage < 0 || e->prog.stage >= e->cs->nstages))
+		rc = err_set("%s: checkpoint stage %d out of range", path, e->prog.stage);
 	rc = rc || get(g, "x", H5T_NATIVE_DOUBLE, P->x, n, 3) ||
 	     get(g, "v", H5T_NATIVE_DOUBLE, P->v, n, 3) ||
 	     get(g, "w", H5T_NATIVE_DOUBLE, P->w, n, 3) ||
 	     get(g, "x_ref", H5T_NATIVE_DOUBLE, P->x_ref, n, 3) ||
 	     get(g, "flag", H5T_NATIVE_UINT8, P->flag, n, 0) ||
-	     get_field(g, &bond_fields[0], e->bonds.rec, nb) ||
-	     get_field(g, &bond_fields[1], e->bonds.rec, nb) ||
-	     get_field(g, &bond_fields[2], e->bonds.rec, nb) ||
-	     get(g, "bond_force", H5T_NATIVE_DOUBLE, e->bonds.f, nb, 6) || read_surface(g, e) ||
-	     read_pairs(g, e, e->contacts.n) || read_platens(g, e);
+	     get_field(g, &bond_fields[0], e->pairs.bonds.rec, nb) ||
+	     get_field(g, &bond_fields[1], e->pairs.bonds.rec, nb) ||
+	     get_field(g, &bond_fields[2], e->pairs.bonds.rec, nb) ||
+	     get(g, "bond_force", H5T_NATIVE_DOUBLE, e->pairs.bonds.f, nb, 6) ||
+	     read_surface(g, e) || read_pairs(g, e, e->pairs.contacts.n) || read_platens(g, e);
 	for (size_t b = 0; !rc && b < nb; b++)
-		if (e->bonds.rec[b].state > BOND_BROKEN_SHEAR)
-			rc =
-			    err_set("%s: checkpoint dataset 'bond_state': value %d at row %zu: "
-			            "expected a bond state from %d to %d",
-			            path, e->bonds.rec[b].state, b, BOND_INTACT, BOND_BROKEN_SHEAR);
+		if (e->pairs.bonds.rec[b].state > BOND_BROKEN_SHEAR)
+			rc = err_set("%s: checkpoint dataset 'bond_state': value %d at row %zu: "
+			             "expected a bond state from %d to %d",
+			             path, e->pairs.bonds.rec[b].state, b, BOND_INTACT,
+			             BOND_BROKEN_SHEAR);
 	H5Gclose(g);
 	H5Fclose(f);
 	return rc ? -1 : 0;

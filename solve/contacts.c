@@ -21,7 +21,7 @@
 
 static int bonded(const engine *e, int32_t i, int32_t j)
 {
-	const pairlist *B = &e->bonds;
+	const pairlist *B = &e->pairs.bonds;
 	for (int32_t q = B->off[i]; q < B->off[i + 1]; q++) {
 		const bond *b = &B->rec[B->ref[q] >> 1];
 		if ((B->ref[q] & 1 ? b->i : b->j) == j)
@@ -66,30 +66,31 @@ static void add_contact(engine *e, pairlist *L, const pairlist *old, size_t *o, 
 
 void contacts_reserve_blocks(engine *e)
 {
-	size_t nb = nblocks(e->contacts.n);
-	if (nb > e->ncblock) {
-		e->ncblock = nb + nb / 2 + 1;
-		e->cblock = xrealloc(e->cblock, e->ncblock * sizeof *e->cblock);
+	size_t nb = nblocks(e->pairs.contacts.n);
+	if (nb > e->scratch.ncblock) {
+		e->scratch.ncblock = nb + nb / 2 + 1;
+		e->scratch.cblock =
+		    xrealloc(e->scratch.cblock, e->scratch.ncblock * sizeof *e->scratch.cblock);
 	}
 }
 
 void contacts_rebuild(engine *e)
 {
 	particles *P = &e->p;
-	pairlist tmp = e->contacts_old;
-	e->contacts_old = e->contacts;
-	e->contacts = tmp;
-	pairlist *L = &e->contacts;
-	const pairlist *old = &e->contacts_old;
+	pairlist tmp = e->pairs.contacts_old;
+	e->pairs.contacts_old = e->pairs.contacts;
+	e->pairs.contacts = tmp;
+	pairlist *L = &e->pairs.contacts;
+	const pairlist *old = &e->pairs.contacts_old;
 	L->n = 0;
 	reserve(L, 0, P->n);
-	cells *g = &e->grid;
-	cells_build(g, P->x, P->n, 2 * e->r_max + e->skin);
+	cells *g = &e->pairs.grid;
+	cells_build(g, P->x, P->n, 2 * e->frame.r_max + e->pairs.skin);
 	enum { CAP = 4096 };
 	int32_t js[CAP];
 	size_t o = 0;
 	for (size_t i = 0; i < P->n; i++) {
-		int nj = cells_partners(g, P->x, P->r, i, 1, e->skin, js, CAP);
+		int nj = cells_partners(g, P->x, P->r, i, 1, e->pairs.skin, js, CAP);
 		if (nj < 0)
 			fatal(
 			    "particle %d has more than %d neighbours within its reach: overlapping "
@@ -103,14 +104,14 @@ void contacts_rebuild(engine *e)
 	contacts_reserve_blocks(e);
 	memcpy(P->x_ref, P->x, 3 * P->n * sizeof *P->x);
 	platens_rebuild(e);
-	e->rebuilds++;
-	e->rebuild = 0;
+	e->pairs.rebuilds++;
+	e->pairs.rebuild = 0;
 }
 
 static void contact_block(engine *e, size_t lo, size_t hi, int measure, pair_sums *s)
 {
 	const particles *P = &e->p;
-	pairlist *L = &e->contacts;
+	pairlist *L = &e->pairs.contacts;
 	double mu = e->cs->mat.friction;
 	law_pair pair[BATCH];
 	law_kin kin[BATCH];
@@ -118,8 +119,8 @@ static void contact_block(engine *e, size_t lo, size_t hi, int measure, pair_sum
 	memset(s, 0, sizeof *s);
 	for (size_t c0 = lo; c0 < hi; c0 += BATCH) {
 		int nq = (int)(hi - c0 < BATCH ? hi - c0 : BATCH);
-		batch_kinematics(P->x, P->v, P->w, P->r, P->m, &L->rec[c0], nq, e->dt, pair, kin,
-		                 &g);
+		batch_kinematics(P->x, P->v, P->w, P->r, P->m, &L->rec[c0], nq, e->clock.dt, pair,
+		                 kin, &g);
 		for (int q = 0; q < nq; q++) {
 			size_t c = c0 + q;
 			const double *k = L->k + 3 * c;
@@ -129,7 +130,7 @@ static void contact_block(engine *e, size_t lo, size_t hi, int measure, pair_sum
 			double *f = L->f + 6 * c;
 			batch_force(&out, &g, q, f);
 			s->e_friction += out.e_friction;
-			s->e_viscous += out.fn_viscous * kin[q].vn * e->dt;
+			s->e_viscous += out.fn_viscous * kin[q].vn * e->clock.dt;
 			if (measure) {
 				s->e_elastic += cundall_energy(&cd, kin[q].un, L->rec[c].t);
 				love_add(s->love, &g, q, f);
@@ -141,9 +142,10 @@ static void contact_block(engine *e, size_t lo, size_t hi, int measure, pair_sum
 
 void contacts_forces(engine *e, int measure)
 {
-	size_t nb = nblocks(e->contacts.n);
+	size_t nb = nblocks(e->pairs.contacts.n);
 #pragma omp for schedule(static)
 	for (size_t k = 0; k < nb; k++) {
-		contact_block(e, k * BLOCK, block_end(k, e->contacts.n), measure, &e->cblock[k]);
+		contact_block(e, k * BLOCK, block_end(k, e->pairs.contacts.n), measure,
+		              &e->scratch.cblock[k]);
 	}
 }

@@ -38,13 +38,13 @@ static int64_t worst_pair(const engine *e, const pairlist *L, size_t *who, int *
 void diagnose_nan(const engine *e, size_t i, char *msg, size_t n)
 {
 	const particles *P = &e->p;
-	const pairlist *L = &e->bonds;
+	const pairlist *L = &e->pairs.bonds;
 	const char *what = "bond", *law = e->law->name;
 	size_t who;
 	int count;
 	int64_t b = worst_pair(e, L, &who, &count);
 	if (b < 0) {
-		L = &e->contacts;
+		L = &e->pairs.contacts;
 		what = "contact";
 		law = "contact";
 		b = worst_pair(e, L, &who, &count);
@@ -54,7 +54,7 @@ void diagnose_nan(const engine *e, size_t i, char *msg, size_t n)
 		    msg, n,
 		    "stopped: non-finite state at step %" PRId64 " (t = %g s): particle %d (radius "
 		    "%g m): its forces are finite, so its motion diverged (time step too large?)",
-		    e->step - 1, e->t - e->dt, P->orig[i], P->r[i]);
+		    e->clock.step - 1, e->clock.t - e->clock.dt, P->orig[i], P->r[i]);
 		return;
 	}
 	int32_t p = P->orig[who],
@@ -63,12 +63,12 @@ void diagnose_nan(const engine *e, size_t i, char *msg, size_t n)
 	         "stopped: non-finite state at step %" PRId64
 	         " (t = %g s): particle %d (radius %g m): "
 	         "%d of its %ss have non-finite forces, first %s %d-%d (law %s)",
-	         e->step - 1, e->t - e->dt, p, P->r[who], count, what, what, p < q ? p : q,
-	         p < q ? q : p, law);
+	         e->clock.step - 1, e->clock.t - e->clock.dt, p, P->r[who], count, what, what,
+	         p < q ? p : q, p < q ? q : p, law);
 }
 
 /* Bound on ω of particle i times the time step (2 is the stability limit). */
-static double omega_dt(const engine *e, size_t i) { return sqrt(e->p.omega2[i]) * e->dt; }
+static double omega_dt(const engine *e, size_t i) { return sqrt(e->p.omega2[i]) * e->clock.dt; }
 
 int diagnose_runaway(const engine *e, char *msg, size_t n)
 {
@@ -76,8 +76,8 @@ int diagnose_runaway(const engine *e, char *msg, size_t n)
 	 * use the kinetic energy at t + dt/2. Below ke_noise, motion is the
 	 * rounding of forces that balance (a specimen held at rest), which a
 	 * divergence leaves behind within a few dozen steps. */
-	double input = e->e_initial + fabs(e->e_work), ke = e->psum.ke_new;
-	if (!(ke > 2 * input + e->ke_noise))
+	double input = e->energy.initial + fabs(e->energy.work), ke = e->sums.particles.ke_new;
+	if (!(ke > 2 * input + e->energy.noise))
 		return 0;
 	const particles *P = &e->p;
 	size_t worst = 0;
@@ -94,7 +94,7 @@ int diagnose_runaway(const engine *e, char *msg, size_t n)
 	         "stopped: kinetic energy %g J exceeds twice the energy put in (%g J) at step "
 	         "%" PRId64 ": the integration is unstable; fastest particle %d (speed %g m/s, "
 	         "bonds give omega dt = %.3g, stable below 2)",
-	         ke, input, e->step - 1, P->orig[worst], sqrt(top / P->m[worst]),
+	         ke, input, e->clock.step - 1, P->orig[worst], sqrt(top / P->m[worst]),
 	         omega_dt(e, worst));
 	return 1;
 }
@@ -103,14 +103,14 @@ int diagnose_timestep(const engine *e, char *msg, size_t n)
 {
 	size_t worst;
 	double crit = timestep_critical(e, 1, &worst);
-	if (e->dt <= crit)
+	if (e->clock.dt <= crit)
 		return 0;
 	const particles *P = &e->p;
 	snprintf(msg, n,
 	         "stopped: time step %g s above the stable limit %g s at step %" PRId64
 	         ": particle %d has %d bonds and %d contacts (lower time_step.safety)",
-	         e->dt, crit, e->step, P->orig[worst],
-	         e->bonds.off[worst + 1] - e->bonds.off[worst],
-	         e->contacts.off[worst + 1] - e->contacts.off[worst]);
+	         e->clock.dt, crit, e->clock.step, P->orig[worst],
+	         e->pairs.bonds.off[worst + 1] - e->pairs.bonds.off[worst],
+	         e->pairs.contacts.off[worst + 1] - e->pairs.contacts.off[worst]);
 	return 1;
 }

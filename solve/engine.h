@@ -31,6 +31,7 @@
 #include "solve/platens.h"
 #include "solve/step.h"
 #include "solve/surface.h"
+#include "solve/timers.h"
 
 /* Particle flags. */
 enum { PF_LAYER_BOTTOM = 1, PF_LAYER_TOP = 2, PF_CONSTRAINED = 4 };
@@ -47,36 +48,46 @@ typedef struct {
 	double *omega2;    /* 1/s^2, bound on ω² from the bonds (timestep.c) */
 } particles;
 
-typedef struct engine engine;
+/* The parts of the engine state. Under a domain decomposition the
+ * particles, pairs and scratch are each rank's own; the boundary's sums,
+ * the frame, the clock, the loading program, the energies and this step's
+ * sums are global (reduced over ranks). */
 
-struct engine {
-	const dem_case *cs;
-	const law *law;
-	law_params *lp;
-	int nthreads; /* threads asked for */
-	int team;     /* threads used in a step */
-
-	particles p;
+/* Bonds and contacts, and the neighbour search that finds contacts. */
+typedef struct {
 	pairlist bonds, contacts, contacts_old;
 	cells grid;
+	double skin;      /* m, Verlet skin of the contact list */
+	int rebuild;      /* neighbour lists are due */
+	int64_t rebuilds; /* neighbour rebuilds so far */
+} engine_pairs;
+
+/* The boundary conditions: platens, lateral surface, radial gauge, and
+ * what the loading program applies in the current step. */
+typedef struct {
 	platens pl;
 	surface surf;
-	gauge gg;
-	loads ld;
+	gauge gauge;
+	loads loads;
+} engine_boundary;
 
-	/* specimen frame */
+/* The specimen's frame and sizes, fixed at start. */
+typedef struct {
 	double center[3], axis[3], e1[3], e2[3];
 	double height0; /* m, platen gap at the start */
 	double area0;   /* m^2, cross-section for the axial stress */
 	double r_mean, r_max;
-	double skin;
+} engine_frame;
 
-	double dt, dt_crit;
-	double xi_max; /* largest fraction of critical damping (Eq. 13) */
+typedef struct {
+	double dt, dt_crit; /* s */
+	double xi_max;      /* largest fraction of critical damping (Eq. 13) */
 	int64_t step;
-	double t;
+	double t; /* s */
+} engine_clock;
 
-	/* loading program */
+/* The loading program's state (boundary.c). */
+typedef struct {
 	int stage;
 	int64_t stage_step; /* step at which the stage started */
 	double stage_t;
@@ -86,46 +97,72 @@ struct engine {
 	double pressure;     /* Pa, currently applied */
 	int layers_selected; /* end layers chosen (at the first layers stage) */
 	int drop_armed;      /* quasi-static reached: the stress-drop rule may fire */
+} engine_program;
 
-	/* energies (J), accumulated */
-	double e_damped, e_friction, e_fracture, e_work;
-	double e_initial; /* kinetic + elastic at the start */
-	double ke;        /* shadow kinetic energy of the last step */
-	double ke_noise;  /* kinetic energy of every particle moving 1e-12 r per step */
+/* Energies (J), accumulated. */
+typedef struct {
+	double damped, friction, fracture, work;
+	double initial; /* kinetic + elastic at the start */
+	double kinetic; /* shadow kinetic energy of the last step */
+	double noise;   /* kinetic energy of every particle moving 1e-12 r per step */
+} engine_energy;
 
-	/* this step's reductions */
-	pair_sums bsum, csum;
-	particle_sums psum;
+/* This step's reductions (blocks.h) and measurement. */
+typedef struct {
+	pair_sums bonds, contacts;
+	particle_sums particles;
 	measurement meas;
-	int rebuild; /* neighbour lists are due */
-	int64_t rebuilds;
+} engine_sums;
 
-	/* bookkeeping for the output */
+/* Bookkeeping for the output. */
+typedef struct {
 	crack_buf cracks; /* failures not yet written */
 	crack_buf *thread_cracks;
 	size_t history_rows, crack_rows;
 	double last_snapshot_strain; /* strain at the last snapshot */
 	size_t snapshot_strain_next; /* next of cs->snapshot_strains to write */
+} engine_output;
 
-	/* scratch, allocated once */
+/* Per-block sums and a per-particle buffer, allocated once. */
+typedef struct {
 	pair_sums *bblock, *cblock;
 	size_t ncblock;
 	particle_sums *pblock;
-	double *scratch; /* [n] */
+	double *z; /* [n] */
+} engine_scratch;
 
-	/* timers (s) */
-	double tm[7];
+typedef struct engine engine;
+
+struct engine {
+	/* The run's definition, read-only after setup. */
+	const dem_case *cs;
+	const law *law;
+	law_params *lp;
+	int nthreads; /* threads asked for */
+	int team;     /* threads used in a step */
+
+	particles p;
+	engine_pairs pairs;
+	engine_boundary bc;
+	engine_frame frame;
+	engine_clock clock;
+	engine_program prog;
+	engine_energy energy;
+	engine_sums sums;
+	engine_output out;
+	engine_scratch scratch;
+	phase_timers tm;
 };
 
-/* Timer slots: the phases of the run loop, its total, and the setup before
- * it (bonds formed, lists built, run file created), not counted in the
- * loop's rate. */
-enum { TM_NEIGHBOUR, TM_BONDS, TM_CONTACTS, TM_INTEGRATE, TM_OUTPUT, TM_TOTAL, TM_SETUP };
+typedef struct {
+	int threads; /* OpenMP threads; 0: the case's "threads", else all cores */
+	int quiet;   /* no summary on stderr */
+} engine_opts;
 
 /* The state at the start of a run (particles sorted, bonds formed, time
  * step chosen). Prints a summary with the time step on stderr unless
  * quiet. */
-int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, int quiet);
+int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const engine_opts *o);
 void engine_free(engine *e);
 
 #endif

@@ -55,10 +55,11 @@ const int history_ncolumns = (int)(sizeof history_columns / sizeof history_colum
 
 void history_row(const engine *e, double rate, double *row)
 {
-	const measurement *m = &e->meas;
+	const measurement *m = &e->sums.meas;
 	double love[9];
 	for (int c = 0; c < 9; c++)
-		love[c] = e->bsum.love[c] + e->csum.love[c] + e->psum.love[c];
+		love[c] =
+		    e->sums.bonds.love[c] + e->sums.contacts.love[c] + e->sums.particles.love[c];
 	double ev = m->strain + 2 * m->strain_radial;
 	double V = m->volume;
 	double s[6];
@@ -67,14 +68,14 @@ void history_row(const engine *e, double rate, double *row)
 		int a = ab[c][0], b = ab[c][1];
 		s[c] = -0.5 * (love[3 * a + b] + love[3 * b + a]) / V;
 	}
-	const double *cnt = e->bsum.count;
+	const double *cnt = e->sums.bonds.count;
 	double v[] = {m->t,
 	              (double)m->step,
 	              m->strain,
 	              0.5 * (m->stress[0] + m->stress[1]),
 	              m->stress[0],
 	              m->stress[1],
-	              0.5 * (m->stress[0] + m->stress[1]) * e->area0,
+	              0.5 * (m->stress[0] + m->stress[1]) * e->frame.area0,
 	              m->strain_radial,
 	              ev,
 	              m->pressure,
@@ -88,18 +89,18 @@ void history_row(const engine *e, double rate, double *row)
 	              s[3],
 	              s[4],
 	              s[5],
-	              e->ke,
+	              e->energy.kinetic,
 	              engine_elastic(e),
-	              e->e_damped,
-	              e->e_friction,
-	              e->e_fracture,
-	              e->e_work,
+	              e->energy.damped,
+	              e->energy.friction,
+	              e->energy.fracture,
+	              e->energy.work,
 	              cnt[BOND_INTACT],
 	              cnt[BOND_DAMAGED],
 	              cnt[BOND_BROKEN_TENSION],
 	              cnt[BOND_BROKEN_SHEAR],
-	              e->csum.count[4],
-	              e->psum.ntouch[0] + e->psum.ntouch[1],
+	              e->sums.contacts.count[4],
+	              e->sums.particles.ntouch[0] + e->sums.particles.ntouch[1],
 	              (double)(m->stage + 1),
 	              rate};
 	_Static_assert(sizeof v / sizeof *v == sizeof history_columns / sizeof *history_columns,

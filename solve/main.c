@@ -74,6 +74,7 @@ int main(int argc, char **argv)
 	              .max_steps = max_steps,
 	              .max_wall = max_wall,
 	              .report = report,
+	              .threads = (int)threads,
 	              .quiet = quiet};
 	if (restart) {
 		if (npos || assembly || depfile || strcmp(output, "run.h5") != 0)
@@ -84,15 +85,13 @@ int main(int argc, char **argv)
 		o.output = restart;
 		path_role outs[] = {{"--report", report}}, ins[] = {{"--restart", restart}};
 		cli_check_outputs(&spec, outs, 1, ins, 1);
-		return run_restart(&o, (int)threads);
+		return run_restart(&o);
 	}
 	if (npos != 1)
 		cli_usage_error(&spec, "missing argument CASE.json");
 	dem_case cs;
 	if (case_load(pos[0], assembly, &cs))
 		fatal(NULL);
-	if (threads > 0)
-		cs.threads = (int)threads;
 	const char *inputs[] = {pos[0], cs.material_file, cs.assembly};
 	path_role outs[] = {{"--output", output}, {"--report", report}, {"--depfile", depfile}};
 	path_role ins[] = {{"the case", pos[0]},
@@ -105,7 +104,6 @@ int main(int argc, char **argv)
 	if (assembly_read(cs.assembly, &a))
 		fatal(NULL);
 	int code = run_case(&cs, &a, &o);
-	assembly_free(&a);
 	case_free(&cs);
 	return code;
 }

@@ -4,11 +4,11 @@
 
 double engine_strain(const engine *e)
 {
-	double gap = e->pl.z[1] - e->pl.z[0];
-	return (e->height0 - gap) / e->height0;
+	double gap = e->bc.pl.z[1] - e->bc.pl.z[0];
+	return (e->frame.height0 - gap) / e->frame.height0;
 }
 
-double engine_stress_of(const engine *e, int k) { return e->pl.load[k] / e->area0; }
+double engine_stress_of(const engine *e, int k) { return e->bc.pl.load[k] / e->frame.area0; }
 
 double engine_stress(const engine *e)
 {
@@ -17,5 +17,6 @@ double engine_stress(const engine *e)
 
 double engine_elastic(const engine *e)
 {
-	return e->bsum.e_elastic + e->csum.e_elastic + e->psum.platen_elastic;
+	return e->sums.bonds.e_elastic + e->sums.contacts.e_elastic +
+	       e->sums.particles.platen_elastic;
 }

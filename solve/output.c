@@ -30,7 +30,7 @@ static void bond_rows(void *ctx, int f, size_t at, size_t m, void *buf)
 			iv[k] = ends[1];
 			break;
 		case BTAB_D0:
-			dv[k] = e->bonds.rec[at + k].d0;
+			dv[k] = e->pairs.bonds.rec[at + k].d0;
 			break;
 		case BTAB_AREA:
 			dv[k] = c.area;
@@ -47,7 +47,7 @@ static void bond_rows(void *ctx, int f, size_t at, size_t m, void *buf)
 
 int output_bonds(const engine *e, run_writer *w)
 {
-	return run_write_bonds_fill(w, e->bonds.n, bond_rows, (void *)e);
+	return run_write_bonds_fill(w, e->pairs.bonds.n, bond_rows, (void *)e);
 }
 
 typedef struct {
@@ -61,7 +61,7 @@ static void snapshot_rows(void *ctx, int f, size_t at, size_t m, void *buf)
 {
 	const snapshot_ctx *c = ctx;
 	const particles *P = &c->e->p;
-	const pairlist *B = &c->e->bonds;
+	const pairlist *B = &c->e->pairs.bonds;
 	double *dv = buf;
 	if (f == SNAP_X || f == SNAP_V || f == SNAP_W) {
 		const double *src = f == SNAP_X ? P->x : f == SNAP_V ? P->v : P->w;
@@ -96,12 +96,12 @@ static void snapshot_rows(void *ctx, int f, size_t at, size_t m, void *buf)
 int output_snapshot(const engine *e, run_writer *w)
 {
 	const particles *P = &e->p;
-	dem_snapshot s = {.step = e->step,
-	                  .t = e->t,
+	dem_snapshot s = {.step = e->clock.step,
+	                  .t = e->clock.t,
 	                  .strain_axial = engine_strain(e),
 	                  .stress_axial = engine_stress(e),
 	                  .n = P->n,
-	                  .nbonds = e->bonds.n};
+	                  .nbonds = e->pairs.bonds.n};
 	snapshot_ctx c = {e, xmalloc((P->n + 1) * sizeof *c.internal)};
 	for (size_t i = 0; i < P->n; i++)
 		c.internal[P->orig[i]] = (int32_t)i;
@@ -112,9 +112,9 @@ int output_snapshot(const engine *e, run_writer *w)
 
 int output_cracks(engine *e, run_writer *w)
 {
-	if (run_cracks(w, e->cracks.c, e->cracks.n))
+	if (run_cracks(w, e->out.cracks.c, e->out.cracks.n))
 		return -1;
-	e->crack_rows += e->cracks.n;
-	e->cracks.n = 0;
+	e->out.crack_rows += e->out.cracks.n;
+	e->out.cracks.n = 0;
 	return 0;
 }

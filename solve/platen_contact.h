@@ -18,16 +18,16 @@ static inline void platen_force(const engine *e, int k, int32_t i, platen_contac
 {
 	const particles *P = &e->p;
 	const double *x = P->x + 3 * i, *v = P->v + 3 * i, *w = P->w + 3 * i;
-	const double *a = e->axis;
-	double z = (x[0] - e->center[0]) * a[0] + (x[1] - e->center[1]) * a[1] +
-	           (x[2] - e->center[2]) * a[2];
+	const double *a = e->frame.axis;
+	double z = (x[0] - e->frame.center[0]) * a[0] + (x[1] - e->frame.center[1]) * a[1] +
+	           (x[2] - e->frame.center[2]) * a[2];
 	double side = k == 0 ? -1 : 1;
-	double h = k == 0 ? z - e->pl.z[0] : e->pl.z[1] - z;
+	double h = k == 0 ? z - e->bc.pl.z[0] : e->bc.pl.z[1] - z;
 	double n[3] = {side * a[0], side * a[1], side * a[2]};
 	double va = v[0] * a[0] + v[1] * a[1] + v[2] * a[2];
 	law_kin kin;
 	kin.un = h - P->r[i];
-	kin.vn = k == 0 ? va - e->pl.vel[0] : e->pl.vel[1] - va;
+	kin.vn = k == 0 ? va - e->bc.pl.vel[0] : e->bc.pl.vel[1] - va;
 	/* Contact-point velocity of the sphere: v + ω × (h n). */
 	double vc[3] = {v[0] + h * (w[1] * n[2] - w[2] * n[1]),
 	                v[1] + h * (w[2] * n[0] - w[0] * n[2]),
@@ -35,7 +35,7 @@ static inline void platen_force(const engine *e, int k, int32_t i, platen_contac
 	double vcn = vc[0] * n[0] + vc[1] * n[1] + vc[2] * n[2];
 	double tn = c->t[0] * n[0] + c->t[1] * n[1] + c->t[2] * n[2];
 	for (int d = 0; d < 3; d++) {
-		kin.dus[d] = -(vc[d] - vcn * n[d]) * e->dt;
+		kin.dus[d] = -(vc[d] - vcn * n[d]) * e->clock.dt;
 		c->t[d] -= tn * n[d];
 	}
 	law_out out = {0};
@@ -54,7 +54,7 @@ static inline void platen_force(const engine *e, int k, int32_t i, platen_contac
 	s->ksum[k] += touch ? c->kn : 0;
 	s->ntouch[k] += touch;
 	s->platen_friction += out.e_friction;
-	s->platen_viscous += out.fn_viscous * kin.vn * e->dt;
+	s->platen_viscous += out.fn_viscous * kin.vn * e->clock.dt;
 	if (measure) {
 		s->platen_elastic += cundall_energy(&cd, kin.un, c->t);
 		for (int p = 0; p < 3; p++)

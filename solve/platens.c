@@ -17,13 +17,14 @@
 
 static double axial(const engine *e, const double *x)
 {
-	return (x[0] - e->center[0]) * e->axis[0] + (x[1] - e->center[1]) * e->axis[1] +
-	       (x[2] - e->center[2]) * e->axis[2];
+	return (x[0] - e->frame.center[0]) * e->frame.axis[0] +
+	       (x[1] - e->frame.center[1]) * e->frame.axis[1] +
+	       (x[2] - e->frame.center[2]) * e->frame.axis[2];
 }
 
 void platens_init(engine *e)
 {
-	platens *pl = &e->pl;
+	platens *pl = &e->bc.pl;
 	const particles *P = &e->p;
 	double lo = INFINITY, hi = -INFINITY;
 	for (size_t i = 0; i < P->n; i++) {
@@ -43,7 +44,7 @@ void platens_init(engine *e)
 
 void platens_rebuild(engine *e)
 {
-	platens *pl = &e->pl;
+	platens *pl = &e->bc.pl;
 	particles *P = &e->p;
 	for (int k = 0; k < 2; k++) {
 		platen_contact *tmp = pl->pc_old[k];
@@ -56,7 +57,7 @@ void platens_rebuild(engine *e)
 			P->pslot[k][i] = -1;
 			double z = axial(e, P->x + 3 * i);
 			double gap = (k == 0 ? z - pl->z[0] : pl->z[1] - z) - P->r[i];
-			if (!pl->active || gap >= e->skin)
+			if (!pl->active || gap >= e->pairs.skin)
 				continue;
 			if (n == pl->cap[k]) {
 				pl->cap[k] *= 2;
@@ -98,17 +99,18 @@ void platens_free(platens *pl)
  * central-difference energy balance). */
 void platens_move(engine *e, const double vel[2])
 {
-	platens *pl = &e->pl;
+	platens *pl = &e->bc.pl;
 	for (int k = 0; k < 2; k++) {
 		double inward = k == 0 ? 1 : -1;
-		e->e_work += pl->load[k] * inward * 0.5 * (pl->vel[k] + vel[k]) * e->dt;
+		e->energy.work += pl->load[k] * inward * 0.5 * (pl->vel[k] + vel[k]) * e->clock.dt;
 		pl->vel[k] = vel[k];
-		pl->z[k] += vel[k] * e->dt;
+		pl->z[k] += vel[k] * e->clock.dt;
 	}
 }
 
 /* The distance each platen moved since the last rebuild (for its trigger). */
 double platens_drift(const engine *e)
 {
-	return fmax(fabs(e->pl.z[0] - e->pl.z_ref[0]), fabs(e->pl.z[1] - e->pl.z_ref[1]));
+	return fmax(fabs(e->bc.pl.z[0] - e->bc.pl.z_ref[0]),
+	            fabs(e->bc.pl.z[1] - e->bc.pl.z_ref[1]));
 }

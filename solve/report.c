@@ -15,13 +15,13 @@ size_t engine_bytes(const engine *e)
 	size_t n = e->p.n;
 	/* x v w x_ref (3 each), r m inv_m inv_i omega2, orig surf pslot[2], flag */
 	size_t bytes = n * (12 * sizeof(double) + 5 * sizeof(double) + 4 * sizeof(int32_t) + 1);
-	const pairlist *l[2] = {&e->bonds, &e->contacts};
+	const pairlist *l[2] = {&e->pairs.bonds, &e->pairs.contacts};
 	for (int k = 0; k < 2; k++)
 		bytes += l[k]->cap * (sizeof(bond) + 6 * sizeof(double) + 2 * sizeof(int32_t) +
 		                      (l[k]->k ? 3 * sizeof(double) : 0)) +
 		         (n + 1) * sizeof(int32_t);
 	for (int k = 0; k < 2; k++)
-		bytes += e->pl.cap[k] * (2 * sizeof(platen_contact) + sizeof(int32_t));
+		bytes += e->bc.pl.cap[k] * (2 * sizeof(platen_contact) + sizeof(int32_t));
 	return bytes;
 }
 
@@ -38,10 +38,10 @@ void report_start(void) { rss_start = peak_rss(); }
 
 void report_print(const engine *e, int64_t step0, const char *status, const run_opts *o)
 {
-	double steps = (double)(e->step - step0), wall = e->tm[TM_TOTAL];
-	double n = (double)e->p.n, nb = (double)e->bonds.n;
+	double steps = (double)(e->clock.step - step0), wall = e->tm.total[TM_TOTAL];
+	double n = (double)e->p.n, nb = (double)e->pairs.bonds.n;
 	double rate = wall > 0 ? steps * n / wall : 0;
-	double ns_bond = steps > 0 && nb > 0 ? 1e9 * e->tm[TM_BONDS] / (steps * nb) : 0;
+	double ns_bond = steps > 0 && nb > 0 ? 1e9 * e->tm.total[TM_BONDS] / (steps * nb) : 0;
 	size_t state = engine_bytes(e);
 	long rss = peak_rss();
 	if (!o->quiet) {
@@ -51,11 +51,11 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 		    "%.3g ns per bond update, %.0f bytes of state per particle, %" PRId64
 		    " neighbour rebuilds\n",
 		    err_program_name(), steps, wall, rate, e->team, e->team > 1 ? "s" : "", ns_bond,
-		    state / n, e->rebuilds);
+		    state / n, e->pairs.rebuilds);
 		for (int k = 0; k < TM_TOTAL; k++)
-			fprintf(stderr, "  %-12s %9.3f s %6.1f %%\n", phase_names[k], e->tm[k],
-			        wall > 0 ? 100 * e->tm[k] / wall : 0);
-		fprintf(stderr, "  (setup before the loop: %.3f s)\n", e->tm[TM_SETUP]);
+			fprintf(stderr, "  %-12s %9.3f s %6.1f %%\n", phase_names[k],
+			        e->tm.total[k], wall > 0 ? 100 * e->tm.total[k] / wall : 0);
+		fprintf(stderr, "  (setup before the loop: %.3f s)\n", e->tm.total[TM_SETUP]);
 	}
 	if (!o->report)
 		return;
@@ -74,10 +74,10 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	        "\"ns_per_bond\": %.6g, \"state_bytes\": %zu, \"peak_rss_bytes\": %ld, "
 	        "\"start_rss_bytes\": %ld, "
 	        "\"rebuilds\": %" PRId64 ", \"dt\": %.6g, \"setup\": %.6g, \"phases\": {",
-	        e->p.n, e->bonds.n, e->team, steps, wall, rate, ns_bond, state, rss, rss_start,
-	        e->rebuilds, e->dt, e->tm[TM_SETUP]);
+	        e->p.n, e->pairs.bonds.n, e->team, steps, wall, rate, ns_bond, state, rss,
+	        rss_start, e->pairs.rebuilds, e->clock.dt, e->tm.total[TM_SETUP]);
 	for (int k = 0; k < TM_TOTAL; k++)
-		fprintf(f, "%s\"%s\": %.6g", k ? ", " : "", phase_names[k], e->tm[k]);
+		fprintf(f, "%s\"%s\": %.6g", k ? ", " : "", phase_names[k], e->tm.total[k]);
 	fprintf(f, "}}\n");
 	if (fclose(f))
 		fatal("%s: cannot write", o->report);

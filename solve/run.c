@@ -4,6 +4,7 @@
 #include <inttypes.h>
 #include <math.h>
 #include <signal.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,16 +36,17 @@ typedef struct {
 	double wall0, last_checkpoint, last_row_wall;
 	int64_t last_row_step, step0, last_snapshot_step;
 	progress pg;
+	int how, code; /* END_*, RUN_* once the run ends */
 	char status[1100];
 } loop_state;
 
 static int snapshot(loop_state *L)
 {
 	engine *e = L->e;
-	if (L->last_snapshot_step == e->step)
+	if (L->last_snapshot_step == e->clock.step)
 		return 0;
-	L->last_snapshot_step = e->step;
-	e->last_snapshot_strain = engine_strain(e);
+	L->last_snapshot_step = e->clock.step;
+	e->out.last_snapshot_strain = engine_strain(e);
 	return output_snapshot(e, L->w);
 }
 
@@ -53,16 +55,16 @@ static int snapshot_due(loop_state *L)
 	engine *e = L->e;
 	const dem_case *cs = e->cs;
 	double strain = engine_strain(e);
-	if (cs->snapshot_every && e->step % cs->snapshot_every == 0)
+	if (cs->snapshot_every && e->clock.step % cs->snapshot_every == 0)
 		return 1;
 	if (cs->snapshot_every_strain > 0 &&
-	    fabs(strain - e->last_snapshot_strain) >= cs->snapshot_every_strain)
+	    fabs(strain - e->out.last_snapshot_strain) >= cs->snapshot_every_strain)
 		return 1;
-	if (e->snapshot_strain_next < cs->nsnapshot_strains) {
-		double target = cs->snapshot_strains[e->snapshot_strain_next];
-		double from = e->last_snapshot_strain;
+	if (e->out.snapshot_strain_next < cs->nsnapshot_strains) {
+		double target = cs->snapshot_strains[e->out.snapshot_strain_next];
+		double from = e->out.last_snapshot_strain;
 		if (from <= target ? strain >= target : strain <= target) {
-			e->snapshot_strain_next++;
+			e->out.snapshot_strain_next++;
 			return 1;
 		}
 	}
@@ -81,7 +83,7 @@ static int checkpoint(loop_state *L)
 static int checkpoint_due(const loop_state *L)
 {
 	const dem_case *cs = L->e->cs;
-	if (cs->checkpoint_every && L->e->step % cs->checkpoint_every == 0)
+	if (cs->checkpoint_every && L->e->clock.step % cs->checkpoint_every == 0)
 		return 1;
 	return cs->checkpoint_wall > 0 && timer_now() - L->last_checkpoint >= cs->checkpoint_wall;
 }
@@ -90,19 +92,19 @@ static int history(loop_state *L)
 {
 	engine *e = L->e;
 	double now = timer_now();
-	double rate = now > L->last_row_wall && e->step > L->last_row_step
-	                  ? (double)(e->step - L->last_row_step) / (now - L->last_row_wall)
+	double rate = now > L->last_row_wall && e->clock.step > L->last_row_step
+	                  ? (double)(e->clock.step - L->last_row_step) / (now - L->last_row_wall)
 	                  : 0;
 	L->last_row_wall = now;
-	L->last_row_step = e->step;
+	L->last_row_step = e->clock.step;
 	double row[64];
 	history_row(e, rate, row);
-	e->history_rows++;
+	e->out.history_rows++;
 	double elastic = engine_elastic(e);
-	if (e->meas.step == 0)
-		e->e_initial = e->ke + elastic;
-	if (!e->drop_armed && elastic > 0 && e->ke < 0.01 * elastic)
-		e->drop_armed = 1;
+	if (e->sums.meas.step == 0)
+		e->energy.initial = e->energy.kinetic + elastic;
+	if (!e->prog.drop_armed && elastic > 0 && e->energy.kinetic < 0.01 * elastic)
+		e->prog.drop_armed = 1;
 	return run_history(L->w, row);
 }
 
@@ -114,34 +116,43 @@ static void show_progress(loop_state *L)
 	double frac = 0;
 	for (int k = 0; k < 2; k++) {
 		if (r[k]->steps)
-			frac = fmax(frac, (double)e->step / (double)r[k]->steps);
+			frac = fmax(frac, (double)e->clock.step / (double)r[k]->steps);
 		if (!isnan(r[k]->time))
-			frac = fmax(frac, e->t / r[k]->time);
+			frac = fmax(frac, e->clock.t / r[k]->time);
 		if (!isnan(r[k]->strain_axial) && r[k]->strain_axial != 0)
 			frac = fmax(frac, engine_strain(e) / r[k]->strain_axial);
 	}
-	double done = (double)(e->step - L->step0);
-	L->pg.total = frac > 0 ? (double)e->step / fmin(frac, 1) - (double)L->step0 : 0;
-	const double *c = e->bsum.count;
+	double done = (double)(e->clock.step - L->step0);
+	L->pg.total = frac > 0 ? (double)e->clock.step / fmin(frac, 1) - (double)L->step0 : 0;
+	const double *c = e->sums.bonds.count;
 	char detail[160];
 	snprintf(detail, sizeof detail, "stage %d  strain %.4g%%  stress %.4g MPa  broken %.0f",
-	         e->stage + 1, 100 * engine_strain(e), 1e-6 * engine_stress(e),
+	         e->prog.stage + 1, 100 * engine_strain(e), 1e-6 * engine_stress(e),
 	         c[BOND_BROKEN_TENSION] + c[BOND_BROKEN_SHEAR]);
 	progress_update(&L->pg, done, detail);
 }
 
-/* Finish the file with a status; returns the exit code given. A finished
- * run also gets a last snapshot; an interrupted one only its checkpoint. */
-enum { END_FAILED, END_INTERRUPTED, END_FINISHED };
+/* How a run ends: L->how (END_*), L->code (RUN_*) and L->status. */
+enum { END_NONE, END_FAILED, END_INTERRUPTED, END_FINISHED };
 
-static int finish(loop_state *L, const char *status, int code, int how)
+static int end(loop_state *L, int how, int code, const char *status)
+{
+	L->how = how;
+	L->code = code;
+	snprintf(L->status, sizeof L->status, "%s", status);
+	return how;
+}
+
+/* Finish the file with the run's status. A finished run also gets a last
+ * snapshot; an interrupted one only its checkpoint. */
+static void finish(loop_state *L)
 {
 	engine *e = L->e;
-	double t0 = timer_now();
+	phase_start(&e->tm, TM_OUTPUT);
 	int rc = 0;
-	if (how == END_FINISHED)
+	if (L->how == END_FINISHED)
 		rc = snapshot(L);
-	if (how != END_FAILED)
+	if (L->how != END_FAILED)
 		rc = rc || checkpoint(L);
 	rc = rc || output_cracks(e, L->w);
 	progress_end(&L->pg);
@@ -149,126 +160,142 @@ static int finish(loop_state *L, const char *status, int code, int how)
 		run_abort(L->w);
 		fatal(NULL);
 	}
-	if (run_finish(L->w, status))
+	if (run_finish(L->w, L->status))
 		fatal(NULL);
-	snprintf(L->status, sizeof L->status, "%s", status);
-	e->tm[TM_OUTPUT] += timer_now() - t0;
-	return code;
+	phase_stop(&e->tm, TM_OUTPUT);
 }
 
-static int loop(loop_state *L)
+/* A line on stderr about the run's course, after the progress line. */
+static void say(loop_state *L, const char *fmt, ...)
+{
+	if (L->o->quiet)
+		return;
+	progress_end(&L->pg);
+	va_list ap;
+	va_start(ap, fmt);
+	fprintf(stderr, "%s: step %" PRId64 ": ", err_program_name(), L->e->clock.step);
+	vfprintf(stderr, fmt, ap);
+	fputc('\n', stderr);
+	va_end(ap);
+}
+
+/* Everything the loop does after a step: the peak, the history row, the
+ * diagnoses, the stop rules, snapshots, checkpoints and the crack log.
+ * Returns END_NONE to go on, else how the run ends (see end()). */
+static int after_step(loop_state *L, int measure, int64_t rebuilds)
 {
 	engine *e = L->e;
 	const run_opts *o = L->o;
-	const dem_case *cs = e->cs;
 	char why[512], diag[1024];
-	for (;;) {
-		int measure = e->step % cs->history_every == 0;
-		int64_t rebuilds = e->rebuilds;
-		engine_step(e, measure);
-		double t0 = timer_now();
-		boundary_track_peak(e);
-		if (e->psum.bad < (double)e->p.n) {
-			diagnose_nan(e, (size_t)e->psum.bad, diag, sizeof diag);
-			if (measure)
-				history(L);
-			return finish(L, diag, RUN_FAILED, END_FAILED);
-		}
-		if (measure && history(L))
-			fatal(NULL);
-		if (measure && diagnose_runaway(e, diag, sizeof diag))
-			return finish(L, diag, RUN_FAILED, END_FAILED);
-		if (e->rebuilds != rebuilds && diagnose_timestep(e, diag, sizeof diag))
-			return finish(L, diag, RUN_FAILED, END_FAILED);
-		int stop = boundary_check(e, why, sizeof why);
-		if (stop == BOUNDARY_NEXT_STAGE && !o->quiet) {
-			progress_end(&L->pg);
-			fprintf(stderr, "%s: step %" PRId64 ": %s\n", err_program_name(), e->step,
-			        why);
-		}
-		if (stop == BOUNDARY_COMPLETE || stop == BOUNDARY_STOP) {
-			e->tm[TM_OUTPUT] += timer_now() - t0;
-			char status[600] = "complete";
-			if (stop == BOUNDARY_STOP)
-				snprintf(status, sizeof status, "stopped: %s", why);
-			if (!o->quiet) {
-				progress_end(&L->pg);
-				fprintf(stderr, "%s: step %" PRId64 ": %s\n", err_program_name(),
-				        e->step, why);
-			}
-			return finish(L, status, RUN_OK, END_FINISHED);
-		}
-		if (snapshot_due(L) && snapshot(L))
-			fatal(NULL);
-		if (checkpoint_due(L) && checkpoint(L))
-			fatal(NULL);
-		if (e->cracks.n >= 4096 && output_cracks(e, L->w))
-			fatal(NULL);
-		int budget = (o->max_steps && e->step - L->step0 >= o->max_steps) ||
-		             (o->max_wall > 0 && timer_now() - L->wall0 >= o->max_wall);
-		if (interrupted || budget) {
-			e->tm[TM_OUTPUT] += timer_now() - t0;
-			progress_end(&L->pg);
-			if (!o->quiet)
-				fprintf(stderr,
-				        "%s: interrupted at step %" PRId64
-				        " (%s); continue with: solve "
-				        "--restart %s\n",
-				        err_program_name(), e->step,
-				        interrupted ? "signal" : "budget", o->output);
-			return finish(L, "interrupted", RUN_INTERRUPTED, END_INTERRUPTED);
-		}
-		show_progress(L);
-		e->tm[TM_OUTPUT] += timer_now() - t0;
+	boundary_track_peak(e);
+	if (e->sums.particles.bad < (double)e->p.n) {
+		diagnose_nan(e, (size_t)e->sums.particles.bad, diag, sizeof diag);
+		if (measure)
+			history(L);
+		return end(L, END_FAILED, RUN_FAILED, diag);
 	}
+	if (measure && history(L))
+		fatal(NULL);
+	if ((measure && diagnose_runaway(e, diag, sizeof diag)) ||
+	    (e->pairs.rebuilds != rebuilds && diagnose_timestep(e, diag, sizeof diag)))
+		return end(L, END_FAILED, RUN_FAILED, diag);
+	int stop = boundary_check(e, why, sizeof why);
+	if (stop != BOUNDARY_RUNNING)
+		say(L, "%s", why);
+	if (stop == BOUNDARY_COMPLETE)
+		return end(L, END_FINISHED, RUN_OK, "complete");
+	if (stop == BOUNDARY_STOP) {
+		char status[600];
+		snprintf(status, sizeof status, "stopped: %s", why);
+		return end(L, END_FINISHED, RUN_OK, status);
+	}
+	if (snapshot_due(L) && snapshot(L))
+		fatal(NULL);
+	if (checkpoint_due(L) && checkpoint(L))
+		fatal(NULL);
+	if (e->out.cracks.n >= 4096 && output_cracks(e, L->w))
+		fatal(NULL);
+	int budget = (o->max_steps && e->clock.step - L->step0 >= o->max_steps) ||
+	             (o->max_wall > 0 && timer_now() - L->wall0 >= o->max_wall);
+	if (interrupted || budget) {
+		if (!o->quiet) {
+			progress_end(&L->pg);
+			fprintf(stderr,
+			        "%s: interrupted at step %" PRId64
+			        " (%s); continue with: solve --restart %s\n",
+			        err_program_name(), e->clock.step,
+			        interrupted ? "signal" : "budget", o->output);
+		}
+		return end(L, END_INTERRUPTED, RUN_INTERRUPTED, "interrupted");
+	}
+	show_progress(L);
+	return END_NONE;
+}
+
+/* Steps until the run ends; everything besides engine_step is timed as
+ * output. */
+static void loop(loop_state *L)
+{
+	engine *e = L->e;
+	for (int how = END_NONE; how == END_NONE;) {
+		int measure = e->clock.step % e->cs->history_every == 0;
+		int64_t rebuilds = e->pairs.rebuilds;
+		engine_step(e, measure);
+		phase_start(&e->tm, TM_OUTPUT);
+		how = after_step(L, measure, rebuilds);
+		phase_stop(&e->tm, TM_OUTPUT);
+	}
+	finish(L);
 }
 
 static int run_loop(engine *e, run_writer *w, const run_opts *o)
 {
+	phase_start(&e->tm, TM_TOTAL);
 	loop_state L = {.e = e, .w = w, .o = o, .last_snapshot_step = -1};
 	L.wall0 = L.last_checkpoint = L.last_row_wall = timer_now();
-	L.last_row_step = L.step0 = e->step;
+	L.last_row_step = L.step0 = e->clock.step;
 	progress_start(&L.pg, "steps", 0);
 	struct sigaction sa = {.sa_handler = on_interrupt}, old_int, old_term;
 	sigemptyset(&sa.sa_mask);
 	interrupted = 0;
 	sigaction(SIGINT, &sa, &old_int);
 	sigaction(SIGTERM, &sa, &old_term);
-	if (e->step == 0 && snapshot(&L))
+	phase_start(&e->tm, TM_OUTPUT);
+	if (e->clock.step == 0 && snapshot(&L))
 		fatal(NULL);
-	e->tm[TM_OUTPUT] += timer_now() - L.wall0;
-	L.last_snapshot_step = e->step;
-	int code = loop(&L);
+	phase_stop(&e->tm, TM_OUTPUT);
+	L.last_snapshot_step = e->clock.step;
+	loop(&L);
 	sigaction(SIGINT, &old_int, NULL);
 	sigaction(SIGTERM, &old_term, NULL);
-	e->tm[TM_TOTAL] = timer_now() - L.wall0;
-	if (code == RUN_FAILED)
+	phase_stop(&e->tm, TM_TOTAL);
+	if (L.code == RUN_FAILED)
 		fprintf(stderr, "%s: %s\n", err_program_name(), L.status);
 	report_print(e, L.step0, L.status, o);
-	return code;
+	return L.code;
 }
 
 /* The run file, with the assembly embedded. */
 static run_writer *create(engine *e, const dem_assembly *a, const run_opts *o)
 {
-	double t0 = timer_now();
+	phase_start(&e->tm, TM_SETUP);
 	dem_provenance prov;
 	prov_init(&prov, "solve", e->cs->config, 0);
 	run_writer *w = run_create(o->output, &prov, a, history_columns, history_ncolumns);
 	prov_free(&prov);
 	if (!w)
 		fatal(NULL);
-	e->tm[TM_SETUP] += timer_now() - t0;
+	phase_stop(&e->tm, TM_SETUP);
 	return w;
 }
 
 /* Write the bond table, then run. */
 static int bonds_then_loop(engine *e, run_writer *w, const run_opts *o)
 {
-	double t0 = timer_now();
+	phase_start(&e->tm, TM_SETUP);
 	if (output_bonds(e, w))
 		fatal(NULL);
-	e->tm[TM_SETUP] += timer_now() - t0;
+	phase_stop(&e->tm, TM_SETUP);
 	return run_loop(e, w, o);
 }
 
@@ -280,10 +307,8 @@ int run_engine(engine *e, const dem_assembly *a, const run_opts *o)
 int run_case(const dem_case *cs, dem_assembly *a, const run_opts *o)
 {
 	engine e;
-	double t0 = timer_now();
-	if (engine_setup(&e, cs, a, o->quiet))
+	if (engine_setup(&e, cs, a, &(engine_opts){.threads = o->threads, .quiet = o->quiet}))
 		fatal("%s: %s", cs->source, err_msg());
-	e.tm[TM_SETUP] += timer_now() - t0;
 	run_writer *w = create(&e, a, o);
 	assembly_free(a); /* in the run file now; the engine keeps what it needs */
 	int code = bonds_then_loop(&e, w, o);
@@ -323,7 +348,7 @@ static int drop_later_snapshots(run_writer *w, int64_t step)
 	return 0;
 }
 
-int run_restart(const run_opts *o, int threads)
+int run_restart(const run_opts *o)
 {
 	dem_run r;
 	if (run_read(o->restart, &r))
@@ -334,19 +359,19 @@ int run_restart(const run_opts *o, int threads)
 	dem_case cs;
 	if (case_parse_text(r.prov.config, o->restart, &cs))
 		fatal("%s: stored configuration: %s", o->restart, err_msg());
-	if (threads > 0)
-		cs.threads = threads;
 	engine e;
-	double t0 = timer_now();
-	if (engine_setup(&e, &cs, &r.assembly, 1) || checkpoint_read(&e, o->restart))
+	if (engine_setup(&e, &cs, &r.assembly, &(engine_opts){.threads = o->threads, .quiet = 1}))
 		fatal(NULL);
-	run_writer *w = run_reopen(o->restart, e.history_rows, e.crack_rows);
-	if (!w || drop_later_snapshots(w, e.step))
+	phase_start(&e.tm, TM_SETUP);
+	if (checkpoint_read(&e, o->restart))
+		fatal(NULL);
+	run_writer *w = run_reopen(o->restart, e.out.history_rows, e.out.crack_rows);
+	if (!w || drop_later_snapshots(w, e.clock.step))
 		fatal(NULL);
 	if (!o->quiet)
 		fprintf(stderr, "%s: %s: continuing from step %" PRId64 " (t = %g s, stage %d)\n",
-		        err_program_name(), o->restart, e.step, e.t, e.stage + 1);
-	e.tm[TM_SETUP] += timer_now() - t0;
+		        err_program_name(), o->restart, e.clock.step, e.clock.t, e.prog.stage + 1);
+	phase_stop(&e.tm, TM_SETUP);
 	run_free(&r);
 	int code = run_loop(&e, w, o);
 	engine_free(&e);

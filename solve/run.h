@@ -11,6 +11,7 @@ typedef struct {
 	long max_steps;      /* steps in this invocation before interrupting; 0: no limit */
 	double max_wall;     /* s of wall time before interrupting; 0: no limit */
 	const char *report;  /* JSON run report file, or NULL */
+	int threads;         /* OpenMP threads; 0: the case's "threads", else all cores */
 	int quiet;
 } run_opts;
 
@@ -18,11 +19,12 @@ typedef struct {
  * file is kept with its status), 3 interrupted (restartable). */
 enum { RUN_OK = 0, RUN_FAILED = 1, RUN_INTERRUPTED = 3 };
 
-/* Run the case on the assembly, which is freed once the run file holds it. */
+/* Run the case on the assembly. The run takes the assembly over: it frees
+ * it once the run file holds it, to keep one copy in memory. */
 int run_case(const dem_case *cs, dem_assembly *a, const run_opts *o);
 /* The same for an engine already set up from cs and a. */
 struct engine;
 int run_engine(struct engine *e, const dem_assembly *a, const run_opts *o);
-int run_restart(const run_opts *o, int threads);
+int run_restart(const run_opts *o);
 
 #endif

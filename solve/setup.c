@@ -120,9 +120,9 @@ static int load_particles(engine *e, const dem_assembly *a)
 			    o, P->m[i], rho);
 		P->surf[i] = -1;
 		rsum += r;
-		e->r_max = fmax(e->r_max, r);
+		e->frame.r_max = fmax(e->frame.r_max, r);
 	}
-	e->r_mean = rsum / (double)n;
+	e->frame.r_mean = rsum / (double)n;
 	return 0;
 }
 
@@ -135,8 +135,8 @@ static void specimen_frame(engine *e, const dem_assembly *a)
 		ax = a->geom.axis;
 	double l = v3_norm(ax);
 	for (int k = 0; k < 3; k++) {
-		e->axis[k] = l > 0 ? ax[k] / l : k == 2;
-		e->center[k] = a->geom.center[k];
+		e->frame.axis[k] = l > 0 ? ax[k] / l : k == 2;
+		e->frame.center[k] = a->geom.center[k];
 	}
 }
 
@@ -150,7 +150,7 @@ static law_packing packing_of(const engine *e, const dem_assembly *a)
 	             : a->geom.volume > 0         ? vs / a->geom.volume
 	                                          : 0.64;
 	return (law_packing){.porosity = 1 - phi,
-	                     .coordination = 2.0 * (double)e->bonds.n / (double)e->p.n};
+	                     .coordination = 2.0 * (double)e->pairs.bonds.n / (double)e->p.n};
 }
 
 /* Each particle's share of the bound on ω² from its bonds (timestep.c). */
@@ -158,8 +158,8 @@ static void bond_bounds(engine *e)
 {
 	particles *P = &e->p;
 	double xi = e->cs->mat.damping;
-	for (size_t b = 0; b < e->bonds.n; b++) {
-		const bond *bd = &e->bonds.rec[b];
+	for (size_t b = 0; b < e->pairs.bonds.n; b++) {
+		const bond *bd = &e->pairs.bonds.rec[b];
 		int32_t i = bd->i, j = bd->j;
 		law_pair q = {
 		    .ri = P->r[i], .rj = P->r[j], .mi = P->m[i], .mj = P->m[j], .d0 = bd->d0};
@@ -173,31 +173,32 @@ static void bond_bounds(engine *e)
 		double mij = P->m[i] * P->m[j] / (P->m[i] + P->m[j]);
 		xi = fmax(xi, c.cn / (2 * sqrt(mij * c.kn)));
 	}
-	e->xi_max = xi;
+	e->clock.xi_max = xi;
 }
 
 static void geometry_sizes(engine *e, const dem_assembly *a)
 {
-	e->height0 = e->pl.z[1] - e->pl.z[0];
+	e->frame.height0 = e->bc.pl.z[1] - e->bc.pl.z[0];
 	const dem_geometry *g = &a->geom;
 	if (g->volume > 0 && g->height > 0)
-		e->area0 = g->volume / g->height;
+		e->frame.area0 = g->volume / g->height;
 	else
-		e->area0 = DEM_PI * e->surf.radius * e->surf.radius;
+		e->frame.area0 = DEM_PI * e->bc.surf.radius * e->bc.surf.radius;
 }
 
-static void scratch_alloc(engine *e)
+static void scratch_alloc(engine *e, int threads)
 {
 	size_t n = e->p.n;
-	e->nthreads = e->cs->threads > 0 ? e->cs->threads : omp_get_max_threads();
+	threads = threads > 0 ? threads : e->cs->threads;
+	e->nthreads = threads > 0 ? threads : omp_get_max_threads();
 	/* Below about a thousand particles per thread, synchronisation costs more
 	 * than it saves (results do not depend on the team size). */
 	e->team = (int)(n / 1000) < e->nthreads ? (int)(n / 1000) : e->nthreads;
 	e->team = e->team > 0 ? e->team : 1;
-	e->pblock = xcalloc(nblocks(n) + 1, sizeof *e->pblock);
-	e->bblock = xcalloc(nblocks(e->bonds.n) + 1, sizeof *e->bblock);
-	e->thread_cracks = xcalloc((size_t)e->nthreads, sizeof *e->thread_cracks);
-	e->scratch = xmalloc((n + 1) * sizeof *e->scratch);
+	e->scratch.pblock = xcalloc(nblocks(n) + 1, sizeof *e->scratch.pblock);
+	e->scratch.bblock = xcalloc(nblocks(e->pairs.bonds.n) + 1, sizeof *e->scratch.bblock);
+	e->out.thread_cracks = xcalloc((size_t)e->nthreads, sizeof *e->out.thread_cracks);
+	e->scratch.z = xmalloc((n + 1) * sizeof *e->scratch.z);
 }
 
 /* Every stage's platen (or end-layer) speed moves the ends by less than a
@@ -207,27 +208,28 @@ static int check_stages(const engine *e)
 {
 	for (int k = 0; k < e->cs->nstages; k++) {
 		const stage *s = &e->cs->stages[k];
-		if (s->axial == AXIAL_LAYERS && s->thickness >= 0.5 * e->height0)
+		if (s->axial == AXIAL_LAYERS && s->thickness >= 0.5 * e->frame.height0)
 			return err_set(
 			    "loading stage %d: axial.thickness %g m: expected less than half "
 			    "the specimen's height (%g m)",
-			    k + 1, s->thickness, e->height0);
+			    k + 1, s->thickness, e->frame.height0);
 		double v = fabs(boundary_closing_speed(e, s));
 		if (s->axial == AXIAL_NONE || s->axial == AXIAL_HOLD ||
-		    !(v * e->dt >= 0.01 * e->r_mean))
+		    !(v * e->clock.dt >= 0.01 * e->frame.r_mean))
 			continue;
 		return err_set("loading stage %d: the ends would move %g m per time step (%g m/s), "
 		               "more than a hundredth of the mean sphere radius (%g m): expected a "
 		               "quasi-static loading (lower its %s)",
-		               k + 1, v * e->dt, v, e->r_mean,
+		               k + 1, v * e->clock.dt, v, e->frame.r_mean,
 		               s->axial == AXIAL_VELOCITY ? "velocity" : "rate");
 	}
 	return 0;
 }
 
-int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, int quiet)
+int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const engine_opts *o)
 {
 	memset(e, 0, sizeof *e);
+	phase_start(&e->tm, TM_SETUP);
 	e->cs = cs;
 	e->law = cs->mat.law;
 	e->lp = cs->mat.params;
@@ -236,7 +238,7 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, int quiet
 	if (load_particles(e, a))
 		return -1;
 	specimen_frame(e, a);
-	e->skin = cs->skin > 0 ? cs->skin : 0.25 * e->r_mean;
+	e->pairs.skin = cs->skin > 0 ? cs->skin : 0.25 * e->frame.r_mean;
 	if (bonds_form(e))
 		return -1;
 	law_packing pk = packing_of(e, a);
@@ -244,51 +246,53 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, int quiet
 	bonds_init_history(e);
 	bond_bounds(e);
 	platens_init(e);
-	if (cs->surface_bin > 0 && cs->surface_bin < 0.2 * e->r_mean)
+	if (cs->surface_bin > 0 && cs->surface_bin < 0.2 * e->frame.r_mean)
 		return err_set("surface.bin %g m: expected at least a tenth of the mean sphere "
 		               "diameter (%g m)",
-		               cs->surface_bin, 2 * e->r_mean);
+		               cs->surface_bin, 2 * e->frame.r_mean);
 	surface_init(e);
 	gauge_init(e);
 	geometry_sizes(e, a);
-	scratch_alloc(e);
-	e->peak = e->stage_peak = -INFINITY;
+	scratch_alloc(e, o->threads);
+	e->prog.peak = e->prog.stage_peak = -INFINITY;
 	boundary_begin_stage(e);
 	contacts_rebuild(e);
 	size_t worst;
-	e->dt_crit = timestep_critical(e, 1, &worst);
-	if (cs->dt > 0 && cs->dt > e->dt_crit)
+	e->clock.dt_crit = timestep_critical(e, 1, &worst);
+	if (cs->dt > 0 && cs->dt > e->clock.dt_crit)
 		return err_set("time step %g s above the stable limit %g s, set by particle %d "
 		               "(radius %g m, %d bonds): lower time_step.dt or leave it out",
-		               cs->dt, e->dt_crit, e->p.orig[worst], e->p.r[worst],
-		               e->bonds.off[worst + 1] - e->bonds.off[worst]);
-	if (!isfinite(e->dt_crit))
+		               cs->dt, e->clock.dt_crit, e->p.orig[worst], e->p.r[worst],
+		               e->pairs.bonds.off[worst + 1] - e->pairs.bonds.off[worst]);
+	if (!isfinite(e->clock.dt_crit))
 		return err_set("no bond or contact: the critical time step is undefined "
 		               "(give time_step.dt)");
-	if (!(e->dt_crit > 0))
+	if (!(e->clock.dt_crit > 0))
 		return err_set(
 		    "the critical time step is 0 s, set by particle %d (radius %g m, mass "
 		    "%g kg): the material's stiffness is out of range for its density",
 		    e->p.orig[worst], e->p.r[worst], e->p.m[worst]);
-	if (cs->dt > 0 && cs->dt < 1e-6 * e->dt_crit)
+	if (cs->dt > 0 && cs->dt < 1e-6 * e->clock.dt_crit)
 		return err_set("time step %g s below a millionth of the stable limit %g s: the run "
 		               "would take a million times the steps it needs (raise time_step.dt "
 		               "or leave it out)",
-		               cs->dt, e->dt_crit);
-	e->dt = cs->dt > 0 ? cs->dt : cs->safety * e->dt_crit;
+		               cs->dt, e->clock.dt_crit);
+	e->clock.dt = cs->dt > 0 ? cs->dt : cs->safety * e->clock.dt_crit;
 	if (check_stages(e))
 		return -1;
 	for (size_t i = 0; i < e->p.n; i++) {
-		double v = 1e-12 * e->p.r[i] / e->dt;
-		e->ke_noise += 0.5 * e->p.m[i] * v * v;
+		double v = 1e-12 * e->p.r[i] / e->clock.dt;
+		e->energy.noise += 0.5 * e->p.m[i] * v * v;
 	}
-	if (!quiet)
+	phase_stop(&e->tm, TM_SETUP);
+	if (!o->quiet)
 		fprintf(
 		    stderr,
 		    "%s: %zu particles, %zu bonds (%.2f per particle, law %s); time step %.4g s "
 		    "= %.3g x critical %.4g s (Eq. 11-15, set by particle %d)\n",
-		    err_program_name(), e->p.n, e->bonds.n, pk.coordination, e->law->name, e->dt,
-		    e->dt / e->dt_crit, e->dt_crit, e->p.orig[worst]);
+		    err_program_name(), e->p.n, e->pairs.bonds.n, pk.coordination, e->law->name,
+		    e->clock.dt, e->clock.dt / e->clock.dt_crit, e->clock.dt_crit,
+		    e->p.orig[worst]);
 	return 0;
 }
 
@@ -298,17 +302,18 @@ void engine_free(engine *e)
 	free(P->x), free(P->v), free(P->w), free(P->x_ref), free(P->r), free(P->m);
 	free(P->inv_m), free(P->inv_i), free(P->omega2), free(P->flag), free(P->surf);
 	free(P->orig), free(P->pslot[0]), free(P->pslot[1]);
-	pairlist_free(&e->bonds);
-	pairlist_free(&e->contacts);
-	pairlist_free(&e->contacts_old);
-	platens_free(&e->pl);
-	cells_free(&e->grid);
-	surface_free(&e->surf);
-	gauge_free(&e->gg);
-	free(e->pblock), free(e->bblock), free(e->cblock), free(e->scratch);
+	pairlist_free(&e->pairs.bonds);
+	pairlist_free(&e->pairs.contacts);
+	pairlist_free(&e->pairs.contacts_old);
+	platens_free(&e->bc.pl);
+	cells_free(&e->pairs.grid);
+	surface_free(&e->bc.surf);
+	gauge_free(&e->bc.gauge);
+	free(e->scratch.pblock), free(e->scratch.bblock), free(e->scratch.cblock),
+	    free(e->scratch.z);
 	for (int t = 0; t < e->nthreads; t++)
-		free(e->thread_cracks[t].c), free(e->thread_cracks[t].bond);
-	free(e->thread_cracks);
-	free(e->cracks.c), free(e->cracks.bond);
+		free(e->out.thread_cracks[t].c), free(e->out.thread_cracks[t].bond);
+	free(e->out.thread_cracks);
+	free(e->out.cracks.c), free(e->out.cracks.bond);
 	memset(e, 0, sizeof *e);
 }

@@ -18,7 +18,6 @@
 #include <omp.h>
 #include <string.h>
 
-#include "lib/timer.h"
 #include "lib/vec3.h"
 #include "solve/blocks.h"
 #include "solve/bonds.h"
@@ -50,10 +49,11 @@ static inline void gather(const pairlist *L, int32_t i, double ri, double F[3], 
 /* The unit radial vector of particle i (from the axis), 0 on the axis. */
 static inline void radial_unit(const engine *e, const double *x, double u[3])
 {
-	double d[3] = {x[0] - e->center[0], x[1] - e->center[1], x[2] - e->center[2]};
-	double z = d[0] * e->axis[0] + d[1] * e->axis[1] + d[2] * e->axis[2];
+	double d[3] = {x[0] - e->frame.center[0], x[1] - e->frame.center[1],
+	               x[2] - e->frame.center[2]};
+	double z = d[0] * e->frame.axis[0] + d[1] * e->frame.axis[1] + d[2] * e->frame.axis[2];
 	for (int k = 0; k < 3; k++)
-		u[k] = d[k] - z * e->axis[k];
+		u[k] = d[k] - z * e->frame.axis[k];
 	double l = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
 	double inv = l > 0 ? 1 / l : 0;
 	for (int k = 0; k < 3; k++)
@@ -69,12 +69,12 @@ static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 {
 	particles *P = &e->p;
 	double F[3] = {0, 0, 0}, T[3] = {0, 0, 0};
-	double ri = P->r[i], dt = e->dt;
-	gather(&e->bonds, i, ri, F, T);
-	gather(&e->contacts, i, ri, F, T);
+	double ri = P->r[i], dt = e->clock.dt;
+	gather(&e->pairs.bonds, i, ri, F, T);
+	gather(&e->pairs.contacts, i, ri, F, T);
 	for (int k = 0; k < 2; k++)
 		if (P->pslot[k][i] >= 0)
-			platen_force(e, k, i, &e->pl.pc[k][P->pslot[k][i]], F, T, s, measure);
+			platen_force(e, k, i, &e->bc.pl.pc[k][P->pslot[k][i]], F, T, s, measure);
 	double *x = P->x + 3 * i, *v = P->v + 3 * i, *w = P->w + 3 * i;
 	double vn[3], wn[3], ext[3] = {0, 0, 0}, er[3] = {0, 0, 0};
 	int32_t slot = P->surf[i];
@@ -82,10 +82,10 @@ static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 	if (slot >= 0 || (flag & PF_CONSTRAINED))
 		radial_unit(e, x, er);
 	if (slot >= 0) {
-		if (e->ld.lateral == LATERAL_PRESSURE) {
-			double area =
-			    e->ld.method == PRESSURE_PAPER ? DEM_PI * ri * ri : e->surf.area[slot];
-			double mag = e->ld.pressure * area;
+		if (e->bc.loads.lateral == LATERAL_PRESSURE) {
+			double area = e->bc.loads.method == PRESSURE_PAPER ? DEM_PI * ri * ri
+			                                                   : e->bc.surf.area[slot];
+			double mag = e->bc.loads.pressure * area;
 			for (int k = 0; k < 3; k++) {
 				ext[k] = -mag * er[k];
 				F[k] += ext[k];
@@ -97,7 +97,7 @@ static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 						s->love[3 * p + q] += ri * er[p] * ext[q];
 		}
 	}
-	if (e->ld.layers && (flag & (PF_LAYER_BOTTOM | PF_LAYER_TOP))) {
+	if (e->bc.loads.layers && (flag & (PF_LAYER_BOTTOM | PF_LAYER_TOP))) {
 		/* Prescribed motion: the reaction R is what keeps it (Yade-style
 		 * loading). R does the work; the axial load measured is the force of
 		 * the bonds and contacts, -F, without the inertia of the layer, which
@@ -105,11 +105,11 @@ static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 		int k = flag & PF_LAYER_TOP ? 1 : 0;
 		double m = P->m[i], R[3];
 		for (int c = 0; c < 3; c++) {
-			vn[c] = e->ld.layer_vel[k] * e->axis[c];
+			vn[c] = e->bc.loads.layer_vel[k] * e->frame.axis[c];
 			wn[c] = 0;
 			R[c] = m * (vn[c] - v[c]) / dt - F[c];
 		}
-		double fa = -dot3(F, e->axis);
+		double fa = -dot3(F, e->frame.axis);
 		s->layer[k] += k == 0 ? fa : -fa;
 		s->e_work +=
 		    0.5 * dt *
@@ -165,7 +165,7 @@ static void particles_integrate(engine *e, int measure)
 	size_t n = e->p.n, nb = nblocks(n);
 #pragma omp for schedule(static) nowait
 	for (size_t k = 0; k < nb; k++) {
-		particle_sums *s = &e->pblock[k];
+		particle_sums *s = &e->scratch.pblock[k];
 		memset(s, 0, sizeof *s);
 		s->bad = (double)n;
 		size_t hi = block_end(k, n);
@@ -178,11 +178,11 @@ static void particles_integrate(engine *e, int measure)
 static void particles_sum(engine *e)
 {
 	size_t n = e->p.n, nb = nblocks(n);
-	particle_sums *t = &e->psum;
+	particle_sums *t = &e->sums.particles;
 	memset(t, 0, sizeof *t);
 	t->bad = (double)n;
 	for (size_t k = 0; k < nb; k++) {
-		const particle_sums *s = &e->pblock[k];
+		const particle_sums *s = &e->scratch.pblock[k];
 		t->ke += s->ke;
 		t->ke_new += s->ke_new;
 		t->e_damped += s->e_damped;
@@ -207,66 +207,72 @@ static void particles_sum(engine *e)
 
 void engine_step(engine *e, int measure)
 {
-	double t0 = timer_now();
-	if (e->rebuild)
+	phase_start(&e->tm, TM_NEIGHBOUR);
+	if (e->pairs.rebuild)
 		contacts_rebuild(e);
-	if (e->step - e->surf.updated >= e->cs->surface_every && e->surf.ntheta)
+	if (e->clock.step - e->bc.surf.updated >= e->cs->surface_every && e->bc.surf.ntheta)
 		surface_update(e);
 	boundary_prepare(e);
 	if (measure)
-		e->meas = (measurement){.t = e->t,
-		                        .step = e->step,
-		                        .stage = e->stage,
-		                        .strain_radial = gauge_strain(e),
-		                        .lateral_area = e->surf.lateral_area,
-		                        .volume = e->surf.volume};
-	double t1 = timer_now(), t2 = t1, t3 = t1;
-	e->tm[TM_NEIGHBOUR] += t1 - t0;
+		e->sums.meas = (measurement){.t = e->clock.t,
+		                             .step = e->clock.step,
+		                             .stage = e->prog.stage,
+		                             .strain_radial = gauge_strain(e),
+		                             .lateral_area = e->bc.surf.lateral_area,
+		                             .volume = e->bc.surf.volume};
+	phase_stop(&e->tm, TM_NEIGHBOUR);
+	phase_start(&e->tm, TM_BONDS);
 #pragma omp parallel num_threads(e->team)
 	{
 		bonds_forces(e, measure);
 #pragma omp master
-		t2 = timer_now();
+		{
+			phase_stop(&e->tm, TM_BONDS);
+			phase_start(&e->tm, TM_CONTACTS);
+		}
 		contacts_forces(e, measure);
 #pragma omp master
-		t3 = timer_now();
+		{
+			phase_stop(&e->tm, TM_CONTACTS);
+			phase_start(&e->tm, TM_INTEGRATE);
+		}
 		particles_integrate(e, measure);
 	}
-	pair_sums_total(e->bblock, nblocks(e->bonds.n), &e->bsum);
-	pair_sums_total(e->cblock, nblocks(e->contacts.n), &e->csum);
+	pair_sums_total(e->scratch.bblock, nblocks(e->pairs.bonds.n), &e->sums.bonds);
+	pair_sums_total(e->scratch.cblock, nblocks(e->pairs.contacts.n), &e->sums.contacts);
 	particles_sum(e);
-	double t4 = timer_now();
-	e->tm[TM_BONDS] += t2 - t1;
-	e->tm[TM_CONTACTS] += t3 - t2;
-	e->tm[TM_INTEGRATE] += t4 - t3;
+	phase_stop(&e->tm, TM_INTEGRATE);
+	phase_start(&e->tm, TM_NEIGHBOUR);
 
-	const particle_sums *ps = &e->psum;
-	e->ke = ps->ke;
-	e->e_damped += ps->e_damped + e->bsum.e_viscous + e->csum.e_viscous + ps->platen_viscous;
-	e->e_friction += e->bsum.e_friction + e->csum.e_friction + ps->platen_friction;
-	e->e_fracture += e->bsum.e_damage;
-	e->e_work += ps->e_work;
+	const particle_sums *ps = &e->sums.particles;
+	e->energy.kinetic = ps->ke;
+	e->energy.damped += ps->e_damped + e->sums.bonds.e_viscous + e->sums.contacts.e_viscous +
+	                    ps->platen_viscous;
+	e->energy.friction +=
+	    e->sums.bonds.e_friction + e->sums.contacts.e_friction + ps->platen_friction;
+	e->energy.fracture += e->sums.bonds.e_damage;
+	e->energy.work += ps->e_work;
 	for (int k = 0; k < 2; k++) {
-		e->pl.load[k] = e->ld.layers ? ps->layer[k] : ps->load[k];
-		e->pl.ksum[k] = ps->ksum[k];
+		e->bc.pl.load[k] = e->bc.loads.layers ? ps->layer[k] : ps->load[k];
+		e->bc.pl.ksum[k] = ps->ksum[k];
 	}
 	if (measure) {
-		measurement *m = &e->meas;
+		measurement *m = &e->sums.meas;
 		m->strain = engine_strain(e);
 		for (int k = 0; k < 2; k++)
 			m->stress[k] = engine_stress_of(e, k);
-		int held = e->ld.lateral == LATERAL_CONSTRAINT;
+		int held = e->bc.loads.lateral == LATERAL_CONSTRAINT;
 		m->lateral_force = held ? ps->constraint_force : ps->lateral_force;
-		m->pressure = !held                 ? e->ld.pressure
+		m->pressure = !held                 ? e->bc.loads.pressure
 		              : m->lateral_area > 0 ? ps->constraint_force / m->lateral_area
 		                                    : 0;
 	}
 	bonds_collect_cracks(e);
 	boundary_finish_step(e);
-	e->t += e->dt;
-	e->step++;
+	e->clock.t += e->clock.dt;
+	e->clock.step++;
 	double drift = sqrt(ps->disp2);
-	if (2 * drift >= e->skin || drift + platens_drift(e) >= e->skin)
-		e->rebuild = 1;
-	e->tm[TM_NEIGHBOUR] += timer_now() - t4;
+	if (2 * drift >= e->pairs.skin || drift + platens_drift(e) >= e->pairs.skin)
+		e->pairs.rebuild = 1;
+	phase_stop(&e->tm, TM_NEIGHBOUR);
 }

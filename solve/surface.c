@@ -36,10 +36,11 @@
 /* Axial coordinate and radial vector of a position. */
 static double frame(const engine *e, const double *x, double rho[3])
 {
-	double d[3] = {x[0] - e->center[0], x[1] - e->center[1], x[2] - e->center[2]};
-	double z = v3_dot(d, e->axis);
+	double d[3] = {x[0] - e->frame.center[0], x[1] - e->frame.center[1],
+	               x[2] - e->frame.center[2]};
+	double z = v3_dot(d, e->frame.axis);
 	for (int k = 0; k < 3; k++)
-		rho[k] = d[k] - z * e->axis[k];
+		rho[k] = d[k] - z * e->frame.axis[k];
 	return z;
 }
 
@@ -58,7 +59,7 @@ static void extent(const engine *e, double *lo, double *hi)
 void surface_init(engine *e)
 {
 	particles *P = &e->p;
-	surface *S = &e->surf;
+	surface *S = &e->bc.surf;
 	/* θ origin: the outermost particle (lowest index among equals). */
 	double best = -1, lo, hi;
 	for (size_t i = 0; i < P->n; i++) {
@@ -67,22 +68,22 @@ void surface_init(engine *e)
 		double out = v3_norm(rho) + P->r[i];
 		if (out > best) {
 			best = out;
-			v3_copy(e->e1, rho);
+			v3_copy(e->frame.e1, rho);
 		}
 	}
-	double l = v3_norm(e->e1);
+	double l = v3_norm(e->frame.e1);
 	if (l == 0) {
 		/* A column on the axis: any direction normal to it. */
 		double t[3] = {1, 0, 0};
-		if (fabs(e->axis[0]) > 0.9)
+		if (fabs(e->frame.axis[0]) > 0.9)
 			t[0] = 0, t[1] = 1;
-		v3_reject(e->e1, t, e->axis);
-		l = v3_norm(e->e1);
+		v3_reject(e->frame.e1, t, e->frame.axis);
+		l = v3_norm(e->frame.e1);
 	}
-	v3_scale(e->e1, e->e1, 1 / l);
-	v3_cross(e->e2, e->axis, e->e1);
+	v3_scale(e->frame.e1, e->frame.e1, 1 / l);
+	v3_cross(e->frame.e2, e->frame.axis, e->frame.e1);
 	extent(e, &lo, &hi);
-	S->bin = e->cs->surface_bin > 0 ? e->cs->surface_bin : 2 * e->r_mean;
+	S->bin = e->cs->surface_bin > 0 ? e->cs->surface_bin : 2 * e->frame.r_mean;
 	S->ntheta = (int)fmax(8, round(2 * DEM_PI * best / S->bin));
 	S->nz = (int)fmax(1, round((hi - lo) / S->bin));
 	size_t nbins = (size_t)S->ntheta * S->nz;
@@ -103,9 +104,9 @@ typedef struct {
 
 static bin_range sphere_bins(const engine *e, size_t i, double lo, double dz, double dth)
 {
-	const surface *S = &e->surf;
+	const surface *S = &e->bc.surf;
 	double rho[3], z = frame(e, e->p.x + 3 * i, rho), r = e->p.r[i];
-	double len = v3_norm(rho), th = atan2(v3_dot(rho, e->e2), v3_dot(rho, e->e1));
+	double len = v3_norm(rho), th = atan2(v3_dot(rho, e->frame.e2), v3_dot(rho, e->frame.e1));
 	double half = len > r ? asin(r / len) : DEM_PI;
 	bin_range b = {(int)floor((th - half + DEM_PI) / dth),
 	               (int)floor((th + half + DEM_PI) / dth), (int)floor((z - r - lo) / dz),
@@ -125,7 +126,7 @@ static size_t bin_index(const surface *S, int iz, int t)
 void surface_update(engine *e)
 {
 	particles *P = &e->p;
-	surface *S = &e->surf;
+	surface *S = &e->bc.surf;
 	size_t nbins = (size_t)S->ntheta * S->nz;
 	double lo, hi;
 	extent(e, &lo, &hi);
@@ -177,7 +178,7 @@ void surface_update(engine *e)
 		used++;
 	}
 	S->radius = used ? rsum / used : 0;
-	S->updated = e->step;
+	S->updated = e->clock.step;
 }
 
 void surface_free(surface *s) { free(s->idx), free(s->area), free(s->best), free(s->best_rho); }
@@ -185,10 +186,10 @@ void surface_free(surface *s) { free(s->idx), free(s->area), free(s->best), free
 void gauge_init(engine *e)
 {
 	const particles *P = &e->p;
-	gauge *G = &e->gg;
+	gauge *G = &e->bc.gauge;
 	double lo, hi;
 	extent(e, &lo, &hi);
-	double mid = 0.5 * (lo + hi), half = fmax(0.05 * (hi - lo), e->r_mean);
+	double mid = 0.5 * (lo + hi), half = fmax(0.05 * (hi - lo), e->frame.r_mean);
 	double outer = -INFINITY;
 	for (size_t i = 0; i < P->n; i++) {
 		double rho[3], z = frame(e, P->x + 3 * i, rho);
@@ -202,7 +203,7 @@ void gauge_init(engine *e)
 	for (size_t i = 0; i < P->n; i++) {
 		double rho[3], z = frame(e, P->x + 3 * i, rho);
 		double r = v3_norm(rho);
-		if (fabs(z - mid) <= half && r + P->r[i] >= outer - 2 * e->r_mean) {
+		if (fabs(z - mid) <= half && r + P->r[i] >= outer - 2 * e->frame.r_mean) {
 			G->idx[G->n] = (int32_t)i;
 			G->rho0[G->n++] = r;
 			rsum += r + P->r[i];
@@ -213,7 +214,7 @@ void gauge_init(engine *e)
 
 double gauge_strain(const engine *e)
 {
-	const gauge *G = &e->gg;
+	const gauge *G = &e->bc.gauge;
 	if (!G->n || G->radius0 <= 0)
 		return 0;
 	double sum = 0;

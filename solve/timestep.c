@@ -35,7 +35,7 @@ double damping_factor(double xi) { return sqrt(1 + xi * xi) - xi; }
 static double contact_omega2(const engine *e, size_t i)
 {
 	const particles *P = &e->p;
-	const pairlist *C = &e->contacts;
+	const pairlist *C = &e->pairs.contacts;
 	double sum = 0;
 	for (int32_t q = C->off[i]; q < C->off[i + 1]; q++) {
 		const bond *c = &C->rec[C->ref[q] >> 1];
@@ -54,7 +54,7 @@ static double contact_omega2(const engine *e, size_t i)
 		int32_t s = P->pslot[k][i];
 		if (s < 0)
 			continue;
-		const platen_contact *pc = &e->pl.pc[k][s];
+		const platen_contact *pc = &e->bc.pl.pc[k][s];
 		double lin = P->inv_m[i];
 		double normal = pc->kn * lin,
 		       shear = pc->ks * (lin + P->r[i] * P->r[i] * P->inv_i[i]);
@@ -77,5 +77,5 @@ double timestep_critical(const engine *e, int with_contacts, size_t *worst)
 	}
 	if (top <= 0)
 		return INFINITY;
-	return 2 / sqrt(top) * damping_factor(e->xi_max);
+	return 2 / sqrt(top) * damping_factor(e->clock.xi_max);
 }

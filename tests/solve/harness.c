@@ -17,7 +17,7 @@ void harness_case(dem_case *c, const char *json)
 
 void harness_engine(engine *e, const dem_case *c, const dem_assembly *a)
 {
-	if (engine_setup(e, c, a, 1)) {
+	if (engine_setup(e, c, a, &(engine_opts){.quiet = 1})) {
 		fprintf(stderr, "harness: setup: %s\n", err_msg());
 		exit(1);
 	}

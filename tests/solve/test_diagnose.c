@@ -41,7 +41,7 @@ static void refused_at_setup(const char *density, const char *E, const char *rat
 	dem_case c;
 	harness_case(&c, json);
 	engine e;
-	CHECK(engine_setup(&e, &c, &a, 1) == -1);
+	CHECK(engine_setup(&e, &c, &a, &(engine_opts){.quiet = 1}) == -1);
 	CHECK_CONTAINS(err_msg(), expect);
 	engine_free(&e);
 	case_free(&c);
@@ -73,7 +73,7 @@ int main(void)
 	dem_case c;
 	harness_case(&c, json);
 	engine e;
-	CHECK(engine_setup(&e, &c, &a, 1) == -1);
+	CHECK(engine_setup(&e, &c, &a, &(engine_opts){.quiet = 1}) == -1);
 	CHECK_CONTAINS(err_msg(), "time step 0.001 s above the stable limit ");
 	CHECK_CONTAINS(err_msg(), " s, set by particle ");
 	CHECK_CONTAINS(err_msg(), "lower time_step.dt or leave it out");
@@ -99,7 +99,7 @@ int main(void)
 	                 "\"tensile_strength\": 1e12, \"shear_strength\": 1e12}, \"loading\": "
 	                 "[{\"axial\": {\"mode\": \"layers\", \"rate\": 1, \"thickness\": 1}}], "
 	                 "\"stop\": {\"steps\": 300}}");
-	CHECK(engine_setup(&e, &c, &a, 1) == -1);
+	CHECK(engine_setup(&e, &c, &a, &(engine_opts){.quiet = 1}) == -1);
 	CHECK_CONTAINS(err_msg(), "loading stage 1: axial.thickness 1 m: expected less than half "
 	                          "the specimen's height");
 	engine_free(&e);
@@ -113,7 +113,7 @@ int main(void)
 	size_t k = 17;
 	e.p.v[3 * k] = NAN;
 	int32_t bad = e.p.orig[k];
-	int nb = e.bonds.off[k + 1] - e.bonds.off[k];
+	int nb = e.pairs.bonds.off[k + 1] - e.pairs.bonds.off[k];
 	int code;
 	char *status = run_to_end(&e, "nan.h5", &code);
 	CHECK(code == RUN_FAILED);
@@ -131,7 +131,7 @@ int main(void)
 	/* Twice the stable time step: the energy of a vibrating specimen runs
 	 * away. */
 	harness_engine(&e, &c, &a);
-	e.dt = 2 * e.dt_crit;
+	e.clock.dt = 2 * e.clock.dt_crit;
 	for (size_t i = 0; i < e.p.n; i++)
 		e.p.v[3 * i] = 1e-3 * (double)(i % 3);
 	status = run_to_end(&e, "runaway.h5", &code);
@@ -146,8 +146,8 @@ int main(void)
 	snprintf(json, sizeof json, case_text, "", "strain_rate");
 	harness_case(&c, json);
 	harness_engine(&e, &c, &a);
-	e.dt = 1.05 * e.dt_crit;
-	e.rebuild = 1;
+	e.clock.dt = 1.05 * e.clock.dt_crit;
+	e.pairs.rebuild = 1;
 	status = run_to_end(&e, "rebuild.h5", &code);
 	CHECK(code == RUN_FAILED);
 	CHECK_CONTAINS(status, "stopped: time step ");

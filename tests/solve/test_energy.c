@@ -50,19 +50,19 @@ int main(void)
 		if (!measure)
 			continue;
 		history_row(&e, 0, row);
-		double total = e.ke + engine_elastic(&e);
+		double total = e.energy.kinetic + engine_elastic(&e);
 		if (s == 0)
 			e0 = total;
 		worst = fmax(worst, fabs(total - e0) / e0);
 		if (s == 50000)
-			fprintf(stderr, "step %ld: kinetic %.6g J, elastic %.6g J\n", s, e.ke,
-			        engine_elastic(&e));
+			fprintf(stderr, "step %ld: kinetic %.6g J, elastic %.6g J\n", s,
+			        e.energy.kinetic, engine_elastic(&e));
 	}
 	fprintf(stderr,
 	        "%zu particles, %zu bonds, dt %.3g s: largest relative change of the total "
 	        "energy %.3g\n",
-	        e.p.n, e.bonds.n, e.dt, worst);
-	CHECK(e.bonds.n > 3 * e.p.n);
+	        e.p.n, e.pairs.bonds.n, e.clock.dt, worst);
+	CHECK(e.pairs.bonds.n > 3 * e.p.n);
 	CHECK(e0 > 0);
 	CHECK(worst < 1e-6);
 	/* The energy really moved between kinetic and elastic. */

@@ -85,7 +85,7 @@ static void vibrate(const double dir[3], double ri, double rj, double gap)
 		harness_case(&c, json);
 		engine e;
 		harness_engine(&e, &c, &a);
-		CHECK(e.bonds.n == 1);
+		CHECK(e.pairs.bonds.n == 1);
 		/* Internal order may swap the two spheres: work with their roles. */
 		int I = e.p.orig[0] == 0 ? 0 : 1, J = 1 - I;
 		double v0 = 1e-4, c0 = 1e-10;
@@ -102,13 +102,14 @@ static void vibrate(const double dir[3], double ri, double rj, double gap)
 		}
 		int steps = (int)(12 * (mode == 0 ? tn : ts) / dt);
 		double *q = malloc((size_t)steps * sizeof *q);
-		int sgn = e.bonds.rec[0].i == I ? 1 : -1;
+		int sgn = e.pairs.bonds.rec[0].i == I ? 1 : -1;
 		for (int st = 0; st < steps; st++) {
 			engine_step(&e, 0);
 			const double *xi = e.p.x + 3 * I, *xj = e.p.x + 3 * J;
 			double dx[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
 			/* normal: the bond's stretch; shear: its shear displacement along s */
-			q[st] = mode == 0 ? v3_norm(dx) - d : sgn * v3_dot(e.bonds.rec[0].t, s);
+			q[st] =
+			    mode == 0 ? v3_norm(dx) - d : sgn * v3_dot(e.pairs.bonds.rec[0].t, s);
 		}
 		double got = period(q, steps, dt), want = mode == 0 ? tn : ts;
 		fprintf(stderr, "%s mode: period %.9g s, 2 pi sqrt(m/K) = %.9g s (rel %.2e)\n",
