@@ -65,83 +65,95 @@ static inline double dot3(const double a[3], const double b[3])
 	return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
+/* The confining pressure on surface particle i (slot in the surface list)
+ * as a radial inward force ext, added to F. */
+static inline void confine(const engine *e, int32_t i, int32_t slot, const double er[3],
+                           double F[3], double ext[3], particle_sums *s, int measure)
+{
+	const loads *ld = &e->bc.loads;
+	double ri = e->p.r[i];
+	double area = ld->method == PRESSURE_PAPER ? DEM_PI * ri * ri : e->bc.surf.area[slot];
+	double mag = ld->pressure * area;
+	for (int k = 0; k < 3; k++) {
+		ext[k] = -mag * er[k];
+		F[k] += ext[k];
+	}
+	s->lateral_force += mag;
+	if (measure)
+		for (int p = 0; p < 3; p++)
+			for (int q = 0; q < 3; q++)
+				s->love[3 * p + q] += ri * er[p] * ext[q];
+}
+
+/* Prescribed motion of an end-layer particle (layer k): the reaction R is
+ * what keeps it (Yade-style loading). R does the work; the axial load
+ * measured is the force of the bonds and contacts, -F, without the inertia
+ * of the layer, which would otherwise show the jump to the loading speed as
+ * a spike. */
+static inline void move_layer(const engine *e, int32_t i, int k, const double F[3], double vn[3],
+                              double wn[3], particle_sums *s)
+{
+	const double *v = e->p.v + 3 * i, *axis = e->frame.axis;
+	double m = e->p.m[i], dt = e->clock.dt, R[3];
+	for (int c = 0; c < 3; c++) {
+		vn[c] = e->bc.loads.layer_vel[k] * axis[c];
+		wn[c] = 0;
+		R[c] = m * (vn[c] - v[c]) / dt - F[c];
+	}
+	double fa = -dot3(F, axis);
+	s->layer[k] += k == 0 ? fa : -fa;
+	s->e_work +=
+	    0.5 * dt * (R[0] * (v[0] + vn[0]) + R[1] * (v[1] + vn[1]) + R[2] * (v[2] + vn[2]));
+}
+
+/* Central differences with the global non-viscous damping (Eq. 5-6, 8-9,
+ * 39-40) for a free particle. */
+static inline void move_free(const engine *e, int32_t i, const double F[3], const double T[3],
+                             double vn[3], double wn[3], particle_sums *s)
+{
+	const particles *P = &e->p;
+	const double *v = P->v + 3 * i, *w = P->w + 3 * i;
+	double dt = e->clock.dt;
+	double fa = sqrt(dot3(F, F)), ta = sqrt(dot3(T, T));
+	double va = sqrt(dot3(v, v)), wa = sqrt(dot3(w, w));
+	double cf = va > 0 ? -e->cs->alpha_t * fa / va : 0;
+	double ct = wa > 0 ? -e->cs->alpha_r * ta / wa : 0;
+	double im = P->inv_m[i], ii = P->inv_i[i];
+	double fd[3], td[3];
+	for (int c = 0; c < 3; c++) {
+		fd[c] = cf * v[c];
+		td[c] = ct * w[c];
+		vn[c] = v[c] + dt * im * (F[c] + fd[c]);
+		wn[c] = w[c] + dt * ii * (T[c] + td[c]);
+	}
+	s->e_damped -= 0.5 * dt * (dot3(fd, v) + dot3(fd, vn) + dot3(td, w) + dot3(td, wn));
+}
+
+/* Radial displacement held: remove the radial velocity; the force that
+ * does so is the constraint's reaction. */
+static inline void hold_radially(const engine *e, int32_t i, const double er[3], double vn[3],
+                                 particle_sums *s, int measure)
+{
+	double vr = dot3(vn, er);
+	for (int c = 0; c < 3; c++)
+		vn[c] -= vr * er[c];
+	double R = -e->p.m[i] * vr / e->clock.dt;
+	s->constraint_force -= R;
+	if (measure)
+		for (int p = 0; p < 3; p++)
+			for (int q = 0; q < 3; q++)
+				s->love[3 * p + q] += e->p.r[i] * er[p] * R * er[q];
+}
+
+/* The step's energies of particle i (shadow kinetic, Eq. 7's work of the
+ * external force ext), then its new velocities and position, its drift
+ * since the last rebuild, and whether its state is still finite. */
+static inline void advance(engine *e, int32_t i, const double vn[3], const double wn[3],
+                           const double ext[3], particle_sums *s)
 {
 	particles *P = &e->p;
-	double F[3] = {0, 0, 0}, T[3] = {0, 0, 0};
-	double ri = P->r[i], dt = e->clock.dt;
-	gather(&e->pairs.bonds, i, ri, F, T);
-	gather(&e->pairs.contacts, i, ri, F, T);
-	for (int k = 0; k < 2; k++)
-		if (P->pslot[k][i] >= 0)
-			platen_force(e, k, i, &e->bc.pl.pc[k][P->pslot[k][i]], F, T, s, measure);
 	double *x = P->x + 3 * i, *v = P->v + 3 * i, *w = P->w + 3 * i;
-	double vn[3], wn[3], ext[3] = {0, 0, 0}, er[3] = {0, 0, 0};
-	int32_t slot = P->surf[i];
-	uint8_t flag = P->flag[i];
-	if (slot >= 0 || (flag & PF_CONSTRAINED))
-		radial_unit(e, x, er);
-	if (slot >= 0) {
-		if (e->bc.loads.lateral == LATERAL_PRESSURE) {
-			double area = e->bc.loads.method == PRESSURE_PAPER ? DEM_PI * ri * ri
-			                                                   : e->bc.surf.area[slot];
-			double mag = e->bc.loads.pressure * area;
-			for (int k = 0; k < 3; k++) {
-				ext[k] = -mag * er[k];
-				F[k] += ext[k];
-			}
-			s->lateral_force += mag;
-			if (measure)
-				for (int p = 0; p < 3; p++)
-					for (int q = 0; q < 3; q++)
-						s->love[3 * p + q] += ri * er[p] * ext[q];
-		}
-	}
-	if (e->bc.loads.layers && (flag & (PF_LAYER_BOTTOM | PF_LAYER_TOP))) {
-		/* Prescribed motion: the reaction R is what keeps it (Yade-style
-		 * loading). R does the work; the axial load measured is the force of
-		 * the bonds and contacts, -F, without the inertia of the layer, which
-		 * would otherwise show the jump to the loading speed as a spike. */
-		int k = flag & PF_LAYER_TOP ? 1 : 0;
-		double m = P->m[i], R[3];
-		for (int c = 0; c < 3; c++) {
-			vn[c] = e->bc.loads.layer_vel[k] * e->frame.axis[c];
-			wn[c] = 0;
-			R[c] = m * (vn[c] - v[c]) / dt - F[c];
-		}
-		double fa = -dot3(F, e->frame.axis);
-		s->layer[k] += k == 0 ? fa : -fa;
-		s->e_work +=
-		    0.5 * dt *
-		    (R[0] * (v[0] + vn[0]) + R[1] * (v[1] + vn[1]) + R[2] * (v[2] + vn[2]));
-	} else {
-		double fa = sqrt(dot3(F, F)), ta = sqrt(dot3(T, T));
-		double va = sqrt(dot3(v, v)), wa = sqrt(dot3(w, w));
-		double cf = va > 0 ? -e->cs->alpha_t * fa / va : 0;
-		double ct = wa > 0 ? -e->cs->alpha_r * ta / wa : 0;
-		double im = P->inv_m[i], ii = P->inv_i[i];
-		double fd[3], td[3];
-		for (int c = 0; c < 3; c++) {
-			fd[c] = cf * v[c];
-			td[c] = ct * w[c];
-			vn[c] = v[c] + dt * im * (F[c] + fd[c]);
-			wn[c] = w[c] + dt * ii * (T[c] + td[c]);
-		}
-		s->e_damped -= 0.5 * dt * (dot3(fd, v) + dot3(fd, vn) + dot3(td, w) + dot3(td, wn));
-		if (flag & PF_CONSTRAINED) {
-			/* Radial displacement held: remove the radial velocity; the force
-			 * that does so is the constraint's reaction. */
-			double vr = dot3(vn, er);
-			for (int c = 0; c < 3; c++)
-				vn[c] -= vr * er[c];
-			double R = -P->m[i] * vr / dt;
-			s->constraint_force -= R;
-			if (measure)
-				for (int p = 0; p < 3; p++)
-					for (int q = 0; q < 3; q++)
-						s->love[3 * p + q] += ri * er[p] * R * er[q];
-		}
-	}
+	double ri = P->r[i], dt = e->clock.dt;
 	double mass = P->m[i], inertia = 0.4 * mass * ri * ri;
 	s->ke += 0.5 * (mass * dot3(v, vn) + inertia * dot3(w, wn));
 	s->ke_new += 0.5 * (mass * dot3(vn, vn) + inertia * dot3(wn, wn));
@@ -158,6 +170,32 @@ static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 	s->disp2 = d2 > s->disp2 ? d2 : s->disp2;
 	if (!(isfinite(x[0] + x[1] + x[2] + w[0] + w[1] + w[2])) && s->bad > i)
 		s->bad = i;
+}
+
+static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
+{
+	particles *P = &e->p;
+	double F[3] = {0, 0, 0}, T[3] = {0, 0, 0};
+	gather(&e->pairs.bonds, i, P->r[i], F, T);
+	gather(&e->pairs.contacts, i, P->r[i], F, T);
+	for (int k = 0; k < 2; k++)
+		if (P->pslot[k][i] >= 0)
+			platen_force(e, k, i, &e->bc.pl.pc[k][P->pslot[k][i]], F, T, s, measure);
+	double vn[3], wn[3], ext[3] = {0, 0, 0}, er[3] = {0, 0, 0};
+	int32_t slot = P->surf[i];
+	uint8_t flag = P->flag[i];
+	if (slot >= 0 || (flag & PF_CONSTRAINED))
+		radial_unit(e, P->x + 3 * i, er);
+	if (slot >= 0 && e->bc.loads.lateral == LATERAL_PRESSURE)
+		confine(e, i, slot, er, F, ext, s, measure);
+	if (e->bc.loads.layers && (flag & (PF_LAYER_BOTTOM | PF_LAYER_TOP))) {
+		move_layer(e, i, flag & PF_LAYER_TOP ? 1 : 0, F, vn, wn, s);
+	} else {
+		move_free(e, i, F, T, vn, wn, s);
+		if (flag & PF_CONSTRAINED)
+			hold_radially(e, i, er, vn, s, measure);
+	}
+	advance(e, i, vn, wn, ext, s);
 }
 
 static void particles_integrate(engine *e, int measure)
