@@ -148,6 +148,17 @@ static int reached(double value, double start, double target)
 	return start <= target ? value >= target : value <= target;
 }
 
+/* The clock's parts of a rule at time t and step s, counted from t0, s0. */
+static int time_reached(const stop_rule *r, double t, double t0)
+{
+	return !isnan(r->time) && t - t0 >= r->time * (1 - 1e-12);
+}
+
+static int steps_done(const stop_rule *r, int64_t s, int64_t s0)
+{
+	return r->steps && s - s0 >= r->steps;
+}
+
 /* Checks one rule; the elapsed time and steps are counted from t0, s0. */
 static int rule_holds(const engine *e, const stop_rule *r, double strain0, double stress0,
                       double peak, int armed, double t0, int64_t s0, char *why, size_t n)
@@ -161,15 +172,36 @@ static int rule_holds(const engine *e, const stop_rule *r, double strain0, doubl
 		return snprintf(why, n, "axial stress fell below %g of the peak %g Pa",
 		                r->stress_drop, peak),
 		       1;
-	if (!isnan(r->time) && e->clock.t - t0 >= r->time * (1 - 1e-12))
+	if (time_reached(r, e->clock.t, t0))
 		return snprintf(why, n, "time %g s reached", r->time), 1;
-	if (r->steps && e->clock.step - s0 >= r->steps)
+	if (steps_done(r, e->clock.step, s0))
 		return snprintf(why, n, "%ld steps done", r->steps), 1;
 	return 0;
 }
 
+int boundary_clock_ends_run(const engine *e)
+{
+	double t = e->clock.t + e->clock.dt;
+	int64_t s = e->clock.step + 1;
+	const stop_rule *stop = &e->cs->stop, *until = &current(e)->until;
+	int last = e->prog.stage + 1 == e->cs->nstages;
+	return time_reached(stop, t, 0) || steps_done(stop, s, 0) ||
+	       (last && (time_reached(until, t, e->prog.stage_t) ||
+	                 steps_done(until, s, e->prog.stage_step)));
+}
+
+void boundary_arm_drop(engine *e, double elastic)
+{
+	double crossing = e->frame.height0 * e->clock.dt_crit / (2 * e->frame.r_mean);
+	if (!e->prog.drop_armed && e->clock.t >= crossing && elastic > 0 &&
+	    e->energy.kinetic < 0.01 * elastic)
+		e->prog.drop_armed = 1;
+}
+
 void boundary_track_peak(engine *e)
 {
+	if (!e->prog.drop_armed)
+		return;
 	double stress = engine_stress(e);
 	e->prog.peak = stress > e->prog.peak ? stress : e->prog.peak;
 	e->prog.stage_peak = stress > e->prog.stage_peak ? stress : e->prog.stage_peak;

@@ -23,7 +23,18 @@ void boundary_begin_stage(engine *e);
 void boundary_prepare(engine *e);
 /* Platen velocities for the next step, then the move. */
 void boundary_finish_step(engine *e);
+/* The stress-drop rule arms once the loading is quasi-static, the kinetic
+ * energy below 1 % of the elastic energy (of the last measuring step), and
+ * no sooner than the loading could have crossed the specimen: its height
+ * at the speed 2 r_mean / dt_crit, which bounds the speed of a wave through
+ * the bonds. Before that the kinetic energy lags behind the elastic energy
+ * only because nothing has had time to move. */
+void boundary_arm_drop(engine *e, double elastic);
+/* The peaks the stress-drop rules compare with: the largest axial stress
+ * since the rule armed, so a spike at the start of loading is no peak. */
 void boundary_track_peak(engine *e);
+/* Whether the step about to run ends the run by a time or step count. */
+int boundary_clock_ends_run(const engine *e);
 /* Closing speed of the ends (m/s) in stage s: its velocity, or its rate
  * times the initial height (for servos, their speed limit). */
 double boundary_closing_speed(const engine *e, const stage *s);

@@ -70,10 +70,43 @@ void diagnose_nan(const engine *e, size_t i, char *msg, size_t n)
 /* Bound on ω of particle i times the time step (2 is the stability limit). */
 static double omega_dt(const engine *e, size_t i) { return sqrt(e->p.omega2[i]) * e->clock.dt; }
 
+/* The fastest particle at t + dt/2 and its squared speed. */
+static size_t fastest(const particles *P, double *v2)
+{
+	size_t worst = 0;
+	*v2 = -1;
+	for (size_t i = 0; i < P->n; i++) {
+		const double *v = P->v + 3 * i;
+		double k = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+		if (k > *v2) {
+			*v2 = k;
+			worst = i;
+		}
+	}
+	return worst;
+}
+
+int diagnose_speed(const engine *e, char *msg, size_t n)
+{
+	double dt = e->clock.dt, limit = 0.5 * e->pairs.skin;
+	if (!(sqrt(e->sums.particles.v2max) * dt > limit))
+		return 0;
+	double v2;
+	size_t i = fastest(&e->p, &v2);
+	snprintf(msg, n,
+	         "stopped: particle %d moved %g m in one step (speed %g m/s) at step %" PRId64
+	         ", more than half the Verlet skin (%g m): contacts would pass unseen; the "
+	         "integration is unstable, or the particle was thrown out by an overlap "
+	         "(bonds give omega dt = %.3g, stable below 2)",
+	         e->p.orig[i], sqrt(v2) * dt, sqrt(v2), e->clock.step - 1, e->pairs.skin,
+	         omega_dt(e, i));
+	return 1;
+}
+
 int diagnose_runaway(const engine *e, char *msg, size_t n)
 {
 	/* The shadow energy v- · v+ turns negative in a diverging oscillation:
-	 * use the kinetic energy at t + dt/2. Below ke_noise, motion is the
+	 * use the kinetic energy at t + dt/2. Below energy.noise, motion is the
 	 * rounding of forces that balance (a specimen held at rest), which a
 	 * divergence leaves behind within a few dozen steps. */
 	double input = e->energy.initial + fabs(e->energy.work), ke = e->sums.particles.ke_new;

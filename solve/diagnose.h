@@ -12,6 +12,9 @@ void diagnose_nan(const engine *e, size_t i, char *msg, size_t n);
 /* 1 (and a message) if the kinetic energy exceeds twice the energy the run
  * has received (initial plus external work): the integration is unstable. */
 int diagnose_runaway(const engine *e, char *msg, size_t n);
+/* 1 (and a message) if a particle moved more than half the Verlet skin in
+ * the last step: contacts could pass unseen between neighbour rebuilds. */
+int diagnose_speed(const engine *e, char *msg, size_t n);
 /* 1 (and a message) if the time step exceeds the critical bound with the
  * current contacts (checked after each neighbour rebuild). */
 int diagnose_timestep(const engine *e, char *msg, size_t n);

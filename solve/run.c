@@ -36,7 +36,9 @@ typedef struct {
 	double wall0, last_checkpoint, last_row_wall;
 	int64_t last_row_step, step0, last_snapshot_step;
 	progress pg;
-	int how, code; /* END_*, RUN_* once the run ends */
+	int how, code;    /* END_*, RUN_* once the run ends */
+	char ending[600]; /* the status of a stop rule that held after a step that
+	                     wrote no history row: the run ends after one more */
 	char status[1100];
 } loop_state;
 
@@ -103,8 +105,7 @@ static int history(loop_state *L)
 	double elastic = engine_elastic(e);
 	if (e->sums.meas.step == 0)
 		e->energy.initial = e->energy.kinetic + elastic;
-	if (!e->prog.drop_armed && elastic > 0 && e->energy.kinetic < 0.01 * elastic)
-		e->prog.drop_armed = 1;
+	boundary_arm_drop(e, elastic);
 	return run_history(L->w, row);
 }
 
@@ -196,18 +197,24 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 	}
 	if (measure && history(L))
 		fatal(NULL);
-	if ((measure && diagnose_runaway(e, diag, sizeof diag)) ||
+	/* Before any stop rule: a runaway can look like a stress drop. */
+	if (diagnose_speed(e, diag, sizeof diag) || diagnose_runaway(e, diag, sizeof diag) ||
 	    (e->pairs.rebuilds != rebuilds && diagnose_timestep(e, diag, sizeof diag)))
 		return end(L, END_FAILED, RUN_FAILED, diag);
+	if (L->ending[0])
+		return end(L, END_FINISHED, RUN_OK, L->ending);
 	int stop = boundary_check(e, why, sizeof why);
 	if (stop != BOUNDARY_RUNNING)
 		say(L, "%s", why);
-	if (stop == BOUNDARY_COMPLETE)
-		return end(L, END_FINISHED, RUN_OK, "complete");
-	if (stop == BOUNDARY_STOP) {
-		char status[600];
-		snprintf(status, sizeof status, "stopped: %s", why);
-		return end(L, END_FINISHED, RUN_OK, status);
+	if (stop == BOUNDARY_COMPLETE || stop == BOUNDARY_STOP) {
+		char status[sizeof L->ending] = "complete";
+		if (stop == BOUNDARY_STOP)
+			snprintf(status, sizeof status, "stopped: %s", why);
+		if (measure)
+			return end(L, END_FINISHED, RUN_OK, status);
+		/* So that the history ends at the stop: one more step, measured. */
+		snprintf(L->ending, sizeof L->ending, "%s", status);
+		return END_NONE;
 	}
 	if (snapshot_due(L) && snapshot(L))
 		fatal(NULL);
@@ -238,7 +245,8 @@ static void loop(loop_state *L)
 {
 	engine *e = L->e;
 	for (int how = END_NONE; how == END_NONE;) {
-		int measure = e->clock.step % e->cs->history_every == 0;
+		int measure = L->ending[0] || e->clock.step % e->cs->history_every == 0 ||
+		              boundary_clock_ends_run(e);
 		int64_t rebuilds = e->pairs.rebuilds;
 		engine_step(e, measure);
 		phase_start(&e->tm, TM_OUTPUT);

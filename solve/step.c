@@ -156,7 +156,9 @@ static inline void advance(engine *e, int32_t i, const double vn[3], const doubl
 	double ri = P->r[i], dt = e->clock.dt;
 	double mass = P->m[i], inertia = 0.4 * mass * ri * ri;
 	s->ke += 0.5 * (mass * dot3(v, vn) + inertia * dot3(w, wn));
-	s->ke_new += 0.5 * (mass * dot3(vn, vn) + inertia * dot3(wn, wn));
+	double vv = dot3(vn, vn);
+	s->ke_new += 0.5 * (mass * vv + inertia * dot3(wn, wn));
+	s->v2max = vv > s->v2max ? vv : s->v2max;
 	s->e_work += 0.5 * dt *
 	             (ext[0] * (v[0] + vn[0]) + ext[1] * (v[1] + vn[1]) + ext[2] * (v[2] + vn[2]));
 	double d2 = 0;
@@ -239,6 +241,7 @@ static void particles_sum(engine *e)
 		for (int c = 0; c < 9; c++)
 			t->love[c] += s->love[c];
 		t->disp2 = s->disp2 > t->disp2 ? s->disp2 : t->disp2;
+		t->v2max = s->v2max > t->v2max ? s->v2max : t->v2max;
 		t->bad = s->bad < t->bad ? s->bad : t->bad;
 	}
 }

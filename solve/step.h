@@ -16,6 +16,7 @@ typedef struct {
 	double platen_friction, platen_viscous, platen_elastic;
 	double love[9];
 	double disp2; /* max squared displacement since the rebuild */
+	double v2max; /* m^2/s^2, largest squared speed at t + dt/2 */
 	double bad;   /* lowest particle index with a non-finite state, or n */
 } particle_sums;
 
