@@ -16,6 +16,8 @@ enum { MAX_PENDING = 16, NAME_MAX_LEN = 4096 };
 static char pending[MAX_PENDING][NAME_MAX_LEN];
 static volatile sig_atomic_t pending_used[MAX_PENDING];
 
+const int afile_signals[AFILE_NSIGNALS] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGUSR2, SIGXCPU};
+
 static void remove_pending(void)
 {
 	for (int k = 0; k < MAX_PENDING; k++)
@@ -39,9 +41,8 @@ void afile_install_signal_cleanup(void)
 		return;
 	installed = 1;
 	atexit(remove_pending);
-	signal(SIGINT, on_signal);
-	signal(SIGTERM, on_signal);
-	signal(SIGHUP, on_signal);
+	for (int k = 0; k < AFILE_NSIGNALS; k++)
+		signal(afile_signals[k], on_signal);
 }
 
 int afile_begin(const char *final, char *tmp, size_t n)

@@ -1,8 +1,8 @@
 /* Atomic output files: a program writes "<name>.tmp", and only when the file
  * is complete does afile_commit() fsync it and rename it to its final name.
  * A crashed or interrupted program therefore never leaves a file that looks
- * finished. Temporary names are registered so that SIGINT/SIGTERM and a
- * fatal() exit remove them. */
+ * finished. Temporary names are registered so that the signals that end a
+ * program (afile_signals) and a fatal() exit remove them. */
 #ifndef DEM_AFILE_H
 #define DEM_AFILE_H
 
@@ -16,8 +16,13 @@ int afile_begin(const char *final, char *tmp, size_t n);
 int afile_commit(const char *tmp, const char *final);
 /* Remove tmp and unregister it. */
 void afile_discard(const char *tmp);
-/* Install the SIGINT/SIGTERM/SIGHUP handlers that remove pending temporaries
- * and then die of the same signal. Programs call this once at start. */
+/* The signals that ask a program to end: Ctrl-C, a closed terminal or a
+ * dropped ssh connection, and those batch schedulers send before their
+ * kill (SIGTERM; SIGUSR1, SIGUSR2 or SIGXCPU where configured). */
+enum { AFILE_NSIGNALS = 6 };
+extern const int afile_signals[AFILE_NSIGNALS];
+/* Install handlers for afile_signals that remove pending temporaries and
+ * then die of the same signal. Programs call this once at start. */
 void afile_install_signal_cleanup(void);
 
 #endif

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lib/afile.h"
 #include "lib/err.h"
 #include "lib/h5.h"
 #include "lib/progress.h"
@@ -263,19 +264,21 @@ static int run_loop(engine *e, run_writer *w, const run_opts *o)
 	L.wall0 = L.last_checkpoint = L.last_row_wall = timer_now();
 	L.last_row_step = L.step0 = e->clock.step;
 	progress_start(&L.pg, "steps", 0);
-	struct sigaction sa = {.sa_handler = on_interrupt}, old_int, old_term;
+	/* Any signal that asks the program to end finishes the step and
+	 * checkpoints: a closed terminal, or a batch scheduler before its kill. */
+	struct sigaction sa = {.sa_handler = on_interrupt}, old[AFILE_NSIGNALS];
 	sigemptyset(&sa.sa_mask);
 	interrupted = 0;
-	sigaction(SIGINT, &sa, &old_int);
-	sigaction(SIGTERM, &sa, &old_term);
+	for (int k = 0; k < AFILE_NSIGNALS; k++)
+		sigaction(afile_signals[k], &sa, &old[k]);
 	phase_start(&e->tm, TM_OUTPUT);
 	if (e->clock.step == 0 && snapshot(&L))
 		fatal(NULL);
 	phase_stop(&e->tm, TM_OUTPUT);
 	L.last_snapshot_step = e->clock.step;
 	loop(&L);
-	sigaction(SIGINT, &old_int, NULL);
-	sigaction(SIGTERM, &old_term, NULL);
+	for (int k = 0; k < AFILE_NSIGNALS; k++)
+		sigaction(afile_signals[k], &old[k], NULL);
 	phase_stop(&e->tm, TM_TOTAL);
 	if (L.code == RUN_FAILED)
 		fprintf(stderr, "%s: %s\n", err_program_name(), L.status);
