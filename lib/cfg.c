@@ -1,5 +1,6 @@
 #include <cjson/cJSON.h>
 #include <errno.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -230,11 +231,14 @@ static int check_integer(const cfg *c, const char *key, cJSON *v, long *out, lon
 {
 	char got[80];
 	describe(got, sizeof got, v);
-	if (!cJSON_IsNumber(v) || v->valuedouble != (double)(long)v->valuedouble ||
-	    (long)v->valuedouble < lo || (long)v->valuedouble > hi)
+	/* The range first, as doubles: converting a double beyond a long to a
+	 * long is undefined. (double)hi + 1 is exact where it matters (it is
+	 * 2^63 for LONG_MAX). */
+	double d = cJSON_IsNumber(v) ? v->valuedouble : NAN;
+	if (!(d >= (double)lo && d < (double)hi + 1 && d == floor(d)) || (long)d > hi)
 		return cfg_error(c, key, "value %s: expected an integer in [%ld, %ld]", got, lo,
 		                 hi);
-	*out = (long)v->valuedouble;
+	*out = (long)d;
 	return 0;
 }
 

@@ -52,6 +52,21 @@ static inline void v3_copy(double out[3], const double a[3])
 	out[1] = a[1];
 	out[2] = a[2];
 }
+/* out = a / |a|, also for a vector whose squared length would overflow or
+ * underflow (it is scaled by its largest component first); -1 for a zero or
+ * non-finite vector. */
+static inline int v3_unit(double out[3], const double a[3])
+{
+	double m = fmax(fabs(a[0]), fmax(fabs(a[1]), fabs(a[2])));
+	if (!(m > 0 && m <= 1.7976931348623157e308))
+		return -1;
+	double s = m > 1e-100 && m < 1e100 ? 1 : m;
+	double b[3] = {a[0] / s, a[1] / s, a[2] / s};
+	double l = v3_norm(b);
+	for (int k = 0; k < 3; k++)
+		out[k] = b[k] / l;
+	return 0;
+}
 /* Remove from a its component along the unit vector n. */
 static inline void v3_reject(double out[3], const double a[3], const double n[3])
 {

@@ -6,6 +6,7 @@
 
 #include "lib/err.h"
 #include "lib/path.h"
+#include "lib/vec3.h"
 #include "solve/case.h"
 
 static const char *const axial_words[] = {"none",   "hold",  "velocity", "strain_rate",
@@ -163,9 +164,11 @@ static int parse_numerics(cfg *c, dem_case *k)
 			return -1;
 		memcpy(k->axis, a, sizeof k->axis);
 		free(a);
-		if (k->axis[0] == 0 && k->axis[1] == 0 && k->axis[2] == 0)
+		double unit[3];
+		if (v3_unit(unit, k->axis))
 			return cfg_error(c, "axis",
-			                 "value [0, 0, 0]: expected a non-zero direction");
+			                 "value [%g, %g, %g]: expected a non-zero direction",
+			                 k->axis[0], k->axis[1], k->axis[2]);
 	}
 	return 0;
 }

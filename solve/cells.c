@@ -5,6 +5,18 @@
 #include "lib/err.h"
 #include "solve/cells.h"
 
+double cells_size(const double lo[3], const double hi[3], size_t n, double h)
+{
+	for (;;) {
+		double total = 1;
+		for (int k = 0; k < 3; k++)
+			total *= floor((hi[k] - lo[k]) / h) + 1;
+		if (total <= (double)(8 * n + 27))
+			return h;
+		h *= 1.5;
+	}
+}
+
 void cells_build(cells *g, const double *x, size_t n, double h)
 {
 	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -16,17 +28,11 @@ void cells_build(cells *g, const double *x, size_t n, double h)
 	if (n == 0)
 		for (int k = 0; k < 3; k++)
 			lo[k] = hi[k] = 0;
-	/* Coarsen a sparse grid so that cells never outnumber 8 n + 27. */
-	for (;;) {
-		size_t total = 1;
-		for (int k = 0; k < 3; k++) {
-			g->dim[k] = (int)floor((hi[k] - lo[k]) / h) + 1;
-			total *= (size_t)g->dim[k];
-		}
-		if (total <= 8 * n + 27)
-			break;
-		h *= 1.5;
-	}
+	/* Coarsen a sparse grid so that cells never outnumber 8 n + 27 (counted
+	 * as doubles: a far particle would overflow an integer count). */
+	h = fmax(h, cells_size(lo, hi, n, h));
+	for (int k = 0; k < 3; k++)
+		g->dim[k] = (int)floor((hi[k] - lo[k]) / h) + 1;
 	memcpy(g->lo, lo, sizeof lo);
 	g->h = h;
 	g->ncell = (size_t)g->dim[0] * g->dim[1] * g->dim[2];

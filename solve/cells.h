@@ -18,6 +18,9 @@ typedef struct {
 	int32_t *fill;  /* [ncell] scratch */
 } cells;
 
+/* The cell size the grid uses for n particles in the box [lo, hi]: h, or
+ * larger where cells of h would outnumber 8 n + 27 (a sparse assembly). */
+double cells_size(const double lo[3], const double hi[3], size_t n, double h);
 /* Sort the n particles at x into cells of size at least h (buffers are
  * reused between calls). */
 void cells_build(cells *g, const double *x, size_t n, double h);

@@ -18,6 +18,7 @@
 #include "solve/contacts.h"
 #include "solve/engine.h"
 #include "solve/pairlist.h"
+#include "solve/plan.h"
 #include "solve/platens.h"
 #include "solve/surface.h"
 #include "solve/timestep.h"
@@ -126,6 +127,39 @@ static int load_particles(engine *e, const dem_assembly *a)
 	return 0;
 }
 
+/* The particles fill a compact specimen: cells of a contact's reach would
+ * not be fewer than the particles by far (one particle thrown far away
+ * would make every neighbour search scan the whole specimen). */
+static int check_compact(const engine *e)
+{
+	const particles *P = &e->p;
+	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+	double mid[3] = {0, 0, 0};
+	for (size_t i = 0; i < P->n; i++)
+		for (int k = 0; k < 3; k++) {
+			lo[k] = fmin(lo[k], P->x[3 * i + k]);
+			hi[k] = fmax(hi[k], P->x[3 * i + k]);
+			mid[k] += P->x[3 * i + k] / (double)P->n;
+		}
+	double reach = 2 * e->frame.r_max + e->pairs.skin;
+	if (cells_size(lo, hi, P->n, reach) == reach)
+		return 0;
+	size_t far = 0;
+	double d2max = -1;
+	for (size_t i = 0; i < P->n; i++) {
+		double d[3];
+		v3_sub(d, P->x + 3 * i, mid);
+		if (v3_dot(d, d) > d2max)
+			d2max = v3_dot(d, d), far = i;
+	}
+	const double *x = P->x + 3 * far;
+	return err_set("the particles span %g x %g x %g m, too sparse for spheres of radius up "
+	               "to %g m: particle %d at (%g, %g, %g) m lies %g m from their centre: "
+	               "expected a packed specimen (check the assembly's positions)",
+	               hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], e->frame.r_max, P->orig[far],
+	               x[0], x[1], x[2], sqrt(d2max));
+}
+
 /* The loading axis (the case's, else the geometry's, else z) through the
  * geometry's centre. */
 static void specimen_frame(engine *e, const dem_assembly *a)
@@ -133,11 +167,9 @@ static void specimen_frame(engine *e, const dem_assembly *a)
 	const double *ax = e->cs->axis;
 	if (ax[0] == 0 && ax[1] == 0 && ax[2] == 0)
 		ax = a->geom.axis;
-	double l = v3_norm(ax);
-	for (int k = 0; k < 3; k++) {
-		e->frame.axis[k] = l > 0 ? ax[k] / l : k == 2;
-		e->frame.center[k] = a->geom.center[k];
-	}
+	if (v3_unit(e->frame.axis, ax))
+		v3_copy(e->frame.axis, (double[3]){0, 0, 1});
+	v3_copy(e->frame.center, a->geom.center);
 }
 
 /* Porosity and bonds per sphere for the law's setup (Eq. 22). */
@@ -201,31 +233,6 @@ static void scratch_alloc(engine *e, int threads)
 	e->scratch.z = xmalloc((n + 1) * sizeof *e->scratch.z);
 }
 
-/* Every stage's platen (or end-layer) speed moves the ends by less than a
- * hundredth of the mean radius per step: faster is an impact, not a test.
- * End layers are thinner than half the specimen. */
-static int check_stages(const engine *e)
-{
-	for (int k = 0; k < e->cs->nstages; k++) {
-		const stage *s = &e->cs->stages[k];
-		if (s->axial == AXIAL_LAYERS && s->thickness >= 0.5 * e->frame.height0)
-			return err_set(
-			    "loading stage %d: axial.thickness %g m: expected less than half "
-			    "the specimen's height (%g m)",
-			    k + 1, s->thickness, e->frame.height0);
-		double v = fabs(boundary_closing_speed(e, s));
-		if (s->axial == AXIAL_NONE || s->axial == AXIAL_HOLD ||
-		    !(v * e->clock.dt >= 0.01 * e->frame.r_mean))
-			continue;
-		return err_set("loading stage %d: the ends would move %g m per time step (%g m/s), "
-		               "more than a hundredth of the mean sphere radius (%g m): expected a "
-		               "quasi-static loading (lower its %s)",
-		               k + 1, v * e->clock.dt, v, e->frame.r_mean,
-		               s->axial == AXIAL_VELOCITY ? "velocity" : "rate");
-	}
-	return 0;
-}
-
 int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const engine_opts *o)
 {
 	memset(e, 0, sizeof *e);
@@ -239,6 +246,8 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 		return -1;
 	specimen_frame(e, a);
 	e->pairs.skin = cs->skin > 0 ? cs->skin : 0.25 * e->frame.r_mean;
+	if (check_compact(e))
+		return -1;
 	if (bonds_form(e))
 		return -1;
 	law_packing pk = packing_of(e, a);
@@ -278,7 +287,7 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 		               "or leave it out)",
 		               cs->dt, e->clock.dt_crit);
 	e->clock.dt = cs->dt > 0 ? cs->dt : cs->safety * e->clock.dt_crit;
-	if (check_stages(e))
+	if (plan_check(e, o->quiet))
 		return -1;
 	for (size_t i = 0; i < e->p.n; i++) {
 		double v = 1e-12 * e->p.r[i] / e->clock.dt;

@@ -1,5 +1,7 @@
 /* JSON configuration: typed lookups, ranges, messages naming file/key/value,
  * unknown-key detection. */
+#include <limits.h>
+
 #include "lib/cfg.h"
 #include "lib/err.h"
 #include "tests/check.h"
@@ -98,6 +100,21 @@ static void test_errors(void)
 	CHECK_CONTAINS(err_msg(), "key 'lcs[1]': value \"x\"");
 	CHECK(cfg_integer(c, "n", &n, 0, 10) == -1);
 	CHECK_CONTAINS(err_msg(), "value 2.5: expected an integer");
+	cfg_free(c);
+
+	/* Integers beyond a long are refused before any conversion (which would
+	 * be undefined), up to the very edge of the range. */
+	c = cfg_parse(
+	    "{\"huge\": 1e300, \"edge\": 9223372036854775807, \"ok\": 4611686018427387904, "
+	    "\"neg\": -1e300}",
+	    "t.json");
+	CHECK(cfg_integer(c, "huge", &n, 0, 10) == -1);
+	CHECK_CONTAINS(err_msg(), "key 'huge': value 1e+300: expected an integer in [0, 10]");
+	CHECK(cfg_integer(c, "edge", &n, 0, LONG_MAX) == -1);
+	CHECK_CONTAINS(err_msg(), "key 'edge': value ");
+	CHECK(cfg_integer(c, "ok", &n, 0, LONG_MAX) == 0 && n == 4611686018427387904L);
+	CHECK(cfg_integer(c, "neg", &n, LONG_MIN, 0) == -1);
+	CHECK_CONTAINS(err_msg(), "key 'neg': value -1e+300: expected an integer");
 	cfg_free(c);
 }
 

@@ -93,6 +93,51 @@ int main(void)
 	                 "diameter (0.002 m)");
 
 	refused_at_setup("2500", "1e10", "1e6", "", "loading stage 1: the ends would move ");
+	refused_at_setup("2500", "1e10", "1e6", "", "(lower its axial.rate)");
+	/* A density that makes the time step absurd is blamed, not the rate. */
+	refused_at_setup("1e300", "1e10", "1", "",
+	                 "it comes from the material's density (1e+300 kg/m^3) and stiffness)");
+	/* Ends that stand still, with only a strain rule to end the run. */
+	harness_case(&c, "{\"assembly\": \"-\", \"material\": {\"name\": \"m\", \"law\": "
+	                 "\"linear\", \"density\": 2500, \"E\": 1e10, \"nu\": 0.2, "
+	                 "\"tensile_strength\": 1e12, \"shear_strength\": 1e12}, \"loading\": "
+	                 "[{\"axial\": {\"mode\": \"strain_rate\", \"rate\": 0}}], "
+	                 "\"stop\": {\"strain_axial\": 0.01}}");
+	CHECK(engine_setup(&e, &c, &a, &(engine_opts){.quiet = 1}) == -1);
+	CHECK_CONTAINS(err_msg(), "loading stage 1: axial.rate 0: the ends stand still, so its "
+	                          "strain rule can never hold");
+	engine_free(&e);
+	case_free(&c);
+
+	/* A particle a thousand kilometres away: refused, not a search grid of
+	 * 1e19 bytes. */
+	snprintf(json, sizeof json, case_text, "", "strain_rate");
+	harness_case(&c, json);
+	double x0 = a.x[3 * 7];
+	a.x[3 * 7] = 1e6;
+	CHECK(engine_setup(&e, &c, &a, &(engine_opts){.quiet = 1}) == -1);
+	CHECK_CONTAINS(err_msg(), "too sparse for spheres of radius up to ");
+	CHECK_CONTAINS(err_msg(), ": particle 7 at (1e+06, ");
+	CHECK_CONTAINS(err_msg(), "expected a packed specimen (check the assembly's positions)");
+	a.x[3 * 7] = x0;
+	engine_free(&e);
+	case_free(&c);
+
+	/* Axes whose squared length overflows or underflows are still axes. */
+	const char *axes[] = {"[1e200, 0, 0]", "[1e-320, 0, 0]", "[-3e-310, 0, 0]"};
+	for (int k = 0; k < 3; k++) {
+		snprintf(json, sizeof json, case_text, "", "strain_rate");
+		char with_axis[2200];
+		snprintf(with_axis, sizeof with_axis, "%.*s, \"axis\": %s}", (int)strlen(json) - 1,
+		         json, axes[k]);
+		harness_case(&c, with_axis);
+		harness_engine(&e, &c, &a);
+		fprintf(stderr, "axis %s: (%g, %g, %g)\n", axes[k], e.frame.axis[0],
+		        e.frame.axis[1], e.frame.axis[2]);
+		CHECK(fabs(e.frame.axis[0]) == 1 && e.frame.axis[1] == 0 && e.frame.axis[2] == 0);
+		engine_free(&e);
+		case_free(&c);
+	}
 	/* End layers thicker than half the specimen. */
 	harness_case(&c, "{\"assembly\": \"-\", \"material\": {\"name\": \"m\", \"law\": "
 	                 "\"linear\", \"density\": 2500, \"E\": 1e10, \"nu\": 0.2, "

@@ -1,0 +1,31 @@
+#!/bin/sh
+# Settings that would make a run hopelessly long are announced at setup with
+# the estimate and the key that causes them; the run still starts.
+# Usage: warnings.sh BIN_DIR TMP_DIR
+set -eu
+bin=$1 tmp=$2
+rm -rf "$tmp"
+mkdir -p "$tmp"
+"$bin/lattice-assembly" --spheres 300 "$tmp/a.h5"
+run() { # NAME RATE SKIN_KEY: solve one step, keep stderr
+	cat > "$tmp/$1.json" <<JSON
+{"assembly": "$tmp/a.h5",
+ "material": {"name": "m", "law": "linear", "density": 2500, "E": 1e10, "nu": 0.2,
+              "tensile_strength": 1e12, "shear_strength": 1e12},
+ $3 "loading": [{"axial": {"mode": "strain_rate", "rate": $2}}],
+ "stop": {"strain_axial": 0.01}}
+JSON
+	code=0
+	"$bin/solve" --max-steps 1 --output "$tmp/$1.h5" "$tmp/$1.json" 2> "$tmp/$1.err" || code=$?
+	cat "$tmp/$1.err"
+	[ $code -eq 3 ] || { echo "$1: exit $code, expected 3" >&2; exit 1; }
+}
+run slow 1e-9 ""
+grep -q "warning: the loading program needs about [0-9.]*e+1[0-9] steps of .* (stage 1 the longest: check its until rule and axial.rate, or the stop rule)" "$tmp/slow.err"
+run skin 1 '"neighbours": {"skin": 1e-12},'
+grep -q "warning: neighbours.skin 1e-12 m: the ends move .* m per step, so the neighbour lists are rebuilt every few steps" "$tmp/skin.err"
+run fine 1 ""
+if grep "warning:" "$tmp/fine.err"; then
+	echo "fine: a warning for settings that are fine" >&2
+	exit 1
+fi
