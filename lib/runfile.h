@@ -10,13 +10,9 @@
 #include <stdint.h>
 
 #include "lib/assembly.h"
+#include "lib/states.h"
 
 #define RUN_FORMAT "dem-run"
-
-/* State of a bond, as stored in snapshots. */
-enum { BOND_INTACT = 0, BOND_DAMAGED = 1, BOND_BROKEN_TENSION = 2, BOND_BROKEN_SHEAR = 3 };
-/* Failure mode of a crack. */
-enum { CRACK_TENSION = 1, CRACK_SHEAR = 2 };
 
 /* A column of the history table. */
 typedef struct {

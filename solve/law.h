@@ -40,7 +40,7 @@ typedef struct {
 	double d0;           /* m, reference length: centre distance at bonding */
 	double t[3];         /* tangential history (law-defined), contact plane */
 	double h[LAW_NHIST]; /* law-defined history: damage, plastic state, ... */
-	uint8_t state;       /* BOND_INTACT, BOND_DAMAGED, BOND_BROKEN_* (lib/runfile.h) */
+	uint8_t state;       /* BOND_INTACT, BOND_DAMAGED, BOND_BROKEN_* (lib/states.h) */
 } bond;
 
 /* The two spheres of a bond. */

@@ -28,7 +28,7 @@
 
 #include "lib/cfg.h"
 #include "lib/err.h"
-#include "lib/runfile.h"
+#include "lib/states.h"
 #include "lib/vec3.h"
 #include "solve/law.h"
 #include "solve/laws/cundall.h"

@@ -49,7 +49,7 @@
 #include <math.h>
 
 #include "lib/cfg.h"
-#include "lib/runfile.h"
+#include "lib/states.h"
 #include "lib/vec3.h"
 #include "solve/law.h"
 

@@ -43,6 +43,7 @@
  * bonded, the elastic shear displacement of the frictional contact after.
  * A bond is BOND_DAMAGED once d_n or d_s > 0.
  */
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "solve/laws/local.h"

@@ -9,7 +9,7 @@
 
 #include "lib/cfg.h"
 #include "lib/err.h"
-#include "lib/runfile.h"
+#include "lib/states.h"
 #include "solve/law.h"
 #include "tests/check.h"
 
