@@ -72,7 +72,8 @@ static void test_constants(void)
 	CHECK_REL(L->bond_range(P), 1.10, 1e-15); /* beta = 0.10 (Sect. 4.2) */
 
 	/* alpha = 40 P / N_c (Eq. 22) when the material does not give it. */
-	const char *noalpha = "{\"E0\": 28e9, \"nu\": 0.2, \"tensile_strength\": 5e6,"
+	const char *noalpha = "{\"name\": \"noalpha\", \"law\": \"onate\", \"density\": 2500,"
+	                      " \"E0\": 28e9, \"nu\": 0.2, \"tensile_strength\": 5e6,"
 	                      " \"shear_strength\": 16e6, \"mu1\": 0.9, \"mu2\": 0.25,"
 	                      " \"LCS1\": 20e6, \"LCS2\": 45e6, \"LCS3\": 70e6, \"YRC1\": 3,"
 	                      " \"YRC2\": 12, \"YRC3\": 22, \"delta_n\": 0.2, \"delta_s\": 0.2,"
@@ -494,7 +495,7 @@ static void test_energy_books(void)
 
 int main(void)
 {
-	L = drive_find("onate");
+	L = law_find("onate");
 	CHECK(L != NULL);
 	P = drive_parse(L, concrete, "concrete.json");
 	CHECK(P != NULL);
