@@ -6,7 +6,7 @@
  * interaction range; d is the zero-force reference length. With
  * A = pi r_c^2 (r_c = min(r_i, r_j)):
  *
- *   K_n0 = A E0 / d,  K_s = K_n0 / (2 (1 + nu)),  C_n as Eq. 30   (local.h)
+ *   K_n0 = A E0 / d,  K_s = K_n0 / (2 (1 + nu)),  C_n as Eq. 30   (damage_hardening.h)
  *
  * Compression, compressive strain eps = -u_n / d:
  *
@@ -15,7 +15,7 @@
  *   K_nl = K_n0 (gamma3 + gamma1 exp(gamma2 (eps - eps_max))), at most K_n0
  *
  * with unloading and reloading below the historical maximum at K_n0
- * (local.h). Defaults gamma1 = 0.2, gamma2 = 16, gamma3 = 0.275,
+ * (damage_hardening.h). Defaults gamma1 = 0.2, gamma2 = 16, gamma3 = 0.275,
  * eps_max = 0.002 (001 Table 5; Kratos' DEM_ExponentialHC hard-codes
  * them). Once K_nl reaches K_n0 the force is back on the line K_n0 d eps.
  *
@@ -27,16 +27,16 @@
  * c A + F_n tan(phi_i), F_n compressive positive, and ruptures beyond it;
  * broken bonds (in either mode) are purely frictional, F_n tan(phi_c).
  *
- * History as in local.h: h[0] d_n, h[1] d_s (0, or 1 once broken in
+ * History as in damage_hardening.h: h[0] d_n, h[1] d_s (0, or 1 once broken in
  * shear), h[2] historical maximum compressive strain, h[3] last u_n.
  */
 #include <stdlib.h>
 
-#include "solve/laws/local.h"
+#include "solve/laws/damage_hardening.h"
 #include "solve/laws/shear.h"
 
 typedef struct {
-	local_params q;
+	dh_params q;
 	double range;        /* gamma, interaction range */
 	double cohesion;     /* Pa */
 	double tan_i, tan_c; /* bonded and contact friction */
@@ -51,8 +51,7 @@ static law_params *exp_parse(cfg *m)
 {
 	exp_params *p = calloc(1, sizeof *p);
 	double phi_i, phi_c;
-	if (!p || local_parse(m, &p->q) ||
-	    cfg_number(m, "interaction_range", &p->range, "", 1, 2) ||
+	if (!p || dh_parse(m, &p->q) || cfg_number(m, "interaction_range", &p->range, "", 1, 2) ||
 	    cfg_number(m, "cohesion", &p->cohesion, "Pa", 0, INFINITY) ||
 	    cfg_number(m, "friction_angle_deg", &phi_i, "deg", 0, 89) ||
 	    cfg_number(m, "contact_friction_angle_deg", &phi_c, "deg", 0, 89) ||
@@ -102,7 +101,7 @@ static void exp_constants(const law_params *lp, const law_pair *pair, law_const 
 	out->area = area(pair);
 	out->kn = out->area * p->q.E0 / pair->d0;
 	out->ks = out->kn * p->ks_over_kn;
-	out->cn = local_cn(&p->q, pair, out->area, out->kn);
+	out->cn = dh_cn(&p->q, pair, out->area, out->kn);
 	out->rc = fmin(pair->ri, pair->rj);
 }
 
@@ -117,7 +116,7 @@ static inline void exp_force(const law_params *lp, const law_pair *pair, bond *b
 	out->failed = 0;
 	b->h[3] = k->un;
 	double fn =
-	    A * local_normal(&p->q, exp_curve, p, k->un * inv_d, b->h, !intact, &open, &broke, &w);
+	    A * dh_normal(&p->q, exp_curve, p, k->un * inv_d, b->h, !intact, &open, &broke, &w);
 	out->e_damage += A * pair->d0 * w;
 	if (broke) { /* the shear spring goes with the bond */
 		out->e_damage += 0.5 * ks * v3_dot(b->t, b->t);
@@ -128,7 +127,7 @@ static inline void exp_force(const law_params *lp, const law_pair *pair, bond *b
 		b->state = BOND_BROKEN_SHEAR;
 		out->failed = CRACK_SHEAR;
 		if (fn > 0) { /* the tension spring goes with the bond */
-			out->e_damage += 0.5 * fn * fn / (kn * local_secant(b->h[0], p->q.delta_n));
+			out->e_damage += 0.5 * fn * fn / (kn * dh_secant(b->h[0], p->q.delta_n));
 			fn = 0;
 		}
 	} else if (intact)
@@ -136,7 +135,7 @@ static inline void exp_force(const law_params *lp, const law_pair *pair, bond *b
 	v3_scale(out->fs, b->t, ks);
 	out->fn_viscous = 0;
 	if (b->state < BOND_BROKEN_TENSION || fn < 0)
-		out->fn_viscous = local_cn(&p->q, pair, A, kn) * k->vn;
+		out->fn_viscous = dh_cn(&p->q, pair, A, kn) * k->vn;
 	out->fn = fn + out->fn_viscous;
 }
 
@@ -147,7 +146,7 @@ static double exp_energy(const law_params *lp, const law_pair *pair, const bond 
 	const exp_params *p = (const exp_params *)lp;
 	int intact = b->state < BOND_BROKEN_TENSION;
 	double A = area(pair), ks = A * p->q.E0 / pair->d0 * p->ks_over_kn;
-	return local_normal_energy(&p->q, exp_curve, p, A, pair->d0, b->h, !intact) +
+	return dh_normal_energy(&p->q, exp_curve, p, A, pair->d0, b->h, !intact) +
 	       0.5 * ks * v3_dot(b->t, b->t);
 }
 
@@ -164,5 +163,5 @@ const law law_exponential = {
     .force = exp_force,
     .force_batch = exp_batch,
     .energy = exp_energy,
-    .damage = local_damage,
+    .damage = dh_damage,
 };

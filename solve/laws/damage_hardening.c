@@ -1,8 +1,9 @@
-/* The material keys the local model (onate) and the exponential law share;
- * their meaning, unit, default and source are in share/doc/materials.md. */
-#include "solve/laws/local.h"
+/* The material keys of the damage and hardening core, which the local model
+ * (onate) and the exponential law share; their meaning, unit, default and
+ * source are in share/doc/materials.md. */
+#include "solve/laws/damage_hardening.h"
 
-int local_parse(cfg *m, local_params *q)
+int dh_parse(cfg *m, dh_params *q)
 {
 	if (cfg_number(m, "E0", &q->E0, "Pa", CFG_POS, INFINITY) ||
 	    cfg_number(m, "nu", &q->nu, "", 0, 0.5) ||
