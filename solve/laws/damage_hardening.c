@@ -3,6 +3,12 @@
  * source are in share/doc/materials.md. */
 #include "solve/laws/damage_hardening.h"
 
+/* "xi" defaults to 0.9 because that is the value of Oñate et al. (seeds/000
+ * Sect. 5.1, after Eq. 28: "In our work we have taken xi = 0.9"): xi is
+ * their contact damping of Eq. 27-30, a fraction of the critical damping
+ * per unit length (xi / r_c), and the exponential law takes its elastic
+ * constants and damping from the same model. The linear law's "xi" is
+ * another quantity, off by default (linear.c). */
 int dh_parse(cfg *m, dh_params *q)
 {
 	if (cfg_number(m, "E0", &q->E0, "Pa", CFG_POS, INFINITY) ||

@@ -53,6 +53,7 @@
 #include "lib/states.h"
 #include "lib/vec3.h"
 #include "solve/law.h"
+#include "solve/laws/area.h"
 
 /* The keys both laws read (see share/doc/materials.md). */
 typedef struct {
@@ -149,7 +150,7 @@ static inline void dh_damage(const law_params *p, const bond *b, double *dn, dou
 /* Contact damping coefficient (Eq. 30) for effective area A. */
 static inline double dh_cn(const dh_params *q, const law_pair *pair, double area, double kn)
 {
-	double rc = fmin(pair->ri, pair->rj), mij = pair->mi * pair->mj / (pair->mi + pair->mj);
+	double rc = area_rc(pair), mij = pair->mi * pair->mj / (pair->mi + pair->mj);
 	return 2 * q->xi * area / (rc * pair->d0) * sqrt(mij * kn);
 }
 

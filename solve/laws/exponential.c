@@ -4,7 +4,7 @@
  *
  * Bonds form between spheres with d <= gamma (r_i + r_j), gamma the
  * interaction range; d is the zero-force reference length. With
- * A = pi r_c^2 (r_c = min(r_i, r_j)):
+ * A = pi r_c^2 (r_c = min(r_i, r_j); area.h with alpha = 1):
  *
  *   K_n0 = A E0 / d,  K_s = K_n0 / (2 (1 + nu)),  C_n as Eq. 30   (damage_hardening.h)
  *
@@ -32,6 +32,7 @@
  */
 #include <stdlib.h>
 
+#include "solve/laws/area.h"
 #include "solve/laws/damage_hardening.h"
 #include "solve/laws/shear.h"
 
@@ -89,27 +90,21 @@ static double exp_curve(const void *law, double c, double *cp)
 	return s;
 }
 
-static double area(const law_pair *pair)
-{
-	double rc = fmin(pair->ri, pair->rj);
-	return DEM_PI * rc * rc;
-}
-
 static void exp_constants(const law_params *lp, const law_pair *pair, law_const *out)
 {
 	const exp_params *p = (const exp_params *)lp;
-	out->area = area(pair);
+	out->area = area_of(1, pair);
 	out->kn = out->area * p->q.E0 / pair->d0;
 	out->ks = out->kn * p->ks_over_kn;
 	out->cn = dh_cn(&p->q, pair, out->area, out->kn);
-	out->rc = fmin(pair->ri, pair->rj);
+	out->rc = area_rc(pair);
 }
 
 static inline void exp_force(const law_params *lp, const law_pair *pair, bond *b, const law_kin *k,
                              law_out *out)
 {
 	const exp_params *p = (const exp_params *)lp;
-	double inv_d = 1 / pair->d0, A = area(pair), kn = A * p->q.E0 * inv_d;
+	double inv_d = 1 / pair->d0, A = area_of(1, pair), kn = A * p->q.E0 * inv_d;
 	double ks = kn * p->ks_over_kn;
 	int intact = b->state < BOND_BROKEN_TENSION, broke = 0;
 	double open, w = 0;
@@ -145,7 +140,7 @@ static double exp_energy(const law_params *lp, const law_pair *pair, const bond 
 {
 	const exp_params *p = (const exp_params *)lp;
 	int intact = b->state < BOND_BROKEN_TENSION;
-	double A = area(pair), ks = A * p->q.E0 / pair->d0 * p->ks_over_kn;
+	double A = area_of(1, pair), ks = A * p->q.E0 / pair->d0 * p->ks_over_kn;
 	return dh_normal_energy(&p->q, exp_curve, p, A, pair->d0, b->h, !intact) +
 	       0.5 * ks * v3_dot(b->t, b->t);
 }

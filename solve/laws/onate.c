@@ -5,7 +5,7 @@
  * beta = 0.10 (Sect. 4.2); d, the distance at bonding, is the zero-force
  * reference length. With r_c = min(r_i, r_j):
  *
- *   A   = alpha pi r_c^2,  alpha = 40 P / N_c or given   (Eq. 21-22)
+ *   A   = alpha pi r_c^2,  alpha = 40 P / N_c or given   (Eq. 21-22, area.h)
  *   K_n = A E0 / d,  K_s = K_n / (2 (1 + nu)),  C_n (Eq. 30)   (damage_hardening.h)
  *   F_n = K_n u_n + C_n du_n/dt                              (Eq. 29)
  *
@@ -46,14 +46,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "solve/laws/area.h"
 #include "solve/laws/damage_hardening.h"
 #include "solve/laws/shear.h"
 
 typedef struct {
 	dh_params q;
-	double alpha;      /* Eq. 21-22 */
-	int alpha_given;   /* else alpha = 40 P / N_c at setup */
-	double beta;       /* interaction range, Eq. 16 */
+	area_keys area;    /* alpha (Eq. 21-22), beta (Eq. 16) */
 	double tau;        /* Pa, shear strength tau^f */
 	double mu1, mu2;   /* Eq. 42, 45 */
 	double delta_s;    /* Eq. 47 */
@@ -74,11 +73,7 @@ static law_params *onate_parse(cfg *m)
 	    cfg_number(m, "mu1", &p->mu1, "", 0, INFINITY) ||
 	    cfg_number(m, "mu2", &p->mu2, "", 0, INFINITY) ||
 	    cfg_number(m, "delta_s", &p->delta_s, "", 0, INFINITY) ||
-	    cfg_number_or(m, "beta", &p->beta, 0.10, "", 0, 1) ||
-	    cfg_choice_or(m, "criterion", &p->coupled, criteria, 0))
-		goto fail;
-	p->alpha_given = cfg_has(m, "alpha");
-	if (cfg_number_or(m, "alpha", &p->alpha, 1.0, "", CFG_POS, INFINITY))
+	    cfg_choice_or(m, "criterion", &p->coupled, criteria, 0) || area_parse(m, &p->area))
 		goto fail;
 	for (int k = 0; k < 3; k++) {
 		char lcs[8], prev[8];
@@ -113,14 +108,14 @@ fail:
 
 static void onate_free(law_params *p) { free(p); }
 
-static double onate_range(const law_params *lp) { return 1 + ((const onate_params *)lp)->beta; }
+static double onate_range(const law_params *lp)
+{
+	return area_range(&((const onate_params *)lp)->area);
+}
 
 static void onate_setup(law_params *lp, const law_packing *pk)
 {
-	onate_params *p = (onate_params *)lp;
-	/* Eq. 22; with no bonds at all alpha keeps the quasi-optimal value 1. */
-	if (!p->alpha_given && pk->coordination > 0)
-		p->alpha = 40 * pk->porosity / pk->coordination;
+	area_setup(&((onate_params *)lp)->area, pk);
 }
 
 /* Fig. 10: compressive stress at compressive strain c, and the permanent
@@ -138,27 +133,21 @@ static double onate_curve(const void *law, double c, double *cp)
 	return s;
 }
 
-static double area(const onate_params *p, const law_pair *pair)
-{
-	double rc = fmin(pair->ri, pair->rj);
-	return p->alpha * DEM_PI * rc * rc;
-}
-
 static void onate_constants(const law_params *lp, const law_pair *pair, law_const *out)
 {
 	const onate_params *p = (const onate_params *)lp;
-	out->area = area(p, pair);
+	out->area = area_of(p->area.alpha, pair);
 	out->kn = out->area * p->q.E0 / pair->d0;
 	out->ks = out->kn * p->ks_over_kn;
 	out->cn = dh_cn(&p->q, pair, out->area, out->kn);
-	out->rc = fmin(pair->ri, pair->rj);
+	out->rc = area_rc(pair);
 }
 
 static inline void onate_force(const law_params *lp, const law_pair *pair, bond *b,
                                const law_kin *k, law_out *out)
 {
 	const onate_params *p = (const onate_params *)lp;
-	double inv_d = 1 / pair->d0, A = area(p, pair), kn = A * p->q.E0 * inv_d;
+	double inv_d = 1 / pair->d0, A = area_of(p->area.alpha, pair), kn = A * p->q.E0 * inv_d;
 	double ks = kn * p->ks_over_kn;
 	int intact = b->state < BOND_BROKEN_TENSION, broke = 0;
 	double open, w = 0;
@@ -210,7 +199,8 @@ static double onate_energy(const law_params *lp, const law_pair *pair, const bon
 {
 	const onate_params *p = (const onate_params *)lp;
 	int intact = b->state < BOND_BROKEN_TENSION;
-	double A = area(p, pair), kn = A * p->q.E0 / pair->d0, ks = kn * p->ks_over_kn;
+	double A = area_of(p->area.alpha, pair), kn = A * p->q.E0 / pair->d0,
+	       ks = kn * p->ks_over_kn;
 	double ss = intact ? dh_secant(b->h[1], p->delta_s) : 1;
 	return dh_normal_energy(&p->q, onate_curve, p, A, pair->d0, b->h, !intact) +
 	       0.5 * ks * ss * v3_dot(b->t, b->t);
