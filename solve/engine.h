@@ -145,6 +145,7 @@ typedef struct engine engine;
 struct engine {
 	const dem_case *cs;
 	const law *law;
+	/* The engine's own copy of the material's parameters (law.copy). */
 	law_params *lp;
 	int nthreads; /* threads asked for */
 	int team;     /* threads used in a step */

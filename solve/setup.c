@@ -221,7 +221,7 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, int quiet
 	memset(e, 0, sizeof *e);
 	e->cs = cs;
 	e->law = cs->mat.law;
-	e->lp = cs->mat.params;
+	e->lp = e->law->copy(cs->mat.params);
 	if (a->n == 0)
 		return err_set("the assembly has no particles");
 	if (load_particles(e, a))
@@ -301,5 +301,7 @@ void engine_free(engine *e)
 		free(e->thread_cracks[t].c), free(e->thread_cracks[t].bond);
 	free(e->thread_cracks);
 	free(e->cracks.c), free(e->cracks.bond);
+	if (e->lp)
+		e->law->free(e->lp);
 	memset(e, 0, sizeof *e);
 }

@@ -71,6 +71,8 @@ static law_params *exp_parse(cfg *m)
 
 static void exp_free(law_params *p) { free(p); }
 
+static law_params *exp_copy(const law_params *p) { return law_params_dup(p, sizeof(exp_params)); }
+
 static double exp_range(const law_params *lp) { return ((const exp_params *)lp)->range; }
 
 static void exp_setup(law_params *p, const law_packing *pk) { (void)p, (void)pk; }
@@ -151,6 +153,7 @@ const law law_exponential = {
                "stiffening, modified Mohr-Coulomb",
     .parse = exp_parse,
     .free = exp_free,
+    .copy = exp_copy,
     .bond_range = exp_range,
     .setup = exp_setup,
     .constants = exp_constants,

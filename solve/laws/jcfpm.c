@@ -71,6 +71,11 @@ static law_params *jcfpm_parse(cfg *m)
 
 static void jcfpm_free(law_params *p) { free(p); }
 
+static law_params *jcfpm_copy(const law_params *p)
+{
+	return law_params_dup(p, sizeof(jcfpm_params));
+}
+
 static double jcfpm_range(const law_params *lp) { return ((const jcfpm_params *)lp)->range; }
 
 static void jcfpm_setup(law_params *p, const law_packing *pk) { (void)p, (void)pk; }
@@ -158,6 +163,7 @@ const law law_jcfpm = {
                "bonds: brittle tension, Mohr-Coulomb shear",
     .parse = jcfpm_parse,
     .free = jcfpm_free,
+    .copy = jcfpm_copy,
     .bond_range = jcfpm_range,
     .setup = jcfpm_setup,
     .constants = jcfpm_constants,

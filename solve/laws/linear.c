@@ -78,6 +78,8 @@ static law_params *linear_parse(cfg *c)
 
 static void linear_free(law_params *p) { free(p); }
 
+static law_params *linear_copy(const law_params *p) { return law_params_dup(p, sizeof *p); }
+
 static double linear_range(const law_params *p) { return area_range(&p->area); }
 
 static void linear_setup(law_params *p, const law_packing *pk) { area_setup(&p->area, pk); }
@@ -181,6 +183,7 @@ const law law_linear = {
     .summary = "linear elastic-brittle bond, Cundall-Strack friction after failure",
     .parse = linear_parse,
     .free = linear_free,
+    .copy = linear_copy,
     .bond_range = linear_range,
     .setup = linear_setup,
     .constants = linear_constants,

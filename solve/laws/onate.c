@@ -108,6 +108,11 @@ fail:
 
 static void onate_free(law_params *p) { free(p); }
 
+static law_params *onate_copy(const law_params *p)
+{
+	return law_params_dup(p, sizeof(onate_params));
+}
+
 static double onate_range(const law_params *lp)
 {
 	return area_range(&((const onate_params *)lp)->area);
@@ -212,6 +217,7 @@ const law law_onate = {
                "elasto-plastic compression",
     .parse = onate_parse,
     .free = onate_free,
+    .copy = onate_copy,
     .bond_range = onate_range,
     .setup = onate_setup,
     .constants = onate_constants,

@@ -17,6 +17,13 @@ static const law *const registry[] = {LAWS(ENTRY) NULL};
 
 const law *const *law_all(void) { return registry; }
 
+law_params *law_params_dup(const law_params *p, size_t size)
+{
+	void *q = xmalloc(size);
+	memcpy(q, p, size);
+	return q;
+}
+
 const law *law_find(const char *name)
 {
 	char known[256] = "";

@@ -80,6 +80,7 @@ static void test_constants(void)
 	                      " \"beta\": 0.2, \"xi\": 0.5}";
 	law_params *p = drive_parse(L, noalpha, "noalpha.json");
 	CHECK(p != NULL);
+	law_params *copy = L->copy(p);
 	law_packing pk = {.porosity = 0.12, .coordination = 8};
 	L->setup(p, &pk);
 	L->constants(p, &q, &c);
@@ -87,6 +88,14 @@ static void test_constants(void)
 	CHECK_REL(c.kn, 0.6 * KN, 1e-15);
 	CHECK_REL(c.cn, 2 * PI * ri * 0.6 * 0.5 / d0 * sqrt(mij * 0.6 * KN), 1e-14);
 	CHECK_REL(L->bond_range(p), 1.2, 1e-15);
+	/* A copy is set up on its own (the engine's, law.copy). */
+	law_packing other = {.porosity = 0.1, .coordination = 10};
+	L->setup(copy, &other);
+	L->constants(copy, &q, &c);
+	CHECK_REL(c.area, 0.4 * PI * ri * ri, 1e-15);
+	L->constants(p, &q, &c);
+	CHECK_REL(c.area, 0.6 * PI * ri * ri, 1e-15);
+	L->free(copy);
 	L->free(p);
 	/* A given alpha is kept. */
 	L->setup(P, &pk);
