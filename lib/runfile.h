@@ -1,7 +1,8 @@
-/* The run file (run.h5), written by solve and read by post: the assembly the
- * run started from, the bonds, the history table, snapshots and the crack
- * log. The layout is specified in share/doc/format.md. solve keeps its own
- * /checkpoint group in the same file through run_hid(). */
+/* The run file (run.h5), written by solve (runfile_write.c) and read by post
+ * (runfile_read.c): the assembly the run started from, the bonds, the
+ * history table, snapshots and the crack log. The layout is specified in
+ * share/doc/format.md. solve keeps its own /checkpoint group in the same
+ * file through run_hid(). */
 #ifndef DEM_RUNFILE_H
 #define DEM_RUNFILE_H
 
