@@ -93,8 +93,9 @@ typedef struct law {
 	 * error when missing, every value range-checked). NULL and err on error. */
 	law_params *(*parse)(cfg *material);
 	void (*free)(law_params *p);
-	/* A copy of p that the caller owns and frees with free(). The engine
-	 * runs on its own copy, so setup never writes into the material. */
+	/* A copy of p that the caller owns and releases with this table's free.
+	 * The engine runs on its own copy, so setup never writes into the
+	 * material it was given. */
 	law_params *(*copy)(const law_params *p);
 	/* Bonds form at start between spheres with d <= range * (ri + rj). */
 	double (*bond_range)(const law_params *p);
