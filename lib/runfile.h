@@ -1,7 +1,8 @@
-/* The run file (run.h5), written by solve and read by post: the assembly the
- * run started from, the bonds, the history table, snapshots and the crack
- * log. The layout is specified in share/doc/format.md. solve keeps its own
- * /checkpoint group in the same file through run_hid(). */
+/* The run file (run.h5), written by solve (runfile_write.c) and read by post
+ * (runfile_read.c): the assembly the run started from, the bonds, the
+ * history table, snapshots and the crack log. The layout is specified in
+ * share/doc/format.md. solve keeps its own /checkpoint group in the same
+ * file through run_hid(). */
 #ifndef DEM_RUNFILE_H
 #define DEM_RUNFILE_H
 
@@ -10,13 +11,9 @@
 #include <stdint.h>
 
 #include "lib/assembly.h"
+#include "lib/states.h"
 
 #define RUN_FORMAT "dem-run"
-
-/* State of a bond, as stored in snapshots. */
-enum { BOND_INTACT = 0, BOND_DAMAGED = 1, BOND_BROKEN_TENSION = 2, BOND_BROKEN_SHEAR = 3 };
-/* Failure mode of a crack. */
-enum { CRACK_TENSION = 1, CRACK_SHEAR = 2 };
 
 /* A column of the history table. */
 typedef struct {

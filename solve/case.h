@@ -6,7 +6,7 @@
 #define DEM_CASE_H
 
 #include "lib/cfg.h"
-#include "solve/material.h"
+#include "solve/laws/material.h"
 
 /* How the specimen's ends are loaded in a stage. */
 enum {

@@ -137,9 +137,9 @@ struct engine {
 	/* The run's definition, read-only after setup. */
 	const dem_case *cs;
 	const law *law;
-	law_params *lp;
-	int nthreads; /* threads asked for */
-	int team;     /* threads used in a step */
+	law_params *lp; /* the engine's own copy of the material's (law.copy) */
+	int nthreads;   /* threads asked for */
+	int team;       /* threads used in a step */
 
 	particles p;
 	engine_pairs pairs;

@@ -28,6 +28,7 @@
 #ifndef DEM_LAW_H
 #define DEM_LAW_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "lib/cfg.h"
@@ -40,7 +41,7 @@ typedef struct {
 	double d0;           /* m, reference length: centre distance at bonding */
 	double t[3];         /* tangential history (law-defined), contact plane */
 	double h[LAW_NHIST]; /* law-defined history: damage, plastic state, ... */
-	uint8_t state;       /* BOND_INTACT, BOND_DAMAGED, BOND_BROKEN_* (lib/runfile.h) */
+	uint8_t state;       /* BOND_INTACT, BOND_DAMAGED, BOND_BROKEN_* (lib/states.h) */
 } bond;
 
 /* The two spheres of a bond. */
@@ -92,9 +93,14 @@ typedef struct law {
 	 * error when missing, every value range-checked). NULL and err on error. */
 	law_params *(*parse)(cfg *material);
 	void (*free)(law_params *p);
+	/* A copy of p that the caller owns and releases with this table's free.
+	 * The engine runs on its own copy, so setup never writes into the
+	 * material it was given. */
+	law_params *(*copy)(const law_params *p);
 	/* Bonds form at start between spheres with d <= range * (ri + rj). */
 	double (*bond_range)(const law_params *p);
-	/* Called once after bonds form (e.g. alpha = 40 P / N_c, Eq. 22). */
+	/* Called once after bonds form, on the engine's copy (e.g. alpha =
+	 * 40 P / N_c, Eq. 22); before it only bond_range may be called. */
 	void (*setup)(law_params *p, const law_packing *packing);
 	void (*constants)(const law_params *p, const law_pair *pair, law_const *out);
 	/* Initialise the history of a new bond. */
@@ -120,6 +126,10 @@ typedef struct law {
 		for (int q = 0; q < n; q++)                                                 \
 			FORCE(p, &pair[q], &b[q], &k[q], &out[q]);                          \
 	}
+
+/* law.copy of a law whose parameters are one struct of size bytes with no
+ * pointers inside. */
+law_params *law_params_dup(const law_params *p, size_t size);
 
 /* The law registered under name, or NULL (err_msg lists the known ones). */
 const law *law_find(const char *name);

@@ -25,6 +25,7 @@
 #include "solve/report.h"
 #include "solve/run.h"
 #include "solve/step.h"
+#include "solve/timers.h"
 
 static volatile sig_atomic_t interrupted;
 

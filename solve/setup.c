@@ -21,6 +21,7 @@
 #include "solve/plan.h"
 #include "solve/platens.h"
 #include "solve/surface.h"
+#include "solve/timers.h"
 #include "solve/timestep.h"
 
 /* Spread the low 21 bits of v to every third bit. */
@@ -239,7 +240,7 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 	phase_start(&e->tm, TM_SETUP);
 	e->cs = cs;
 	e->law = cs->mat.law;
-	e->lp = cs->mat.params;
+	e->lp = e->law->copy(cs->mat.params);
 	if (a->n == 0)
 		return err_set("the assembly has no particles");
 	if (load_particles(e, a))
@@ -324,5 +325,7 @@ void engine_free(engine *e)
 		free(e->out.thread_cracks[t].c), free(e->out.thread_cracks[t].bond);
 	free(e->out.thread_cracks);
 	free(e->out.cracks.c), free(e->out.cracks.bond);
+	if (e->lp)
+		e->law->free(e->lp);
 	memset(e, 0, sizeof *e);
 }

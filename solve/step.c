@@ -30,6 +30,7 @@
 #include "solve/platens.h"
 #include "solve/step.h"
 #include "solve/surface.h"
+#include "solve/timers.h"
 
 static inline void gather(const pairlist *L, int32_t i, double ri, double F[3], double T[3])
 {

@@ -7,7 +7,7 @@
 #define DEM_LAWS_CONTACT_H
 
 #include "solve/law.h"
-#include "solve/material.h"
+#include "solve/laws/material.h"
 
 /* Normal and shear stiffness (N/m) and normal damping (N s/m) of a contact
  * between spheres of radii ri, rj (m) and masses mi, mj (kg) touching at

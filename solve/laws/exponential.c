@@ -4,9 +4,9 @@
  *
  * Bonds form between spheres with d <= gamma (r_i + r_j), gamma the
  * interaction range; d is the zero-force reference length. With
- * A = pi r_c^2 (r_c = min(r_i, r_j)):
+ * A = pi r_c^2 (r_c = min(r_i, r_j); area.h with alpha = 1):
  *
- *   K_n0 = A E0 / d,  K_s = K_n0 / (2 (1 + nu)),  C_n as Eq. 30   (local.h)
+ *   K_n0 = A E0 / d,  K_s = K_n0 / (2 (1 + nu)),  C_n as Eq. 30   (damage_hardening.h)
  *
  * Compression, compressive strain eps = -u_n / d:
  *
@@ -15,7 +15,7 @@
  *   K_nl = K_n0 (gamma3 + gamma1 exp(gamma2 (eps - eps_max))), at most K_n0
  *
  * with unloading and reloading below the historical maximum at K_n0
- * (local.h). Defaults gamma1 = 0.2, gamma2 = 16, gamma3 = 0.275,
+ * (damage_hardening.h). Defaults gamma1 = 0.2, gamma2 = 16, gamma3 = 0.275,
  * eps_max = 0.002 (001 Table 5; Kratos' DEM_ExponentialHC hard-codes
  * them). Once K_nl reaches K_n0 the force is back on the line K_n0 d eps.
  *
@@ -27,16 +27,17 @@
  * c A + F_n tan(phi_i), F_n compressive positive, and ruptures beyond it;
  * broken bonds (in either mode) are purely frictional, F_n tan(phi_c).
  *
- * History as in local.h: h[0] d_n, h[1] d_s (0, or 1 once broken in
+ * History as in damage_hardening.h: h[0] d_n, h[1] d_s (0, or 1 once broken in
  * shear), h[2] historical maximum compressive strain, h[3] last u_n.
  */
 #include <stdlib.h>
 
-#include "solve/laws/local.h"
+#include "solve/laws/area.h"
+#include "solve/laws/damage_hardening.h"
 #include "solve/laws/shear.h"
 
 typedef struct {
-	local_params q;
+	dh_params q;
 	double range;        /* gamma, interaction range */
 	double cohesion;     /* Pa */
 	double tan_i, tan_c; /* bonded and contact friction */
@@ -51,8 +52,7 @@ static law_params *exp_parse(cfg *m)
 {
 	exp_params *p = calloc(1, sizeof *p);
 	double phi_i, phi_c;
-	if (!p || local_parse(m, &p->q) ||
-	    cfg_number(m, "interaction_range", &p->range, "", 1, 2) ||
+	if (!p || dh_parse(m, &p->q) || cfg_number(m, "interaction_range", &p->range, "", 1, 2) ||
 	    cfg_number(m, "cohesion", &p->cohesion, "Pa", 0, INFINITY) ||
 	    cfg_number(m, "friction_angle_deg", &phi_i, "deg", 0, 89) ||
 	    cfg_number(m, "contact_friction_angle_deg", &phi_c, "deg", 0, 89) ||
@@ -70,6 +70,8 @@ static law_params *exp_parse(cfg *m)
 }
 
 static void exp_free(law_params *p) { free(p); }
+
+static law_params *exp_copy(const law_params *p) { return law_params_dup(p, sizeof(exp_params)); }
 
 static double exp_range(const law_params *lp) { return ((const exp_params *)lp)->range; }
 
@@ -90,34 +92,28 @@ static double exp_curve(const void *law, double c, double *cp)
 	return s;
 }
 
-static double area(const law_pair *pair)
-{
-	double rc = fmin(pair->ri, pair->rj);
-	return DEM_PI * rc * rc;
-}
-
 static void exp_constants(const law_params *lp, const law_pair *pair, law_const *out)
 {
 	const exp_params *p = (const exp_params *)lp;
-	out->area = area(pair);
+	out->area = area_of(1, pair);
 	out->kn = out->area * p->q.E0 / pair->d0;
 	out->ks = out->kn * p->ks_over_kn;
-	out->cn = local_cn(&p->q, pair, out->area, out->kn);
-	out->rc = fmin(pair->ri, pair->rj);
+	out->cn = dh_cn(&p->q, pair, out->area, out->kn);
+	out->rc = area_rc(pair);
 }
 
 static inline void exp_force(const law_params *lp, const law_pair *pair, bond *b, const law_kin *k,
                              law_out *out)
 {
 	const exp_params *p = (const exp_params *)lp;
-	double inv_d = 1 / pair->d0, A = area(pair), kn = A * p->q.E0 * inv_d;
+	double inv_d = 1 / pair->d0, A = area_of(1, pair), kn = A * p->q.E0 * inv_d;
 	double ks = kn * p->ks_over_kn;
 	int intact = b->state < BOND_BROKEN_TENSION, broke = 0;
 	double open, w = 0;
 	out->failed = 0;
 	b->h[3] = k->un;
 	double fn =
-	    A * local_normal(&p->q, exp_curve, p, k->un * inv_d, b->h, !intact, &open, &broke, &w);
+	    A * dh_normal(&p->q, exp_curve, p, k->un * inv_d, b->h, !intact, &open, &broke, &w);
 	out->e_damage += A * pair->d0 * w;
 	if (broke) { /* the shear spring goes with the bond */
 		out->e_damage += 0.5 * ks * v3_dot(b->t, b->t);
@@ -128,7 +124,7 @@ static inline void exp_force(const law_params *lp, const law_pair *pair, bond *b
 		b->state = BOND_BROKEN_SHEAR;
 		out->failed = CRACK_SHEAR;
 		if (fn > 0) { /* the tension spring goes with the bond */
-			out->e_damage += 0.5 * fn * fn / (kn * local_secant(b->h[0], p->q.delta_n));
+			out->e_damage += 0.5 * fn * fn / (kn * dh_secant(b->h[0], p->q.delta_n));
 			fn = 0;
 		}
 	} else if (intact)
@@ -136,7 +132,7 @@ static inline void exp_force(const law_params *lp, const law_pair *pair, bond *b
 	v3_scale(out->fs, b->t, ks);
 	out->fn_viscous = 0;
 	if (b->state < BOND_BROKEN_TENSION || fn < 0)
-		out->fn_viscous = local_cn(&p->q, pair, A, kn) * k->vn;
+		out->fn_viscous = dh_cn(&p->q, pair, A, kn) * k->vn;
 	out->fn = fn + out->fn_viscous;
 }
 
@@ -146,8 +142,8 @@ static double exp_energy(const law_params *lp, const law_pair *pair, const bond 
 {
 	const exp_params *p = (const exp_params *)lp;
 	int intact = b->state < BOND_BROKEN_TENSION;
-	double A = area(pair), ks = A * p->q.E0 / pair->d0 * p->ks_over_kn;
-	return local_normal_energy(&p->q, exp_curve, p, A, pair->d0, b->h, !intact) +
+	double A = area_of(1, pair), ks = A * p->q.E0 / pair->d0 * p->ks_over_kn;
+	return dh_normal_energy(&p->q, exp_curve, p, A, pair->d0, b->h, !intact) +
 	       0.5 * ks * v3_dot(b->t, b->t);
 }
 
@@ -157,6 +153,7 @@ const law law_exponential = {
                "stiffening, modified Mohr-Coulomb",
     .parse = exp_parse,
     .free = exp_free,
+    .copy = exp_copy,
     .bond_range = exp_range,
     .setup = exp_setup,
     .constants = exp_constants,
@@ -164,5 +161,5 @@ const law law_exponential = {
     .force = exp_force,
     .force_batch = exp_batch,
     .energy = exp_energy,
-    .damage = local_damage,
+    .damage = dh_damage,
 };

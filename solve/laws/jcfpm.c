@@ -9,7 +9,7 @@
  *
  *   k_n = 2 E R1 E R2 / (E R1 + E R2)          (Eq. 4.4)
  *   k_s = (k_s/k_n) k_n                        (Eq. 4.5; Table 4.5: 0.15, Yade's "poisson")
- *   A_int = pi min(R1, R2)^2                   (Eq. 3.10)
+ *   A_int = pi min(R1, R2)^2                   (Eq. 3.10; area.h, alpha = 1)
  *   F_n = k_n u_n in tension and compression   (Eq. 3.8)
  *
  * Tension: brittle rupture (softening factor zeta = 1, Sect. 3.2.2) once
@@ -35,6 +35,7 @@
  */
 #include <stdlib.h>
 
+#include "solve/laws/area.h"
 #include "solve/laws/shear.h"
 
 typedef struct {
@@ -70,6 +71,11 @@ static law_params *jcfpm_parse(cfg *m)
 
 static void jcfpm_free(law_params *p) { free(p); }
 
+static law_params *jcfpm_copy(const law_params *p)
+{
+	return law_params_dup(p, sizeof(jcfpm_params));
+}
+
 static double jcfpm_range(const law_params *lp) { return ((const jcfpm_params *)lp)->range; }
 
 static void jcfpm_setup(law_params *p, const law_packing *pk) { (void)p, (void)pk; }
@@ -80,20 +86,14 @@ static double stiffness(const jcfpm_params *p, const law_pair *pair)
 	return 2 * a * b / (a + b);
 }
 
-static double area(const law_pair *pair)
-{
-	double r = fmin(pair->ri, pair->rj);
-	return DEM_PI * r * r;
-}
-
 static void jcfpm_constants(const law_params *lp, const law_pair *pair, law_const *out)
 {
 	const jcfpm_params *p = (const jcfpm_params *)lp;
 	out->kn = stiffness(p, pair);
 	out->ks = p->ks_over_kn * out->kn;
 	out->cn = 0;
-	out->area = area(pair);
-	out->rc = fmin(pair->ri, pair->rj);
+	out->area = area_of(1, pair);
+	out->rc = area_rc(pair);
 }
 
 /* A broken pair apart: the interaction is gone until the spheres touch. */
@@ -109,7 +109,7 @@ static inline void jcfpm_force(const law_params *lp, const law_pair *pair, bond 
                                const law_kin *k, law_out *out)
 {
 	const jcfpm_params *p = (const jcfpm_params *)lp;
-	double kn = stiffness(p, pair), ks = p->ks_over_kn * kn, A = area(pair);
+	double kn = stiffness(p, pair), ks = p->ks_over_kn * kn, A = area_of(1, pair);
 	double u = k->un - b->h[0];
 	int intact = b->state == BOND_INTACT;
 	out->failed = 0;
@@ -163,6 +163,7 @@ const law law_jcfpm = {
                "bonds: brittle tension, Mohr-Coulomb shear",
     .parse = jcfpm_parse,
     .free = jcfpm_free,
+    .copy = jcfpm_copy,
     .bond_range = jcfpm_range,
     .setup = jcfpm_setup,
     .constants = jcfpm_constants,

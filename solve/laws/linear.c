@@ -2,7 +2,7 @@
  * Cundall–Strack frictional contact (MODELS.md §3).
  *
  * Bonds form between spheres with d <= (1 + β)(r_i + r_j) (Eq. 16), β default
- * 0.10. Local elastic constants (Oñate et al. 2015):
+ * 0.10. Local elastic constants (Oñate et al. 2015; Ā and α in area.h):
  *   Ā   = α π r_c²,  r_c = min(r_i, r_j)                      (Eq. 21)
  *   α   = 40 P / N_c from the packing unless given            (Eq. 22)
  *   K_n = Ā E / d0                                            (Eq. 30)
@@ -28,16 +28,16 @@
 
 #include "lib/cfg.h"
 #include "lib/err.h"
-#include "lib/runfile.h"
+#include "lib/states.h"
 #include "lib/vec3.h"
 #include "solve/law.h"
+#include "solve/laws/area.h"
 #include "solve/laws/cundall.h"
 
 struct law_params {
 	double E, nu;   /* Pa, - (local definitions) */
 	double kn, ks;  /* N/m, constant stiffnesses (0 when local) */
-	double alpha;   /* Eq. 22; 0 until setup when taken from the packing */
-	double beta;    /* interaction range, Eq. 16 */
+	area_keys area; /* alpha (Eq. 21-22), beta (Eq. 16) */
 	double sigma_t; /* Pa, tensile strength */
 	double tau;     /* Pa, shear strength (cohesion) */
 	double mu1;     /* friction in the bond shear strength */
@@ -45,6 +45,13 @@ struct law_params {
 	double xi;      /* fraction of critical damping */
 };
 
+/* "xi" defaults to 0, not to the 0.9 of onate and exponential
+ * (damage_hardening.c): here it damps a Cundall–Strack contact, a fraction
+ * of the critical damping of the pair, C_n = 2 xi sqrt(m_ij K_n), not Oñate's
+ * xi / r_c per unit length (Eq. 27). MODELS.md §3 makes that damping
+ * optional, and the key began as "damping", undamped by default like the
+ * engine's non-bonded contacts ("contact": {"damping"}, material.c), the
+ * same Cundall–Strack contact; it took the onate law's name, not its value. */
 static law_params *linear_parse(cfg *c)
 {
 	law_params *p = xcalloc(1, sizeof *p);
@@ -56,8 +63,7 @@ static law_params *linear_parse(cfg *c)
 		rc = cfg_number(c, "E", &p->E, "Pa", CFG_POS, INFINITY) ||
 		     cfg_number(c, "nu", &p->nu, "", -0.99, 0.5);
 	}
-	rc = rc || cfg_number_or(c, "alpha", &p->alpha, 0, "", CFG_POS, INFINITY) ||
-	     cfg_number_or(c, "beta", &p->beta, 0.10, "", 0, 1) ||
+	rc = rc || area_parse(c, &p->area) ||
 	     cfg_number(c, "tensile_strength", &p->sigma_t, "Pa", 0, INFINITY) ||
 	     cfg_number(c, "shear_strength", &p->tau, "Pa", 0, INFINITY) ||
 	     cfg_number_or(c, "mu1", &p->mu1, 0, "", 0, INFINITY) ||
@@ -72,23 +78,20 @@ static law_params *linear_parse(cfg *c)
 
 static void linear_free(law_params *p) { free(p); }
 
-static double linear_range(const law_params *p) { return 1 + p->beta; }
+static law_params *linear_copy(const law_params *p) { return law_params_dup(p, sizeof *p); }
 
-static void linear_setup(law_params *p, const law_packing *pk)
-{
-	if (p->alpha == 0)
-		p->alpha = pk->coordination > 0 ? 40 * pk->porosity / pk->coordination : 1;
-}
+static double linear_range(const law_params *p) { return area_range(&p->area); }
+
+static void linear_setup(law_params *p, const law_packing *pk) { area_setup(&p->area, pk); }
 
 static void linear_constants(const law_params *p, const law_pair *q, law_const *out)
 {
-	double rc = fmin(q->ri, q->rj);
-	double area = p->alpha * DEM_PI * rc * rc;
+	double area = area_of(p->area.alpha, q);
 	double kn = p->kn > 0 ? p->kn : area * p->E / q->d0;
 	double ks = p->kn > 0 ? p->ks : kn / (2 * (1 + p->nu));
 	double mij = q->mi * q->mj / (q->mi + q->mj);
 	*out = (law_const){
-	    .kn = kn, .ks = ks, .cn = 2 * p->xi * sqrt(mij * kn), .area = area, .rc = rc};
+	    .kn = kn, .ks = ks, .cn = 2 * p->xi * sqrt(mij * kn), .area = area, .rc = area_rc(q)};
 }
 
 static void linear_init(const law_params *p, const law_pair *q, bond *b)
@@ -122,8 +125,7 @@ static inline void linear_force_one(const law_params *p, const law_pair *q, bond
 	}
 	for (int d = 0; d < 3; d++)
 		b->t[d] += k->dus[d];
-	double rc = q->ri < q->rj ? q->ri : q->rj;
-	double area = p->alpha * DEM_PI * rc * rc;
+	double area = area_of(p->area.alpha, q);
 	double fe = c.kn * k->un;
 	double fs[3] = {c.ks * b->t[0], c.ks * b->t[1], c.ks * b->t[2]};
 	double fs2 = fs[0] * fs[0] + fs[1] * fs[1] + fs[2] * fs[2];
@@ -181,6 +183,7 @@ const law law_linear = {
     .summary = "linear elastic-brittle bond, Cundall-Strack friction after failure",
     .parse = linear_parse,
     .free = linear_free,
+    .copy = linear_copy,
     .bond_range = linear_range,
     .setup = linear_setup,
     .constants = linear_constants,

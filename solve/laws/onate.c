@@ -5,13 +5,13 @@
  * beta = 0.10 (Sect. 4.2); d, the distance at bonding, is the zero-force
  * reference length. With r_c = min(r_i, r_j):
  *
- *   A   = alpha pi r_c^2,  alpha = 40 P / N_c or given   (Eq. 21-22)
- *   K_n = A E0 / d,  K_s = K_n / (2 (1 + nu)),  C_n (Eq. 30)   (local.h)
+ *   A   = alpha pi r_c^2,  alpha = 40 P / N_c or given   (Eq. 21-22, area.h)
+ *   K_n = A E0 / d,  K_s = K_n / (2 (1 + nu)),  C_n (Eq. 30)   (damage_hardening.h)
  *   F_n = K_n u_n + C_n du_n/dt                              (Eq. 29)
  *
  * Tension: elasto-damage with linear softening (Eq. 41-42, 46-49a),
  * strength sigma_t A, u_n^l = sigma_t A / K_n, u_n^f = (1 + delta_n) u_n^l;
- * at d_n = 1 the bond breaks in tension (local.h).
+ * at d_n = 1 the bond breaks in tension (damage_hardening.h).
  *
  * Shear, on the accumulated shear displacement u_s = t (Eq. 34-38), same
  * softening (Eq. 46, 49b) with the strength
@@ -30,7 +30,7 @@
  * sigma = F_nc / A and strain u_n / d the loading curve has slope E0 up to
  * LCS1, then E0/YRC1 up to LCS2, E0/YRC2 up to LCS3, E0/YRC3 beyond;
  * unloading and reloading below the historical maximum go with K_n0 and
- * leave a permanent indentation (local.h).
+ * leave a permanent indentation (damage_hardening.h).
  *
  * After failure in either mode: no tension, compression as before (the
  * reference length is kept, as Kratos' DEM_Dempack_CL keeps the initial
@@ -39,20 +39,20 @@
  * the softening branch ends at zero force.
  *
  * History: h[0] d_n, h[1] d_s, h[2] historical maximum compressive strain,
- * h[3] last u_n (local.h); t the accumulated shear displacement u_s while
+ * h[3] last u_n (damage_hardening.h); t the accumulated shear displacement u_s while
  * bonded, the elastic shear displacement of the frictional contact after.
  * A bond is BOND_DAMAGED once d_n or d_s > 0.
  */
+#include <stdio.h>
 #include <stdlib.h>
 
-#include "solve/laws/local.h"
+#include "solve/laws/area.h"
+#include "solve/laws/damage_hardening.h"
 #include "solve/laws/shear.h"
 
 typedef struct {
-	local_params q;
-	double alpha;      /* Eq. 21-22 */
-	int alpha_given;   /* else alpha = 40 P / N_c at setup */
-	double beta;       /* interaction range, Eq. 16 */
+	dh_params q;
+	area_keys area;    /* alpha (Eq. 21-22), beta (Eq. 16) */
 	double tau;        /* Pa, shear strength tau^f */
 	double mu1, mu2;   /* Eq. 42, 45 */
 	double delta_s;    /* Eq. 47 */
@@ -68,16 +68,12 @@ static law_params *onate_parse(cfg *m)
 	onate_params *p = calloc(1, sizeof *p);
 	static const char *const criteria[] = {"uncoupled", "coupled", NULL};
 	double yrc[3];
-	if (!p || local_parse(m, &p->q) ||
+	if (!p || dh_parse(m, &p->q) ||
 	    cfg_number(m, "shear_strength", &p->tau, "Pa", 0, INFINITY) ||
 	    cfg_number(m, "mu1", &p->mu1, "", 0, INFINITY) ||
 	    cfg_number(m, "mu2", &p->mu2, "", 0, INFINITY) ||
 	    cfg_number(m, "delta_s", &p->delta_s, "", 0, INFINITY) ||
-	    cfg_number_or(m, "beta", &p->beta, 0.10, "", 0, 1) ||
-	    cfg_choice_or(m, "criterion", &p->coupled, criteria, 0))
-		goto fail;
-	p->alpha_given = cfg_has(m, "alpha");
-	if (cfg_number_or(m, "alpha", &p->alpha, 1.0, "", CFG_POS, INFINITY))
+	    cfg_choice_or(m, "criterion", &p->coupled, criteria, 0) || area_parse(m, &p->area))
 		goto fail;
 	for (int k = 0; k < 3; k++) {
 		char lcs[8], prev[8];
@@ -112,14 +108,19 @@ fail:
 
 static void onate_free(law_params *p) { free(p); }
 
-static double onate_range(const law_params *lp) { return 1 + ((const onate_params *)lp)->beta; }
+static law_params *onate_copy(const law_params *p)
+{
+	return law_params_dup(p, sizeof(onate_params));
+}
+
+static double onate_range(const law_params *lp)
+{
+	return area_range(&((const onate_params *)lp)->area);
+}
 
 static void onate_setup(law_params *lp, const law_packing *pk)
 {
-	onate_params *p = (onate_params *)lp;
-	/* Eq. 22; with no bonds at all alpha keeps the quasi-optimal value 1. */
-	if (!p->alpha_given && pk->coordination > 0)
-		p->alpha = 40 * pk->porosity / pk->coordination;
+	area_setup(&((onate_params *)lp)->area, pk);
 }
 
 /* Fig. 10: compressive stress at compressive strain c, and the permanent
@@ -137,38 +138,32 @@ static double onate_curve(const void *law, double c, double *cp)
 	return s;
 }
 
-static double area(const onate_params *p, const law_pair *pair)
-{
-	double rc = fmin(pair->ri, pair->rj);
-	return p->alpha * DEM_PI * rc * rc;
-}
-
 static void onate_constants(const law_params *lp, const law_pair *pair, law_const *out)
 {
 	const onate_params *p = (const onate_params *)lp;
-	out->area = area(p, pair);
+	out->area = area_of(p->area.alpha, pair);
 	out->kn = out->area * p->q.E0 / pair->d0;
 	out->ks = out->kn * p->ks_over_kn;
-	out->cn = local_cn(&p->q, pair, out->area, out->kn);
-	out->rc = fmin(pair->ri, pair->rj);
+	out->cn = dh_cn(&p->q, pair, out->area, out->kn);
+	out->rc = area_rc(pair);
 }
 
 static inline void onate_force(const law_params *lp, const law_pair *pair, bond *b,
                                const law_kin *k, law_out *out)
 {
 	const onate_params *p = (const onate_params *)lp;
-	double inv_d = 1 / pair->d0, A = area(p, pair), kn = A * p->q.E0 * inv_d;
+	double inv_d = 1 / pair->d0, A = area_of(p->area.alpha, pair), kn = A * p->q.E0 * inv_d;
 	double ks = kn * p->ks_over_kn;
 	int intact = b->state < BOND_BROKEN_TENSION, broke = 0;
 	double open, w = 0;
 	out->failed = 0;
 	b->h[3] = k->un;
-	double fn = A * local_normal(&p->q, onate_curve, p, k->un * inv_d, b->h, !intact, &open,
-	                             &broke, &w);
+	double fn =
+	    A * dh_normal(&p->q, onate_curve, p, k->un * inv_d, b->h, !intact, &open, &broke, &w);
 	out->e_damage += A * pair->d0 * w;
 	double fnc = fn < 0 ? -fn : 0;
 	if (broke) { /* the shear spring goes with the bond */
-		out->e_damage += 0.5 * ks * local_secant(b->h[1], p->delta_s) * v3_dot(b->t, b->t);
+		out->e_damage += 0.5 * ks * dh_secant(b->h[1], p->delta_s) * v3_dot(b->t, b->t);
 		shear_break(b, out, BOND_BROKEN_TENSION, CRACK_TENSION);
 	} else if (intact) {
 		v3_add(b->t, b->t, k->dus);
@@ -177,8 +172,7 @@ static inline void onate_force(const law_params *lp, const law_pair *pair, bond 
 			strength = p->tau * A * (1 - fmin(1, open / p->q.eps_t));
 		double us = v3_norm(b->t), d = b->h[1];
 		if (ks * us > strength) { /* beyond the elastic limit */
-			double dnew =
-			    fmin(1, fmax(d, local_damage_at(us, strength / ks, p->delta_s)));
+			double dnew = fmin(1, fmax(d, dh_damage_at(us, strength / ks, p->delta_s)));
 			/* Work of the shear softening: 1/2 F_s u_s^f per unit of damage. */
 			out->e_damage +=
 			    0.5 * strength * strength / ks * (1 + p->delta_s) * (dnew - d);
@@ -188,7 +182,7 @@ static inline void onate_force(const law_params *lp, const law_pair *pair, bond 
 			shear_break(b, out, BOND_BROKEN_SHEAR, CRACK_SHEAR);
 			if (fn > 0) { /* the tension spring goes with the bond */
 				out->e_damage +=
-				    0.5 * fn * fn / (kn * local_secant(b->h[0], p->q.delta_n));
+				    0.5 * fn * fn / (kn * dh_secant(b->h[0], p->q.delta_n));
 				fn = 0;
 			}
 		} else
@@ -196,11 +190,11 @@ static inline void onate_force(const law_params *lp, const law_pair *pair, bond 
 	} else {
 		shear_slip(b->t, k->dus, ks, p->mu2 * fnc, out);
 	}
-	double ss = b->state < BOND_BROKEN_TENSION ? local_secant(b->h[1], p->delta_s) : 1;
+	double ss = b->state < BOND_BROKEN_TENSION ? dh_secant(b->h[1], p->delta_s) : 1;
 	v3_scale(out->fs, b->t, ks * ss);
 	out->fn_viscous = 0;
 	if (b->state < BOND_BROKEN_TENSION || fnc > 0)
-		out->fn_viscous = local_cn(&p->q, pair, A, kn) * k->vn;
+		out->fn_viscous = dh_cn(&p->q, pair, A, kn) * k->vn;
 	out->fn = fn + out->fn_viscous;
 }
 
@@ -210,9 +204,10 @@ static double onate_energy(const law_params *lp, const law_pair *pair, const bon
 {
 	const onate_params *p = (const onate_params *)lp;
 	int intact = b->state < BOND_BROKEN_TENSION;
-	double A = area(p, pair), kn = A * p->q.E0 / pair->d0, ks = kn * p->ks_over_kn;
-	double ss = intact ? local_secant(b->h[1], p->delta_s) : 1;
-	return local_normal_energy(&p->q, onate_curve, p, A, pair->d0, b->h, !intact) +
+	double A = area_of(p->area.alpha, pair), kn = A * p->q.E0 / pair->d0,
+	       ks = kn * p->ks_over_kn;
+	double ss = intact ? dh_secant(b->h[1], p->delta_s) : 1;
+	return dh_normal_energy(&p->q, onate_curve, p, A, pair->d0, b->h, !intact) +
 	       0.5 * ks * ss * v3_dot(b->t, b->t);
 }
 
@@ -222,6 +217,7 @@ const law law_onate = {
                "elasto-plastic compression",
     .parse = onate_parse,
     .free = onate_free,
+    .copy = onate_copy,
     .bond_range = onate_range,
     .setup = onate_setup,
     .constants = onate_constants,
@@ -229,5 +225,5 @@ const law law_onate = {
     .force = onate_force,
     .force_batch = onate_batch,
     .energy = onate_energy,
-    .damage = local_damage,
+    .damage = dh_damage,
 };

@@ -1,15 +1,28 @@
-/* The laws selectable by name from a material file's "law" key. */
+/* The laws selectable by name from a material file's "law" key, in the
+ * order messages list them. A law's file defines `const law law_NAME`;
+ * adding a law is adding NAME to this one list. */
 #include <stdio.h>
 #include <string.h>
 
 #include "lib/err.h"
 #include "solve/law.h"
 
-extern const law law_linear, law_onate, law_jcfpm, law_exponential;
+#define LAWS(X) X(linear) X(onate) X(jcfpm) X(exponential)
 
-static const law *const registry[] = {&law_linear, &law_onate, &law_jcfpm, &law_exponential, NULL};
+#define DECLARE(name) extern const law law_##name;
+#define ENTRY(name) &law_##name,
+LAWS(DECLARE)
+
+static const law *const registry[] = {LAWS(ENTRY) NULL};
 
 const law *const *law_all(void) { return registry; }
+
+law_params *law_params_dup(const law_params *p, size_t size)
+{
+	void *q = xmalloc(size);
+	memcpy(q, p, size);
+	return q;
+}
 
 const law *law_find(const char *name)
 {

@@ -22,7 +22,7 @@
 
 #include <string.h>
 
-#include "lib/runfile.h"
+#include "lib/states.h"
 #include "lib/vec3.h"
 #include "solve/law.h"
 

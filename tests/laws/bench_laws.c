@@ -7,10 +7,10 @@
 
 enum { NB = 1 << 16, NSTEP = 200 };
 
-static const char *materials[][2] = {
-    {"onate", "share/materials/concrete.json"},
-    {"jcfpm", "share/materials/concrete-jcfpm.json"},
-    {"exponential", "share/materials/concrete-exponential.json"},
+static const char *materials[] = {
+    "share/materials/concrete.json",
+    "share/materials/concrete-jcfpm.json",
+    "share/materials/concrete-exponential.json",
 };
 
 int main(void)
@@ -20,18 +20,16 @@ int main(void)
 	static law_kin kin[NB];
 	static law_out out[NB];
 	for (size_t m = 0; m < sizeof materials / sizeof materials[0]; m++) {
-		const law *L = drive_find(materials[m][0]);
-		cfg *c = cfg_load(materials[m][1]);
-		if (!c) {
+		cfg *c = cfg_load(materials[m]);
+		material mat;
+		if (!c || material_parse(c, &mat)) {
 			fprintf(stderr, "%s\n", err_msg());
 			return 1;
 		}
-		const char *s;
-		double rho;
-		cfg_string(c, "name", &s), cfg_string(c, "law", &s);
-		cfg_number(c, "density", &rho, "", 0, INFINITY);
-		law_params *p = L->parse(c);
 		cfg_free(c);
+		const law *L = mat.law;
+		const law_params *p = mat.params;
+		double rho = mat.density;
 		rng g;
 		rng_seed(&g, 1);
 		for (int q = 0; q < NB; q++) {
@@ -63,7 +61,7 @@ int main(void)
 		       "\"broken_shear\": %d, \"wall\": %.2f}\n",
 		       L->name, work / ((double)NB * NSTEP) * 1e9, st[0], st[1], st[2], st[3],
 		       timer_now() - t0);
-		L->free(p);
+		material_free(&mat);
 	}
 	return 0;
 }

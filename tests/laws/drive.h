@@ -9,43 +9,31 @@
 
 #include "lib/cfg.h"
 #include "lib/err.h"
-#include "lib/runfile.h"
+#include "lib/states.h"
 #include "solve/law.h"
+#include "solve/laws/material.h"
 #include "tests/check.h"
-
-extern const law law_onate, law_jcfpm, law_exponential;
 
 #define PI 3.14159265358979323846
 
-/* The laws of this library by name (the engine's law_find adds linear). */
-static inline const law *drive_find(const char *name)
-{
-	const law *all[] = {&law_onate, &law_jcfpm, &law_exponential};
-	for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
-		if (strcmp(all[k]->name, name) == 0)
-			return all[k];
-	return NULL;
-}
-
 /* Parse a material given as JSON text the way the engine reads a material
- * file: its own keys, the law's keys, then no key may be left unused.
- * NULL (and err_msg) on error. */
+ * file (material_parse, then no key may be left unused) and keep the
+ * parameters of its law, which must be L. NULL (and err_msg) on error. */
 static inline law_params *drive_parse(const law *L, const char *json, const char *source)
 {
 	cfg *c = cfg_parse(json, source);
 	if (!c)
 		return NULL;
-	const char *name, *lawname;
-	double density;
+	material m;
 	law_params *p = NULL;
-	if (cfg_string_or(c, "name", &name, "") == 0 &&
-	    cfg_string_or(c, "law", &lawname, "") == 0 &&
-	    cfg_number_or(c, "density", &density, 2500, "kg/m^3", CFG_POS, INFINITY) == 0)
-		p = L->parse(c);
-	if (p && cfg_check_unused(c)) {
-		L->free(p);
-		p = NULL;
+	if (material_parse(c, &m) == 0 && cfg_check_unused(c) == 0) {
+		if (m.law == L) {
+			p = m.params;
+			m.params = NULL;
+		} else
+			err_set("%s: law \"%s\": expected \"%s\"", source, m.law->name, L->name);
 	}
+	material_free(&m);
 	cfg_free(c);
 	return p;
 }

@@ -8,17 +8,21 @@
 enum { NB = 64, NSTEP = 300 };
 
 static const char *materials[][2] = {
-    {"onate", "{\"E0\": 3.8e9, \"nu\": 0.2, \"tensile_strength\": 4.8e6,"
+    {"onate", "{\"name\": \"m\", \"law\": \"onate\", \"density\": 2500,"
+              " \"E0\": 3.8e9, \"nu\": 0.2, \"tensile_strength\": 4.8e6,"
               " \"shear_strength\": 8.5e6, \"mu1\": 0.3, \"mu2\": 0.4, \"LCS1\": 8.5e6,"
               " \"LCS2\": 9e6, \"LCS3\": 11e6, \"YRC1\": 3, \"YRC2\": 9, \"YRC3\": 24,"
               " \"delta_n\": 0.2, \"delta_s\": 0.2, \"alpha\": 1}"},
-    {"onate", "{\"E0\": 3.8e9, \"nu\": 0.2, \"tensile_strength\": 4.8e6,"
+    {"onate", "{\"name\": \"m\", \"law\": \"onate\", \"density\": 2500,"
+              " \"E0\": 3.8e9, \"nu\": 0.2, \"tensile_strength\": 4.8e6,"
               " \"shear_strength\": 8.5e6, \"mu1\": 0.3, \"mu2\": 0.4, \"LCS1\": 8.5e6,"
               " \"LCS2\": 9e6, \"LCS3\": 11e6, \"YRC1\": 3, \"YRC2\": 9, \"YRC3\": 24,"
               " \"delta_n\": 0, \"delta_s\": 0.5, \"criterion\": \"coupled\"}"},
-    {"jcfpm", "{\"E\": 17e9, \"ks_ratio\": 0.15, \"tensile_strength\": 3.163e6,"
+    {"jcfpm", "{\"name\": \"m\", \"law\": \"jcfpm\", \"density\": 2500,"
+              " \"E\": 17e9, \"ks_ratio\": 0.15, \"tensile_strength\": 3.163e6,"
               " \"cohesion\": 9e6, \"friction_angle_deg\": 34.25, \"interaction_range\": 1.4}"},
-    {"exponential", "{\"E0\": 28e9, \"nu\": 0.2, \"tensile_strength\": 10e6,"
+    {"exponential", "{\"name\": \"m\", \"law\": \"exponential\", \"density\": 2500,"
+                    " \"E0\": 28e9, \"nu\": 0.2, \"tensile_strength\": 10e6,"
                     " \"delta_n\": 0.2, \"cohesion\": 13e6, \"friction_angle_deg\": 30,"
                     " \"contact_friction_angle_deg\": 30, \"interaction_range\": 1.1}"},
 };
@@ -42,7 +46,7 @@ static int same_bond(const bond *a, const bond *b)
 
 static void run(const char *name, const char *json)
 {
-	const law *L = drive_find(name);
+	const law *L = law_find(name);
 	law_params *p = drive_parse(L, json, name);
 	CHECK(p != NULL);
 	if (!p)

@@ -223,7 +223,7 @@ static void test_energy_books(void)
 
 int main(void)
 {
-	L = drive_find("exponential");
+	L = law_find("exponential");
 	CHECK(L != NULL);
 	P = L ? drive_parse(L, concrete, "exp.json") : NULL;
 	CHECK(P != NULL);

@@ -231,7 +231,7 @@ static void test_energy_books(void)
 
 int main(void)
 {
-	L = drive_find("jcfpm");
+	L = law_find("jcfpm");
 	CHECK(L != NULL);
 	P = L ? drive_parse(L, concrete, "jcfpm.json") : NULL;
 	CHECK(P != NULL);

@@ -26,17 +26,12 @@ static int check_file(const char *file)
 	cfg *c = load(file);
 	if (!c)
 		return -1;
-	const char *name, *lawname;
-	double density;
-	int ok = cfg_string(c, "name", &name) == 0 && cfg_string(c, "law", &lawname) == 0 &&
-	         cfg_number(c, "density", &density, "kg/m^3", CFG_POS, INFINITY) == 0;
-	const law *L = ok ? drive_find(lawname) : NULL;
-	law_params *p = L ? L->parse(c) : NULL;
-	ok = p && cfg_check_unused(c) == 0 && name[0] && density > 1000 && density < 3000;
+	material m;
+	int ok = material_parse(c, &m) == 0 && cfg_check_unused(c) == 0 && m.name[0] &&
+	         m.density > 1000 && m.density < 3000;
 	if (!ok)
 		fprintf(stderr, "%s: %s\n", file, err_msg());
-	if (p)
-		L->free(p);
+	material_free(&m);
 	cfg_free(c);
 	return ok ? 0 : -1;
 }
@@ -185,9 +180,9 @@ static void test_triaxial_cement(void)
 /* One message naming file, key, value and what was expected. */
 static void test_errors(void)
 {
-	const law *on = drive_find("onate"), *jc = drive_find("jcfpm"),
-	          *ex = drive_find("exponential");
-	const char *head = "{\"nu\": 0.2, \"tensile_strength\": 5e6, \"shear_strength\": 16e6,"
+	const law *on = law_find("onate"), *jc = law_find("jcfpm"), *ex = law_find("exponential");
+	const char *head = "{\"name\": \"bad\", \"law\": \"onate\", \"density\": 2500,"
+	                   " \"nu\": 0.2, \"tensile_strength\": 5e6, \"shear_strength\": 16e6,"
 	                   " \"mu1\": 0.9, \"mu2\": 0.25, \"delta_n\": 0.2, \"delta_s\": 0.2,"
 	                   " \"YRC1\": 3, \"YRC2\": 12, \"YRC3\": 22";
 	char json[1024];
@@ -215,7 +210,8 @@ static void test_errors(void)
 	          "bad.json: key 'LCS3': value 45000000: expected a number greater than LCS2 = "
 	          "45000000 (Pa)");
 	CHECK_STR(drive_error(on,
-	                      "{\"E0\": 28e9, \"nu\": 0.2, \"tensile_strength\": 5e6,"
+	                      "{\"name\": \"bad\", \"law\": \"onate\", \"density\": 2500,"
+	                      " \"E0\": 28e9, \"nu\": 0.2, \"tensile_strength\": 5e6,"
 	                      " \"shear_strength\": 16e6, \"mu1\": 0.9, \"mu2\": 0.25,"
 	                      " \"delta_n\": 0.2, \"delta_s\": 0.2, \"LCS1\": 20e6, \"LCS2\": 45e6,"
 	                      " \"LCS3\": 70e6, \"YRC1\": 3, \"YRC2\": 0.5, \"YRC3\": 22}",
@@ -233,19 +229,22 @@ static void test_errors(void)
 	                      "bad.json"),
 	          "bad.json: key 'alpha': value 0: expected a positive number");
 	CHECK_STR(drive_error(jc,
-	                      "{\"E\": 17e9, \"ks_ratio\": 0.15, \"tensile_strength\": 3.163e6,"
+	                      "{\"name\": \"j\", \"law\": \"jcfpm\", \"density\": 2400,"
+	                      " \"E\": 17e9, \"ks_ratio\": 0.15, \"tensile_strength\": 3.163e6,"
 	                      " \"cohesion\": 9e6, \"friction_angle_deg\": 34.25}",
 	                      "j.json"),
 	          "j.json: key 'interaction_range': missing: expected a number in [1, 2]");
 	CHECK_STR(
 	    drive_error(jc,
-	                "{\"E\": 17e9, \"ks_ratio\": 0.15, \"tensile_strength\": -3.163e6,"
+	                "{\"name\": \"j\", \"law\": \"jcfpm\", \"density\": 2400,"
+	                " \"E\": 17e9, \"ks_ratio\": 0.15, \"tensile_strength\": -3.163e6,"
 	                " \"cohesion\": 9e6, \"friction_angle_deg\": 34.25,"
 	                " \"interaction_range\": 1.4}",
 	                "j.json"),
 	    "j.json: key 'tensile_strength': value -3163000: expected a non-negative number (Pa)");
 	CHECK_STR(drive_error(ex,
-	                      "{\"E0\": 28e9, \"nu\": 0.2, \"tensile_strength\": 10e6,"
+	                      "{\"name\": \"e\", \"law\": \"exponential\", \"density\": 2500,"
+	                      " \"E0\": 28e9, \"nu\": 0.2, \"tensile_strength\": 10e6,"
 	                      " \"delta_n\": 0.2, \"cohesion\": 13e6, \"friction_angle_deg\": 30,"
 	                      " \"contact_friction_angle_deg\": 30, \"interaction_range\": 1.1,"
 	                      " \"gamma2\": -16}",

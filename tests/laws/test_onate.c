@@ -72,13 +72,15 @@ static void test_constants(void)
 	CHECK_REL(L->bond_range(P), 1.10, 1e-15); /* beta = 0.10 (Sect. 4.2) */
 
 	/* alpha = 40 P / N_c (Eq. 22) when the material does not give it. */
-	const char *noalpha = "{\"E0\": 28e9, \"nu\": 0.2, \"tensile_strength\": 5e6,"
+	const char *noalpha = "{\"name\": \"noalpha\", \"law\": \"onate\", \"density\": 2500,"
+	                      " \"E0\": 28e9, \"nu\": 0.2, \"tensile_strength\": 5e6,"
 	                      " \"shear_strength\": 16e6, \"mu1\": 0.9, \"mu2\": 0.25,"
 	                      " \"LCS1\": 20e6, \"LCS2\": 45e6, \"LCS3\": 70e6, \"YRC1\": 3,"
 	                      " \"YRC2\": 12, \"YRC3\": 22, \"delta_n\": 0.2, \"delta_s\": 0.2,"
 	                      " \"beta\": 0.2, \"xi\": 0.5}";
 	law_params *p = drive_parse(L, noalpha, "noalpha.json");
 	CHECK(p != NULL);
+	law_params *copy = L->copy(p);
 	law_packing pk = {.porosity = 0.12, .coordination = 8};
 	L->setup(p, &pk);
 	L->constants(p, &q, &c);
@@ -86,6 +88,14 @@ static void test_constants(void)
 	CHECK_REL(c.kn, 0.6 * KN, 1e-15);
 	CHECK_REL(c.cn, 2 * PI * ri * 0.6 * 0.5 / d0 * sqrt(mij * 0.6 * KN), 1e-14);
 	CHECK_REL(L->bond_range(p), 1.2, 1e-15);
+	/* A copy is set up on its own (the engine's, law.copy). */
+	law_packing other = {.porosity = 0.1, .coordination = 10};
+	L->setup(copy, &other);
+	L->constants(copy, &q, &c);
+	CHECK_REL(c.area, 0.4 * PI * ri * ri, 1e-15);
+	L->constants(p, &q, &c);
+	CHECK_REL(c.area, 0.6 * PI * ri * ri, 1e-15);
+	L->free(copy);
 	L->free(p);
 	/* A given alpha is kept. */
 	L->setup(P, &pk);
@@ -494,7 +504,7 @@ static void test_energy_books(void)
 
 int main(void)
 {
-	L = drive_find("onate");
+	L = law_find("onate");
 	CHECK(L != NULL);
 	P = drive_parse(L, concrete, "concrete.json");
 	CHECK(P != NULL);

@@ -1,8 +1,8 @@
 /* A material file: the keys the engine reads ("name", "law", "density" and
  * the optional "contact" object for non-bonded and platen contacts);
  * everything else belongs to the law, which parses the same object. */
-#ifndef DEM_MATERIAL_H
-#define DEM_MATERIAL_H
+#ifndef DEM_LAWS_MATERIAL_H
+#define DEM_LAWS_MATERIAL_H
 
 #include "lib/cfg.h"
 #include "solve/law.h"

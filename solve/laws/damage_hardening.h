@@ -1,7 +1,8 @@
-/* What the exponential law shares with the local model of Oñate et al.
- * 2015 (seeds/000): the elastic constants and contact damping, tension by
- * elasto-damage with linear softening, and compression loading along a
- * hardening curve with unloading and reloading at the initial stiffness.
+/* The damage and hardening core (prefix dh_) that the exponential law
+ * shares with the local model of Oñate et al. 2015 (seeds/000, "onate"):
+ * the elastic constants and contact damping, tension by elasto-damage with
+ * linear softening, and compression loading along a hardening curve with
+ * unloading and reloading at the initial stiffness.
  *
  * Elastic constants (Eq. 21, 29-30, 36), with A the effective area:
  *
@@ -43,15 +44,16 @@
  *   h[3]  u_n of the last force() call (m), so energy() can be evaluated
  * c_p is recomputed from c_max, so the plastic state costs one slot.
  */
-#ifndef DEM_LAWS_LOCAL_H
-#define DEM_LAWS_LOCAL_H
+#ifndef DEM_LAWS_DAMAGE_HARDENING_H
+#define DEM_LAWS_DAMAGE_HARDENING_H
 
 #include <math.h>
 
 #include "lib/cfg.h"
-#include "lib/runfile.h"
+#include "lib/states.h"
 #include "lib/vec3.h"
 #include "solve/law.h"
+#include "solve/laws/area.h"
 
 /* The keys both laws read (see share/doc/materials.md). */
 typedef struct {
@@ -61,16 +63,16 @@ typedef struct {
 	double delta_n; /* (u_n^f - u_n^l) / u_n^l (Eq. 47) */
 	double xi;      /* fraction of critical damping (Eq. 27) */
 	double eps_t;   /* sigma_t / E0: tensile limit strain */
-} local_params;
+} dh_params;
 
-int local_parse(cfg *m, local_params *q);
+int dh_parse(cfg *m, dh_params *q);
 
 /* Loading curve: compressive stress at compressive strain c, and the
  * permanent strain c - sigma / E0 (exactly 0 on the elastic part). */
-typedef double (*local_curve)(const void *law, double c, double *c_p);
+typedef double (*dh_curve)(const void *law, double c, double *c_p);
 
 /* Damage of Eq. 49 for the measure x with elastic limit xl. */
-static inline double local_damage_at(double x, double xl, double delta)
+static inline double dh_damage_at(double x, double xl, double delta)
 {
 	if (x <= xl)
 		return 0;
@@ -80,7 +82,7 @@ static inline double local_damage_at(double x, double xl, double delta)
 }
 
 /* Secant stiffness of the damaged branch over the undamaged one (Eq. 46). */
-static inline double local_secant(double d, double delta) { return (1 - d) / (1 + delta * d); }
+static inline double dh_secant(double d, double delta) { return (1 - d) / (1 + delta * d); }
 
 /* Normal stress (tension positive) at strain eps, updating h[0] and h[2]
  * (see the layout above). *open is the opening strain e from the permanent
@@ -91,9 +93,8 @@ static inline double local_secant(double d, double delta) { return (1 - d) / (1 
  * the work of a whole failure (the area between the loading path and the
  * secant grows linearly with d_n), and by plastic flow along the curve,
  * the work of the trapezoid less the change of recoverable energy. */
-static inline double local_normal(const local_params *q, local_curve curve, const void *law,
-                                  double eps, double h[LAW_NHIST], int broken, double *open,
-                                  int *broke, double *w)
+static inline double dh_normal(const dh_params *q, dh_curve curve, const void *law, double eps,
+                               double h[LAW_NHIST], int broken, double *open, int *broke, double *w)
 {
 	double c = -eps, cp;
 	if (c > h[2]) { /* loading past the historical maximum, Eq. 52a */
@@ -113,34 +114,33 @@ static inline double local_normal(const local_params *q, local_curve curve, cons
 		return q->E0 * e;
 	if (broken)
 		return 0;
-	double d = fmin(1, fmax(h[0], local_damage_at(e, q->eps_t, q->delta_n)));
+	double d = fmin(1, fmax(h[0], dh_damage_at(e, q->eps_t, q->delta_n)));
 	*w += 0.5 * q->E0 * q->eps_t * q->eps_t * (1 + q->delta_n) * (d - h[0]);
 	h[0] = d;
 	if (d >= 1) {
 		*broke = 1;
 		return 0;
 	}
-	return q->E0 * e * local_secant(d, q->delta_n);
+	return q->E0 * e * dh_secant(d, q->delta_n);
 }
 
 /* Elastic energy of the normal spring in the state stored in h (changing
  * nothing): 1/2 F^2 / K with the current stiffness, K_n0 in compression and
  * the damaged secant in tension, i.e. 1/2 A d sigma^2 / E. */
-static inline double local_normal_energy(const local_params *q, local_curve curve, const void *law,
-                                         double area, double d0, const double h[LAW_NHIST],
-                                         int broken)
+static inline double dh_normal_energy(const dh_params *q, dh_curve curve, const void *law,
+                                      double area, double d0, const double h[LAW_NHIST], int broken)
 {
 	double copy[LAW_NHIST] = {h[0], h[1], h[2], h[3]}, open, w = 0;
 	int broke = 0;
-	double s = local_normal(q, curve, law, h[3] * (1 / d0), copy, broken, &open, &broke, &w);
+	double s = dh_normal(q, curve, law, h[3] * (1 / d0), copy, broken, &open, &broke, &w);
 	if (s == 0)
 		return 0;
-	double e = q->E0 * (s < 0 ? 1 : local_secant(h[0], q->delta_n));
+	double e = q->E0 * (s < 0 ? 1 : dh_secant(h[0], q->delta_n));
 	return 0.5 * area * d0 * s * s / e;
 }
 
 /* law.damage of both laws. */
-static inline void local_damage(const law_params *p, const bond *b, double *dn, double *ds)
+static inline void dh_damage(const law_params *p, const bond *b, double *dn, double *ds)
 {
 	(void)p;
 	*dn = b->h[0];
@@ -148,9 +148,9 @@ static inline void local_damage(const law_params *p, const bond *b, double *dn, 
 }
 
 /* Contact damping coefficient (Eq. 30) for effective area A. */
-static inline double local_cn(const local_params *q, const law_pair *pair, double area, double kn)
+static inline double dh_cn(const dh_params *q, const law_pair *pair, double area, double kn)
 {
-	double rc = fmin(pair->ri, pair->rj), mij = pair->mi * pair->mj / (pair->mi + pair->mj);
+	double rc = area_rc(pair), mij = pair->mi * pair->mj / (pair->mi + pair->mj);
 	return 2 * q->xi * area / (rc * pair->d0) * sqrt(mij * kn);
 }
 

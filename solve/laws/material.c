@@ -2,7 +2,7 @@
 #include <string.h>
 
 #include "lib/err.h"
-#include "solve/material.h"
+#include "solve/laws/material.h"
 
 int material_parse(cfg *c, material *m)
 {
