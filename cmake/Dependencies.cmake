@@ -20,6 +20,9 @@ target_include_directories(dem_hdf5 SYSTEM INTERFACE ${HDF5_INCLUDE_DIRS})
 target_link_libraries(dem_hdf5 INTERFACE ${HDF5_C_LIBRARIES})
 target_compile_definitions(dem_hdf5 INTERFACE ${HDF5_DEFINITIONS})
 
+find_package(ZLIB)
+dem_require(ZLIB_FOUND "zlib" "zlib1g-dev")
+
 find_package(cJSON QUIET)
 find_path(CJSON_HEADER cjson/cJSON.h)
 dem_require(CJSON_HEADER "cJSON" "libcjson-dev")

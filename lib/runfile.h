@@ -63,11 +63,20 @@ typedef struct run_writer run_writer;
  * history of the given columns. */
 run_writer *run_create(const char *path, const dem_provenance *prov, const dem_assembly *a,
                        const run_column *cols, int ncols);
-/* Continue an existing run file (solve --restart): copy it to "<path>.tmp",
- * keep the first history_rows rows of its history and crack_rows rows of its
- * crack log, and set its status to "running". The original stays untouched
- * until run_finish renames the copy over it. */
-run_writer *run_reopen(const char *path, size_t history_rows, size_t crack_rows);
+/* Continue a run file (solve --restart): copy `from` (the run file at path,
+ * or its recovery copy) to "<path>.tmp", keep the first history_rows rows of
+ * its history and crack_rows rows of its crack log, and set its status to
+ * "running". The originals stay untouched until run_finish renames the copy
+ * over path. */
+run_writer *run_reopen(const char *from, const char *path, size_t history_rows, size_t crack_rows);
+/* The recovery copy of the run file at path: "<path>.ckpt". */
+void run_recovery_name(const char *path, char *out, size_t n);
+/* Save a recovery point: flush the run file and copy it as it stands, with
+ * the status "interrupted", to its recovery copy, through a temporary file
+ * renamed into place, so that a kill at any moment (kill -9, a lost node)
+ * leaves the previous copy whole. Called after each checkpoint; run_finish
+ * removes the copy once the run file itself is complete. */
+int run_save_recovery(run_writer *w);
 int run_write_bonds(run_writer *w, const dem_bonds *b);
 /* Append one row (ncols values). Rows are buffered; run_flush writes them. */
 int run_history(run_writer *w, const double *row);

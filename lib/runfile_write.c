@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "lib/afile.h"
 #include "lib/err.h"
@@ -122,7 +123,30 @@ static int copy_file(const char *from, const char *to)
 	return 0;
 }
 
-run_writer *run_reopen(const char *path, size_t history_rows, size_t crack_rows)
+void run_recovery_name(const char *path, char *out, size_t n) { snprintf(out, n, "%s.ckpt", path); }
+
+int run_save_recovery(run_writer *w)
+{
+	char final[4200], tmp[4300];
+	run_recovery_name(w->path, final, sizeof final);
+	if (run_flush(w))
+		return -1;
+	if (H5Fflush(w->file, H5F_SCOPE_GLOBAL) < 0)
+		return err_set("%s: cannot flush (disk full?)", w->tmp);
+	if (afile_begin(final, tmp, sizeof tmp))
+		return -1;
+	hid_t f = copy_file(w->tmp, tmp) ? -1 : h5_open(tmp, RUN_FORMAT, 1);
+	if (f < 0 || h5_attr_str(f, "status", "interrupted")) {
+		if (f >= 0)
+			H5Fclose(f);
+		afile_discard(tmp);
+		return err_set("%s: cannot write the recovery copy %s: %s", w->path, final,
+		               err_msg());
+	}
+	return h5_commit(f, tmp, final);
+}
+
+run_writer *run_reopen(const char *from, const char *path, size_t history_rows, size_t crack_rows)
 {
 	run_writer *w = xcalloc(1, sizeof *w);
 	snprintf(w->path, sizeof w->path, "%s", path);
@@ -130,7 +154,7 @@ run_writer *run_reopen(const char *path, size_t history_rows, size_t crack_rows)
 		free(w);
 		return NULL;
 	}
-	if (copy_file(path, w->tmp)) {
+	if (copy_file(from, w->tmp)) {
 		afile_discard(w->tmp);
 		free(w);
 		return NULL;
@@ -354,6 +378,12 @@ int run_finish(run_writer *w, const char *status)
 		return -1;
 	}
 	rc = h5_commit(w->file, w->tmp, w->path);
+	if (!rc) {
+		/* The run file holds everything now: its recovery copy is stale. */
+		char ckpt[4200];
+		run_recovery_name(w->path, ckpt, sizeof ckpt);
+		unlink(ckpt);
+	}
 	writer_free(w);
 	return rc;
 }

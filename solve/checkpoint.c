@@ -4,10 +4,13 @@
  * topology, gauge, frame, time-step bound) is not stored; the particle
  * order is kept only to check that. Layout in share/doc/solve.md. Datasets
  * are extendible and overwritten in place, so repeated checkpoints do not
- * grow the file; the `complete` attribute is 0 while one is being written. */
+ * grow the file; the `complete` attribute is 0 while one is being written,
+ * and `checksum` (CRC-32 of the state it holds) is compared after a restart
+ * has read it back, so damaged checkpoint data is refused, never continued. */
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
+#include <zlib.h>
 
 #include "lib/err.h"
 #include "lib/h5.h"
@@ -78,6 +81,57 @@ static int scalars(engine *e, scalar *s)
 	if (s)
 		memcpy(s, t, sizeof t);
 	return n;
+}
+
+/* CRC-32 of the checkpointed state as it is in memory, in a fixed order:
+ * the same function after writing and after reading back. */
+static uLong crc(uLong c, const void *p, size_t bytes) { return crc32_z(c, p, bytes); }
+
+static uLong pairs_crc(uLong c, const pairlist *l, int contacts)
+{
+	for (size_t b = 0; b < l->n; b++) {
+		const bond *r = &l->rec[b];
+		if (contacts) {
+			c = crc(c, &r->i, sizeof r->i);
+			c = crc(c, &r->j, sizeof r->j);
+		}
+		c = crc(c, r->t, sizeof r->t);
+		if (!contacts) {
+			c = crc(c, r->h, sizeof r->h);
+			c = crc(c, &r->state, sizeof r->state);
+		}
+	}
+	return contacts ? crc(c, l->k, 3 * l->n * sizeof *l->k)
+	                : crc(c, l->f, 6 * l->n * sizeof *l->f);
+}
+
+static int64_t state_crc(engine *e)
+{
+	uLong c = crc32_z(0, Z_NULL, 0);
+	scalar s[64];
+	int ns = scalars(e, s);
+	for (int k = 0; k < ns; k++) {
+		int64_t v = s[k].i ? *s[k].i : s[k].n ? *s[k].n : s[k].z ? (int64_t)*s[k].z : 0;
+		c = s[k].d ? crc(c, s[k].d, sizeof *s[k].d) : crc(c, &v, sizeof v);
+	}
+	const particles *P = &e->p;
+	size_t n = P->n;
+	c = crc(c, P->orig, n * sizeof *P->orig);
+	const double *vec[] = {P->x, P->v, P->w, P->x_ref};
+	for (int k = 0; k < 4; k++)
+		c = crc(c, vec[k], 3 * n * sizeof *vec[k]);
+	c = crc(c, P->flag, n * sizeof *P->flag);
+	c = crc(c, e->bc.surf.idx, e->bc.surf.n * sizeof *e->bc.surf.idx);
+	c = crc(c, e->bc.surf.area, e->bc.surf.n * sizeof *e->bc.surf.area);
+	c = pairs_crc(c, &e->pairs.bonds, 0);
+	c = pairs_crc(c, &e->pairs.contacts, 1);
+	for (int k = 0; k < 2; k++) {
+		const platens *pl = &e->bc.pl;
+		c = crc(c, pl->who[k], pl->ncand[k] * sizeof *pl->who[k]);
+		for (size_t q = 0; q < pl->ncand[k]; q++)
+			c = crc(c, &pl->pc[k][q], sizeof pl->pc[k][q]);
+	}
+	return (int64_t)c;
 }
 
 /* Open a dataset of rows x cols (cols 0: rank 1) for overwriting, creating
@@ -267,7 +321,8 @@ int checkpoint_write(engine *e, hid_t file)
 	     put(g, "bond_force", H5T_NATIVE_DOUBLE, e->pairs.bonds.f, e->pairs.bonds.n, 6) ||
 	     put_fields(g, contact_fields, 3, &e->pairs.contacts) ||
 	     put(g, "contact_k", H5T_NATIVE_DOUBLE, e->pairs.contacts.k, e->pairs.contacts.n, 3) ||
-	     write_platens(g, e) || h5_attr_i64(g, "complete", 1);
+	     write_platens(g, e) || h5_attr_i64(g, "checksum", state_crc(e)) ||
+	     h5_attr_i64(g, "complete", 1);
 	H5Gclose(g);
 	if (!rc && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
 		rc = err_set("%s: cannot flush the checkpoint (disk full?)", h5_name(file));
@@ -438,6 +493,11 @@ int checkpoint_read(engine *e, const char *path)
 			             "expected a bond state from %d to %d",
 			             path, e->pairs.bonds.rec[b].state, b, BOND_INTACT,
 			             BOND_BROKEN_SHEAR);
+	int64_t sum = 0;
+	if (!rc && (h5_read_attr_i64(g, "checksum", &sum) || sum != state_crc(e)))
+		rc = err_set("%s: the checkpoint's data do not match its checksum (damaged, or "
+		             "written by an older version): not restartable",
+		             path);
 	H5Gclose(g);
 	H5Fclose(f);
 	return rc ? -1 : 0;

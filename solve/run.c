@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "lib/afile.h"
 #include "lib/err.h"
@@ -220,7 +221,7 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 	}
 	if (snapshot_due(L) && snapshot(L))
 		fatal(NULL);
-	if (checkpoint_due(L) && checkpoint(L))
+	if (checkpoint_due(L) && (checkpoint(L) || run_save_recovery(L->w)))
 		fatal(NULL);
 	if (e->out.cracks.n >= 4096 && output_cracks(e, L->w))
 		fatal(NULL);
@@ -316,8 +317,40 @@ int run_engine(engine *e, const dem_assembly *a, const run_opts *o)
 	return bonds_then_loop(e, create(e, a, o), o);
 }
 
+static int run_continue(const run_opts *o, const char *from, dem_run *r);
+
+/* Whether the recovery copy beside the output (read into r) is of a run of
+ * this same case on this same assembly that was killed outright; a copy
+ * that is not is removed, since this run replaces it. */
+static int killed_before(const dem_case *cs, const dem_assembly *a, const char *ckpt, dem_run *r)
+{
+	if (access(ckpt, F_OK) != 0)
+		return 0;
+	int same = run_read(ckpt, r) == 0;
+	same = same && strcmp(r->prov.config, cs->config) == 0 && r->assembly.n == a->n &&
+	       memcmp(r->assembly.x, a->x, 3 * a->n * sizeof *a->x) == 0 &&
+	       memcmp(r->assembly.r, a->r, a->n * sizeof *a->r) == 0;
+	if (same)
+		return 1;
+	run_free(r);
+	unlink(ckpt);
+	return 0;
+}
+
 int run_case(const dem_case *cs, dem_assembly *a, const run_opts *o)
 {
+	char ckpt[4200];
+	dem_run r = {0};
+	run_recovery_name(o->output, ckpt, sizeof ckpt);
+	if (killed_before(cs, a, ckpt, &r)) {
+		if (!o->quiet)
+			fprintf(stderr, "%s: %s: a run of this case was killed; continuing it\n",
+			        err_program_name(), o->output);
+		assembly_free(a);
+		run_opts cont = *o;
+		cont.restart = o->output;
+		return run_continue(&cont, ckpt, &r);
+	}
 	engine e;
 	if (engine_setup(&e, cs, a, &(engine_opts){.threads = o->threads, .quiet = o->quiet}))
 		fatal("%s: %s", cs->source, err_msg());
@@ -360,33 +393,70 @@ static int drop_later_snapshots(run_writer *w, int64_t step)
 	return 0;
 }
 
-int run_restart(const run_opts *o)
+/* The file a restart continues from (its name into from, its contents
+ * into r): the run file when it was interrupted (Ctrl-C, a signal, a
+ * budget), or its recovery copy, which is what a run killed outright (kill
+ * -9, a lost node) leaves; the one further on when there are both. */
+static void restart_source(const char *path, char *from, size_t n, dem_run *r)
 {
-	dem_run r;
-	if (run_read(o->restart, &r))
+	char ckpt[4200];
+	run_recovery_name(path, ckpt, sizeof ckpt);
+	int has_run = access(path, F_OK) == 0, has_ckpt = access(ckpt, F_OK) == 0;
+	if (!has_run && !has_ckpt)
+		fatal("%s: missing, and no recovery copy %s beside it: nothing to continue", path,
+		      ckpt);
+	dem_run c;
+	if (has_ckpt && run_read(ckpt, &c))
 		fatal(NULL);
-	if (strcmp(r.status, "interrupted") != 0)
-		fatal("%s: the run has status '%s': only an interrupted run continues", o->restart,
-		      r.status);
+	if (has_run) {
+		if (run_read(path, r))
+			fatal(NULL);
+		if (strcmp(r->status, "interrupted") != 0)
+			fatal("%s: the run has status '%s': only an interrupted run continues",
+			      path, r->status);
+		if (!has_ckpt || c.nrows <= r->nrows) {
+			if (has_ckpt)
+				run_free(&c);
+			snprintf(from, n, "%s", path);
+			return;
+		}
+		run_free(r);
+	}
+	*r = c;
+	snprintf(from, n, "%s", ckpt);
+}
+
+/* Continue the run stored in from (the run file or its recovery copy,
+ * read into r) under the run file's name o->restart. */
+static int run_continue(const run_opts *o, const char *from, dem_run *r)
+{
 	dem_case cs;
-	if (case_parse_text(r.prov.config, o->restart, &cs))
-		fatal("%s: stored configuration: %s", o->restart, err_msg());
+	if (case_parse_text(r->prov.config, from, &cs))
+		fatal("%s: stored configuration: %s", from, err_msg());
 	engine e;
-	if (engine_setup(&e, &cs, &r.assembly, &(engine_opts){.threads = o->threads, .quiet = 1}))
+	if (engine_setup(&e, &cs, &r->assembly, &(engine_opts){.threads = o->threads, .quiet = 1}))
 		fatal(NULL);
 	phase_start(&e.tm, TM_SETUP);
-	if (checkpoint_read(&e, o->restart))
+	if (checkpoint_read(&e, from))
 		fatal(NULL);
-	run_writer *w = run_reopen(o->restart, e.out.history_rows, e.out.crack_rows);
+	run_writer *w = run_reopen(from, o->restart, e.out.history_rows, e.out.crack_rows);
 	if (!w || drop_later_snapshots(w, e.clock.step))
 		fatal(NULL);
 	if (!o->quiet)
 		fprintf(stderr, "%s: %s: continuing from step %" PRId64 " (t = %g s, stage %d)\n",
-		        err_program_name(), o->restart, e.clock.step, e.clock.t, e.prog.stage + 1);
+		        err_program_name(), from, e.clock.step, e.clock.t, e.prog.stage + 1);
 	phase_stop(&e.tm, TM_SETUP);
-	run_free(&r);
+	run_free(r);
 	int code = run_loop(&e, w, o);
 	engine_free(&e);
 	case_free(&cs);
 	return code;
+}
+
+int run_restart(const run_opts *o)
+{
+	dem_run r;
+	char from[4200];
+	restart_source(o->restart, from, sizeof from, &r);
+	return run_continue(o, from, &r);
 }
