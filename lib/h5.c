@@ -1,5 +1,7 @@
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/statvfs.h>
 
 #include "lib/afile.h"
 #include "lib/err.h"
@@ -7,6 +9,14 @@
 
 /* The format versions this build reads (and writes). */
 #define FORMAT_VERSION 1
+
+/* HDF5 closes the files still open when the process exits. After a write
+ * that failed (a full disk), its close of such a file crashes inside the
+ * library (HDF5 1.10), turning a clear error message into a segmentation
+ * fault. Every file this toolchain writes is closed explicitly, or is a
+ * temporary that an error removes, so the library is told not to: before
+ * main, since it must be said before the library's first use. */
+__attribute__((constructor)) static void h5_no_atexit(void) { H5dont_atexit(); }
 
 /* No error stack printed (the callers report); and HDF5's free lists, which
  * otherwise keep every block freed while writing (several MB for a snapshot
@@ -53,11 +63,35 @@ hid_t h5_create(const char *final, char *tmp, size_t tmpsize)
 	return f;
 }
 
+int h5_write_error(const char *path, const char *what)
+{
+	/* HDF5 keeps no errno; the last failed write usually left it. */
+	int e = errno;
+	struct statvfs st;
+	char why[160];
+	if (statvfs(path, &st) == 0 && (double)st.f_bavail * (double)st.f_frsize < 1 << 20)
+		snprintf(why, sizeof why, "the file system is full (%.0f bytes free)",
+		         (double)st.f_bavail * (double)st.f_frsize);
+	else if (e == ENOSPC || e == EDQUOT || e == EFBIG || e == EIO)
+		snprintf(why, sizeof why, "%s", strerror(e));
+	else
+		snprintf(why, sizeof why, "the disk is full or failing");
+	return err_set("%s: cannot write %s: %s", path, what, why);
+}
+
+int h5_write_dataset_error(hid_t loc, const char *name)
+{
+	char what[300];
+	snprintf(what, sizeof what, "dataset '%s'", name);
+	return h5_write_error(h5_name(loc), what);
+}
+
 int h5_commit(hid_t file, const char *tmp, const char *final)
 {
 	if (H5Fclose(file) < 0) {
+		h5_write_error(tmp, "the file's last data");
 		afile_discard(tmp);
-		return err_set("%s: cannot close file", tmp);
+		return -1;
 	}
 	return afile_commit(tmp, final);
 }
@@ -294,7 +328,7 @@ int h5_rows_open(h5_rows *r, hid_t loc, const char *name, hid_t type, size_t row
 	H5Sclose(space);
 	if (r->d < 0 || r->failed) {
 		r->failed = 1;
-		return err_set("%s: cannot write dataset '%s' (disk full?)", h5_name(loc), name);
+		return h5_write_dataset_error(loc, name);
 	}
 	return 0;
 }
@@ -316,8 +350,7 @@ int h5_rows_put(h5_rows *r, const void *data, size_t m)
 	}
 	if (h5_slab(r->d, r->type, r->at, m, r->cols, (void *)data, 1)) {
 		r->failed = 1;
-		return err_set("%s: cannot write dataset '%s' (disk full?)", h5_name(r->loc),
-		               r->name);
+		return h5_write_dataset_error(r->loc, r->name);
 	}
 	r->at += m;
 	return 0;
@@ -431,8 +464,7 @@ int h5_append(hid_t loc, const char *name, hid_t type, const void *data, size_t 
 		rc = h5_slab(d, type, at, rows, cols, (void *)data, 1);
 	H5Dclose(d);
 	if (rc < 0)
-		return err_set("%s: cannot append to dataset '%s' (disk full?)", h5_name(loc),
-		               name);
+		return h5_write_dataset_error(loc, name);
 	return 0;
 }
 

@@ -15,6 +15,12 @@ void h5_quiet(void);
 hid_t h5_create(const char *final, char *tmp, size_t tmpsize);
 /* Close the file and rename tmp to final (atomic output). */
 int h5_commit(hid_t file, const char *tmp, const char *final);
+/* err_set for a write to path that failed, saying why where it can (a full
+ * file system, or the errno of the failed write); what names what was
+ * written. Returns -1. */
+int h5_write_error(const char *path, const char *what);
+/* The same for dataset name under loc. */
+int h5_write_dataset_error(hid_t loc, const char *name);
 /* Close the file and remove tmp. */
 void h5_discard(hid_t file, const char *tmp);
 /* Open an existing file and check its `format` attribute equals format and

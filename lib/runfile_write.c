@@ -119,7 +119,7 @@ static int copy_file(const char *from, const char *to)
 	rc = rc || ferror(in);
 	fclose(in);
 	if (fclose(out) || rc)
-		return err_set("%s: cannot copy to %s (disk full?)", from, to);
+		return h5_write_error(to, "a copy of the run file");
 	return 0;
 }
 
@@ -132,7 +132,7 @@ int run_save_recovery(run_writer *w)
 	if (run_flush(w))
 		return -1;
 	if (H5Fflush(w->file, H5F_SCOPE_GLOBAL) < 0)
-		return err_set("%s: cannot flush (disk full?)", w->tmp);
+		return h5_write_error(w->tmp, "the run file");
 	if (afile_begin(final, tmp, sizeof tmp))
 		return -1;
 	hid_t f = copy_file(w->tmp, tmp) ? -1 : h5_open(tmp, RUN_FORMAT, 1);
@@ -292,7 +292,7 @@ int run_flush(run_writer *w)
 		w->buffered = 0;
 	}
 	if (H5Fflush(w->file, H5F_SCOPE_GLOBAL) < 0)
-		return err_set("%s: cannot flush (disk full?)", w->tmp);
+		return h5_write_error(w->tmp, "the run file");
 	return 0;
 }
 

@@ -159,7 +159,7 @@ static hid_t open_put(hid_t g, const char *name, hid_t type, size_t rows, size_t
 		H5Sclose(sp);
 	}
 	if (d < 0)
-		err_set("%s: cannot write checkpoint dataset '%s' (disk full?)", h5_name(g), name);
+		h5_write_dataset_error(g, name);
 	return d;
 }
 
@@ -172,8 +172,7 @@ static int put(hid_t g, const char *name, hid_t type, const void *data, size_t r
 	herr_t rc = rows ? H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) : 0;
 	H5Dclose(d);
 	if (rc < 0)
-		return err_set("%s: cannot write checkpoint dataset '%s' (disk full?)", h5_name(g),
-		               name);
+		return h5_write_dataset_error(g, name);
 	return 0;
 }
 
@@ -210,8 +209,7 @@ static int put_field(hid_t g, const field *f, const bond *rec, size_t n)
 	free(buf);
 	H5Dclose(d);
 	if (rc < 0)
-		return err_set("%s: cannot write checkpoint dataset '%s' (disk full?)", h5_name(g),
-		               f->name);
+		return h5_write_dataset_error(g, f->name);
 	return 0;
 }
 
@@ -325,7 +323,7 @@ int checkpoint_write(engine *e, hid_t file)
 	     h5_attr_i64(g, "complete", 1);
 	H5Gclose(g);
 	if (!rc && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
-		rc = err_set("%s: cannot flush the checkpoint (disk full?)", h5_name(file));
+		rc = h5_write_error(h5_name(file), "the checkpoint");
 	return rc ? -1 : 0;
 }
 

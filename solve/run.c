@@ -52,7 +52,8 @@ static int snapshot(loop_state *L)
 		return 0;
 	L->last_snapshot_step = e->clock.step;
 	e->out.last_snapshot_strain = engine_strain(e);
-	return output_snapshot(e, L->w);
+	/* Flushed, so that a full disk is noticed here, not at the end. */
+	return output_snapshot(e, L->w) || run_flush(L->w);
 }
 
 static int snapshot_due(loop_state *L)
@@ -223,7 +224,7 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 		fatal(NULL);
 	if (checkpoint_due(L) && (checkpoint(L) || run_save_recovery(L->w)))
 		fatal(NULL);
-	if (e->out.cracks.n >= 4096 && output_cracks(e, L->w))
+	if (e->out.cracks.n >= 4096 && (output_cracks(e, L->w) || run_flush(L->w)))
 		fatal(NULL);
 	int budget = (o->max_steps && e->clock.step - L->step0 >= o->max_steps) ||
 	             (o->max_wall > 0 && timer_now() - L->wall0 >= o->max_wall);
