@@ -203,8 +203,8 @@ static void contacts(dem_assembly *a, const double *s, double beta)
 	double rmax = 0;
 	for (size_t i = 0; i < n; i++)
 		rmax = fmax(rmax, a->r[i]);
-	cells g;
-	cells_build(&g, a->x, n, 2 * (1 + beta) * rmax, NULL);
+	pack_cells g;
+	pack_cells_build(&g, a->x, n, 2 * (1 + beta) * rmax, NULL);
 	double wc = REPORT_CORE_DEPTH * 2 * rep->mean_radius;
 	enum {
 		BONDS,
@@ -243,7 +243,7 @@ static void contacts(dem_assembly *a, const double *s, double beta)
 			p[CORE_SPHERES] += where[i] == 'c';
 			p[LAYER_SPHERES] += where[i] == 'l';
 			int c0[3];
-			cells_coord(&g, a->x + 3 * i, c0);
+			pack_cells_coord(&g, a->x + 3 * i, c0);
 			/* Offset o = (dx + 1) + 3 (dy + 1) + 9 (dz + 1): the own cell
 			 * is 13, and the cells after it in (z, y, x) order, 14 to
 			 * 26, hold every pair with sphere i not met from a cell of
@@ -254,7 +254,7 @@ static void contacts(dem_assembly *a, const double *s, double beta)
 				if (c[0] < 0 || c[1] < 0 || c[2] < 0 || c[0] >= g.dim[0] ||
 				    c[1] >= g.dim[1] || c[2] >= g.dim[2])
 					continue;
-				size_t id = cells_index(&g, c);
+				size_t id = pack_cells_index(&g, c);
 				for (size_t q = g.start[id]; q < g.start[id + 1]; q++) {
 					size_t j = (size_t)g.item[q];
 					if (o == 13 && j <= i)
@@ -293,7 +293,7 @@ static void contacts(dem_assembly *a, const double *s, double beta)
 			}
 		}
 	}
-	cells_free(&g);
+	pack_cells_free(&g);
 	double tot[NSUM] = {0};
 	for (size_t b = 0; b < nblock; b++)
 		for (int k = 0; k < NSUM; k++)

@@ -130,7 +130,7 @@ typedef struct {
 } cands;
 
 /* Append the spheres of the cell at coordinates cc (wrapped if periodic). */
-static void cands_add(const soft_system *s, const cells *g, const double *xs, const int cc[3],
+static void cands_add(const soft_system *s, const pack_cells *g, const double *xs, const int cc[3],
                       int small, cands *c)
 {
 	int code = 13, w[3];
@@ -167,8 +167,8 @@ static void cands_add(const soft_system *s, const cells *g, const double *xs, co
 /* The candidates of the cell at c0: the 27 cells around it; for a half
  * list, its own cell first and then the 13 cells after it in the order
  * (z, y, x), so that each pair of cells is met once. */
-static void cands_gather(const soft_system *s, const cells *g, const double *xs, const int c0[3],
-                         int small, cands *c)
+static void cands_gather(const soft_system *s, const pack_cells *g, const double *xs,
+                         const int c0[3], int small, cands *c)
 {
 	int lo[3], hi[3], half = s->half && !small;
 	for (int k = 0; k < 3; k++) {
@@ -403,8 +403,8 @@ void soft_rebuild(soft_system *s)
 	double rmax = 0;
 	for (size_t i = 0; i < s->n; i++)
 		rmax = fmax(rmax, s->r[i]);
-	cells g;
-	cells_build(&g, s->x, s->n, 2 * rmax + s->skin, periodic(s) ? s->box : NULL);
+	pack_cells g;
+	pack_cells_build(&g, s->x, s->n, 2 * rmax + s->skin, periodic(s) ? s->box : NULL);
 	size_t n = s->n;
 	double *xs = xmalloc(4 * n * sizeof *xs + 1);
 	for (size_t q = 0; q < n; q++) {
@@ -478,7 +478,7 @@ void soft_rebuild(soft_system *s)
 	free(at);
 	free(chunk_of);
 	free(xs);
-	cells_free(&g);
+	pack_cells_free(&g);
 	memcpy(s->x_built, s->x, 3 * n * sizeof *s->x);
 	memcpy(s->r_built, s->r, n * sizeof *s->r);
 	for (size_t i = 0; i < n; i++) {

@@ -52,11 +52,11 @@ static double bound(const double q[3], const double n[3], const double *x, doubl
 /* The room at q against the spheres of g (points x, radii r), capped; once
  * it falls below `enough` the search stops (the point is of no use). The
  * cell of q comes first, as its spheres are the likeliest to bound it. */
-static double room(const cells *g, const double *x, const double *r, const double q[3],
+static double room(const pack_cells *g, const double *x, const double *r, const double q[3],
                    const double n[3], double cap, double enough)
 {
 	int c0[3];
-	cells_coord(g, q, c0);
+	pack_cells_coord(g, q, c0);
 	double c = cap;
 	for (int o = 0; o < 27; o++) {
 		int k = (o + 13) % 27; /* 13 is the cell itself */
@@ -65,7 +65,7 @@ static double room(const cells *g, const double *x, const double *r, const doubl
 			out |= c1[a] < 0 || c1[a] >= g->dim[a];
 		if (out)
 			continue;
-		size_t id = cells_index(g, c1);
+		size_t id = pack_cells_index(g, c1);
 		for (size_t q2 = g->start[id]; q2 < g->start[id + 1]; q2++) {
 			size_t j = (size_t)g->item[q2];
 			c = fmin(c, bound(q, n, x + 3 * j, r[j]));
@@ -77,7 +77,7 @@ static double room(const cells *g, const double *x, const double *r, const doubl
 }
 
 /* Lattice points of triangle t with room >= cmin, appended to *out. */
-static void scan_triangle(const dem_geometry *geo, size_t t, double h, const cells *g,
+static void scan_triangle(const dem_geometry *geo, size_t t, double h, const pack_cells *g,
                           const double *x, const double *r, double cmin, double cap,
                           candidate **out, size_t *n, size_t *capn)
 {
@@ -149,8 +149,8 @@ size_t voids_fill(spheres *S, const surface *surf, const dem_geometry *geo, cons
 		r[k] = S->r[idx[k]];
 	}
 	free(idx);
-	cells g;
-	cells_build(&g, x, m0, 2 * cap + rmax, NULL);
+	pack_cells g;
+	pack_cells_build(&g, x, m0, 2 * cap + rmax, NULL);
 	candidate *all = NULL;
 	size_t nall = 0, ntri = geo->ntri;
 #pragma omp parallel
@@ -170,7 +170,7 @@ size_t voids_fill(spheres *S, const surface *surf, const dem_geometry *geo, cons
 		}
 		free(mine);
 	}
-	cells_free(&g);
+	pack_cells_free(&g);
 	free(x);
 	free(r);
 	if (nall)
