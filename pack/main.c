@@ -217,7 +217,7 @@ int main(int argc, char **argv)
 	a.x = S.x;
 	a.r = S.r;
 	a.material = xcalloc(S.n + 1, sizeof *a.material);
-	report_compute(&a, surf, &z, target, o.beta);
+	pack_report_compute(&a, surf, &z, target, o.beta);
 	if (o.import_path && a.report.overlap_max >= 2)
 		fatal("%s: a sphere lies entirely inside another (overlap %.0f %% of the smaller "
 		      "radius): expected distinct spheres",
@@ -232,7 +232,7 @@ int main(int argc, char **argv)
 	if (assembly_write_with(o.output, &a, write_side_outputs, &side))
 		fatal(NULL);
 	if (!o.quiet) {
-		report_print(&a, stdout);
+		pack_report_print(&a, stdout);
 		if (!o.import_path)
 			packer_print(&st, stdout);
 		if (o.grow_to > 0)

@@ -371,8 +371,8 @@ static void size_distribution(dem_assembly *a, const psd *target)
 	free(cumv);
 }
 
-void report_compute(dem_assembly *a, const surface *surf, const zones *z, const psd *target,
-                    double beta)
+void pack_report_compute(dem_assembly *a, const surface *surf, const zones *z, const psd *target,
+                         double beta)
 {
 	dem_report *rep = &a->report;
 	double rsum = 0;
@@ -401,7 +401,7 @@ static double percentile(const dem_report *r, const double *cum, double f)
 	return r->npsd ? r->psd_size[r->npsd - 1] : 0;
 }
 
-void report_print(const dem_assembly *a, FILE *out)
+void pack_report_print(const dem_assembly *a, FILE *out)
 {
 	const dem_report *r = &a->report;
 	const dem_geometry *g = &a->geom;
