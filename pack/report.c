@@ -441,6 +441,16 @@ static double percentile(const dem_report *r, const double *cum, double f)
 	return r->npsd ? r->psd_size[r->npsd - 1] : 0;
 }
 
+/* d10, d50 and d90 achieved and targeted, by number or by volume. */
+static void print_diameters(FILE *out, const char *head, const dem_report *r, const double *cum,
+                            const double *target, const char *by)
+{
+	fprintf(out, "%sd10 %.3f  d50 %.3f  d90 %.3f by %s (target %.3f %.3f %.3f)\n", head,
+	        1e3 * percentile(r, cum, 0.1), 1e3 * percentile(r, cum, 0.5),
+	        1e3 * percentile(r, cum, 0.9), by, 1e3 * percentile(r, target, 0.1),
+	        1e3 * percentile(r, target, 0.5), 1e3 * percentile(r, target, 0.9));
+}
+
 void pack_report_print(const dem_assembly *a, FILE *out)
 {
 	const dem_report *r = &a->report;
@@ -462,22 +472,10 @@ void pack_report_print(const dem_assembly *a, FILE *out)
 		fprintf(out, " %.2fd:%.3f", r->profile_w[k] / (2 * r->mean_radius),
 		        r->profile_phi[k]);
 	fprintf(out, "\n");
-	fprintf(out,
-	        "  diameters (mm)   d10 %.3f  d50 %.3f  d90 %.3f by number (target %.3f %.3f "
-	        "%.3f)\n",
-	        1e3 * percentile(r, r->psd_number, 0.1), 1e3 * percentile(r, r->psd_number, 0.5),
-	        1e3 * percentile(r, r->psd_number, 0.9),
-	        1e3 * percentile(r, r->psd_target_number, 0.1),
-	        1e3 * percentile(r, r->psd_target_number, 0.5),
-	        1e3 * percentile(r, r->psd_target_number, 0.9));
-	fprintf(out,
-	        "                   d10 %.3f  d50 %.3f  d90 %.3f by volume (target %.3f %.3f "
-	        "%.3f)\n",
-	        1e3 * percentile(r, r->psd_volume, 0.1), 1e3 * percentile(r, r->psd_volume, 0.5),
-	        1e3 * percentile(r, r->psd_volume, 0.9),
-	        1e3 * percentile(r, r->psd_target_volume, 0.1),
-	        1e3 * percentile(r, r->psd_target_volume, 0.5),
-	        1e3 * percentile(r, r->psd_target_volume, 0.9));
+	print_diameters(out, "  diameters (mm)   ", r, r->psd_number, r->psd_target_number,
+	                "number");
+	print_diameters(out, "                   ", r, r->psd_volume, r->psd_target_volume,
+	                "volume");
 	fprintf(out,
 	        "  coordination     %.2f bonds per sphere at beta = %.2f; alpha = 40 P/N_c = "
 	        "%.3f\n",
