@@ -29,5 +29,17 @@ void pack_cells_free(pack_cells *g);
 void pack_cells_coord(const pack_cells *g, const double p[3], int c[3]);
 /* Index of the cell at coordinates c, which are wrapped or must be valid. */
 size_t pack_cells_index(const pack_cells *g, const int c[3]);
+/* The coordinates c of the cell at offset k from c0, k = (dx + 1) + 3 (dy +
+ * 1) + 9 (dz + 1) from 0 to 26 (13: c0 itself); returns whether it lies in
+ * a grid of dim cells (any grid: voids.c's linked cells use it too).
+ * Inline, as the searches call it 27 times per point. */
+static inline int pack_cells_near(const int dim[3], const int c0[3], int k, int c[3])
+{
+	c[0] = c0[0] + k % 3 - 1;
+	c[1] = c0[1] + k / 3 % 3 - 1;
+	c[2] = c0[2] + k / 9 - 1;
+	return c[0] >= 0 && c[1] >= 0 && c[2] >= 0 && c[0] < dim[0] && c[1] < dim[1] &&
+	       c[2] < dim[2];
+}
 
 #endif

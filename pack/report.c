@@ -263,9 +263,8 @@ static void scan_sphere(contact_sums *p, const contact_scan *cs, size_t i)
 	int c0[3];
 	pack_cells_coord(g, cs->a->x + 3 * i, c0);
 	for (int o = 13; o < 27; o++) {
-		int c[3] = {c0[0] + o % 3 - 1, c0[1] + o / 3 % 3 - 1, c0[2] + o / 9 - 1};
-		if (c[0] < 0 || c[1] < 0 || c[2] < 0 || c[0] >= g->dim[0] || c[1] >= g->dim[1] ||
-		    c[2] >= g->dim[2])
+		int c[3];
+		if (!pack_cells_near(g->dim, c0, o, c))
 			continue;
 		size_t id = pack_cells_index(g, c);
 		for (size_t q = g->start[id]; q < g->start[id + 1]; q++) {

@@ -59,11 +59,8 @@ static double room(const pack_cells *g, const double *x, const double *r, const 
 	pack_cells_coord(g, q, c0);
 	double c = cap;
 	for (int o = 0; o < 27; o++) {
-		int k = (o + 13) % 27; /* 13 is the cell itself */
-		int c1[3] = {c0[0] + k % 3 - 1, c0[1] + k / 3 % 3 - 1, c0[2] + k / 9 - 1}, out = 0;
-		for (int a = 0; a < 3; a++)
-			out |= c1[a] < 0 || c1[a] >= g->dim[a];
-		if (out)
+		int c1[3]; /* from offset 13, the cell itself */
+		if (!pack_cells_near(g->dim, c0, (o + 13) % 27, c1))
 			continue;
 		size_t id = pack_cells_index(g, c1);
 		for (size_t q2 = g->start[id]; q2 < g->start[id + 1]; q2++) {
@@ -235,10 +232,8 @@ static void inserted_bound(const inserted_grid *g, const spheres *S, candidate *
 	int c[3];
 	inserted_coord(g, cd->q, c);
 	for (int o = 0; o < 27; o++) {
-		int cc[3] = {c[0] + o % 3 - 1, c[1] + o / 3 % 3 - 1, c[2] + o / 9 - 1}, out = 0;
-		for (int q = 0; q < 3; q++)
-			out |= cc[q] < 0 || cc[q] >= g->dim[q];
-		if (out)
+		int cc[3];
+		if (!pack_cells_near(g->dim, c, o, cc))
 			continue;
 		size_t id = inserted_index(g, cc);
 		for (long j = g->head[id]; j >= 0; j = g->next[j]) {
