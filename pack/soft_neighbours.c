@@ -185,71 +185,100 @@ static size_t scan_neighbours(const soft_system *s, const cands *c, size_t i, in
 	return count;
 }
 
-void soft_rebuild(soft_system *s)
+/* The displacement of each periodic image code, 13 + sum_k 3^k s_k. */
+static void image_shifts(soft_system *s)
 {
-	if (s->wall)
-		soft_walls_prepare(s);
+	static const int stride[3] = {1, 3, 9};
 	for (int code = 0; code < 27; code++)
 		for (int k = 0; k < 3; k++)
-			s->shift[code][k] = s->box[k] * (double)(code /
-			                                             (k == 0   ? 1
-			                                              : k == 1 ? 3
-			                                                       : 9) %
-			                                             3 -
-			                                         1);
-	if (soft_periodic(s))
-		for (size_t i = 0; i < 3 * s->n; i++)
-			s->x[i] -= s->box[i % 3] * floor(s->x[i] / s->box[i % 3]);
-	double rmax = 0;
-	for (size_t i = 0; i < s->n; i++)
-		rmax = fmax(rmax, s->r[i]);
+			s->shift[code][k] = s->box[k] * (double)(code / stride[k] % 3 - 1);
+}
+
+/* One build of the list: the neighbours by chunks of grid cells, each
+ * chunk into its own buffer, then laid out in sphere order, so that the
+ * list is the same whatever the thread count. */
+typedef struct {
 	pack_cells g;
-	pack_cells_build(&g, s->x, s->n, 2 * rmax + s->skin, soft_periodic(s) ? s->box : NULL);
+	double *xs; /* [n][4] positions and radii, in cell order */
+	int small;  /* a periodic box too short for three cells a side */
+	size_t ncell, nchunk;
+	nbuf *buf;         /* [nchunk] */
+	size_t *at;        /* [n] where sphere i's neighbours start in its chunk's buffer */
+	int32_t *chunk_of; /* [n] */
+} list_build;
+
+enum { CHUNK = 64 }; /* grid cells per chunk */
+
+/* The grid over the spheres (reach 2 r_max + skin) and their positions and
+ * radii in its order, with the chunks' buffers. */
+static void build_start(list_build *L, const soft_system *s)
+{
 	size_t n = s->n;
-	double *xs = xmalloc(4 * n * sizeof *xs + 1);
+	double rmax = 0;
+	for (size_t i = 0; i < n; i++)
+		rmax = fmax(rmax, s->r[i]);
+	pack_cells *g = &L->g;
+	pack_cells_build(g, s->x, n, 2 * rmax + s->skin, soft_periodic(s) ? s->box : NULL);
+	L->xs = xmalloc(4 * n * sizeof *L->xs + 1);
 	for (size_t q = 0; q < n; q++) {
-		size_t i = (size_t)g.item[q];
-		v3_copy(xs + 4 * q, s->x + 3 * i);
-		xs[4 * q + 3] = s->r[i];
+		size_t i = (size_t)g->item[q];
+		v3_copy(L->xs + 4 * q, s->x + 3 * i);
+		L->xs[4 * q + 3] = s->r[i];
 	}
-	/* Neighbours by chunks of grid cells into their own buffers, then
-	 * laid out in sphere order: the same list whatever the thread count. */
-	int small = soft_periodic(s) && (g.dim[0] < 3 || g.dim[1] < 3 || g.dim[2] < 3);
-	size_t ncell = (size_t)g.dim[0] * (size_t)g.dim[1] * (size_t)g.dim[2];
-	enum { CHUNK = 64 };
-	size_t nchunk = (ncell + CHUNK - 1) / CHUNK;
-	nbuf *buf = xcalloc(nchunk + 1, sizeof *buf);
-	size_t *at = xmalloc(n * sizeof *at + 1);
-	int32_t *chunk_of = xmalloc(n * sizeof *chunk_of + 1);
-#pragma omp parallel if (n >= PAR_MIN)
+	L->small = soft_periodic(s) && (g->dim[0] < 3 || g->dim[1] < 3 || g->dim[2] < 3);
+	L->ncell = (size_t)g->dim[0] * (size_t)g->dim[1] * (size_t)g->dim[2];
+	L->nchunk = (L->ncell + CHUNK - 1) / CHUNK;
+	L->buf = xcalloc(L->nchunk + 1, sizeof *L->buf);
+	L->at = xmalloc(n * sizeof *L->at + 1);
+	L->chunk_of = xmalloc(n * sizeof *L->chunk_of + 1);
+}
+
+/* The neighbours of the mobile spheres of grid cell id, into the buffer of
+ * chunk ch; each sphere's count goes to nb_start[i + 1]. */
+static void list_cell(soft_system *s, list_build *L, size_t id, size_t ch, cands *c)
+{
+	const pack_cells *g = &L->g;
+	int mobile = 0;
+	for (size_t q = g->start[id]; q < g->start[id + 1]; q++)
+		mobile |= is_mobile(s, (size_t)g->item[q]);
+	if (!mobile)
+		return;
+	int c0[3] = {(int)(id % (size_t)g->dim[0]),
+	             (int)(id / (size_t)g->dim[0] % (size_t)g->dim[1]),
+	             (int)(id / (size_t)g->dim[0] / (size_t)g->dim[1])};
+	cands_gather(s, g, L->xs, c0, L->small, c);
+	for (size_t q = g->start[id]; q < g->start[id + 1]; q++) {
+		size_t i = (size_t)g->item[q];
+		if (!is_mobile(s, i))
+			continue;
+		L->at[i] = L->buf[ch].n;
+		L->chunk_of[i] = (int32_t)ch;
+		s->nb_start[i + 1] = scan_neighbours(s, c, i, L->small, &L->buf[ch]);
+	}
+}
+
+static void list_chunks(soft_system *s, list_build *L)
+{
+	size_t nchunk = L->nchunk, ncell = L->ncell;
+#pragma omp parallel if (s->n >= PAR_MIN)
 	{
 		cands c = {0};
 #pragma omp for schedule(dynamic, 1)
 		for (size_t ch = 0; ch < nchunk; ch++) {
 			size_t end = (ch + 1) * CHUNK < ncell ? (ch + 1) * CHUNK : ncell;
-			for (size_t id = ch * CHUNK; id < end; id++) {
-				int mobile = 0;
-				for (size_t q = g.start[id]; q < g.start[id + 1]; q++)
-					mobile |= is_mobile(s, (size_t)g.item[q]);
-				if (!mobile)
-					continue;
-				int c0[3] = {(int)(id % (size_t)g.dim[0]),
-				             (int)(id / (size_t)g.dim[0] % (size_t)g.dim[1]),
-				             (int)(id / (size_t)g.dim[0] / (size_t)g.dim[1])};
-				cands_gather(s, &g, xs, c0, small, &c);
-				for (size_t q = g.start[id]; q < g.start[id + 1]; q++) {
-					size_t i = (size_t)g.item[q];
-					if (!is_mobile(s, i))
-						continue;
-					at[i] = buf[ch].n;
-					chunk_of[i] = (int32_t)ch;
-					s->nb_start[i + 1] =
-					    scan_neighbours(s, &c, i, small, &buf[ch]);
-				}
-			}
+			for (size_t id = ch * CHUNK; id < end; id++)
+				list_cell(s, L, id, ch, &c);
 		}
 		cands_free(&c);
 	}
+}
+
+/* The counts summed into nb_start, then each mobile sphere's neighbours
+ * copied from its chunk's buffer (and its boundary triangles listed, on
+ * the same pass). */
+static void lay_out(soft_system *s, const list_build *L)
+{
+	size_t n = s->n, nm = s->nmobile;
 	s->nb_start[0] = 0;
 	for (size_t i = 0; i < n; i++)
 		s->nb_start[i + 1] = s->nb_start[i] + (is_mobile(s, i) ? s->nb_start[i + 1] : 0);
@@ -260,25 +289,35 @@ void soft_rebuild(soft_system *s)
 		s->nb = xmalloc(s->nb_cap * sizeof *s->nb);
 		s->nb_shift = xmalloc(s->nb_cap);
 	}
-	size_t nm = s->nmobile;
 #pragma omp parallel for schedule(dynamic, 256) if (n >= PAR_MIN)
 	for (size_t i = 0; i < nm; i++) {
-		const nbuf *b = &buf[chunk_of[i]];
+		const nbuf *b = &L->buf[L->chunk_of[i]];
 		size_t m = s->nb_start[i + 1] - s->nb_start[i];
-		memcpy(s->nb + s->nb_start[i], b->j + at[i], m * sizeof *b->j);
-		memcpy(s->nb_shift + s->nb_start[i], b->shift + at[i], m);
+		memcpy(s->nb + s->nb_start[i], b->j + L->at[i], m * sizeof *b->j);
+		memcpy(s->nb_shift + s->nb_start[i], b->shift + L->at[i], m);
 		if (s->wall)
 			soft_walls_update(s, i);
 	}
-	for (size_t ch = 0; ch < nchunk; ch++) {
-		free(buf[ch].j);
-		free(buf[ch].shift);
+}
+
+static void build_free(list_build *L)
+{
+	for (size_t ch = 0; ch < L->nchunk; ch++) {
+		free(L->buf[ch].j);
+		free(L->buf[ch].shift);
 	}
-	free(buf);
-	free(at);
-	free(chunk_of);
-	free(xs);
-	pack_cells_free(&g);
+	free(L->buf);
+	free(L->at);
+	free(L->chunk_of);
+	free(L->xs);
+	pack_cells_free(&L->g);
+}
+
+/* What the list was built from, to tell when it goes stale, and the
+ * positions and radii side by side for soft_forces(). */
+static void remember_build(soft_system *s)
+{
+	size_t n = s->n;
 	memcpy(s->x_built, s->x, 3 * n * sizeof *s->x);
 	memcpy(s->r_built, s->r, n * sizeof *s->r);
 	for (size_t i = 0; i < n; i++) {
@@ -287,6 +326,22 @@ void soft_rebuild(soft_system *s)
 	}
 	s->stale = 0;
 	s->builds++;
+}
+
+void soft_rebuild(soft_system *s)
+{
+	if (s->wall)
+		soft_walls_prepare(s);
+	image_shifts(s);
+	if (soft_periodic(s))
+		for (size_t i = 0; i < 3 * s->n; i++)
+			s->x[i] -= s->box[i % 3] * floor(s->x[i] / s->box[i % 3]);
+	list_build L;
+	build_start(&L, s);
+	list_chunks(s, &L);
+	lay_out(s, &L);
+	build_free(&L);
+	remember_build(s);
 }
 
 /* Positions and radii are also laid out side by side for soft_forces().
