@@ -75,55 +75,79 @@ static void relax(soft_system *sys, const double *r0, const band_params *p, band
 	free(lambda);
 }
 
-void band_relax(spheres *S, const surface *surf, const dem_geometry *g, const band_params *p,
-                band_result *res)
+/* Sort idx[first..m) along a Morton curve over g's bounding box. */
+static void morton_sort_group(const spheres *S, const dem_geometry *g, size_t *idx, size_t first,
+                              size_t m)
+{
+	double *xg = xmalloc(3 * (m - first) * sizeof *xg + 1);
+	size_t *order = xmalloc((m - first) * sizeof *order + 1),
+	       *copy = xmalloc((m - first) * sizeof *copy + 1);
+	for (size_t k = first; k < m; k++)
+		v3_copy(xg + 3 * (k - first), S->x + 3 * idx[k]);
+	morton_order(xg, m - first, g->bbox_min, g->bbox_max, order);
+	for (size_t k = 0; k < m - first; k++)
+		copy[k] = idx[first + order[k]];
+	memcpy(idx + first, copy, (m - first) * sizeof *copy);
+	free(xg);
+	free(order);
+	free(copy);
+}
+
+/* The spheres of the computation: the moving ones first (*nm of them),
+ * then the fixed ones within reach of them, each group along a Morton
+ * curve; returns their indices in S, *m of them. */
+static size_t *band_spheres(const spheres *S, const dem_geometry *g, const band_params *p,
+                            size_t *m, size_t *nm)
 {
 	double rmax = 0;
 	for (size_t i = 0; i < S->n; i++)
 		rmax = fmax(rmax, S->r[i]);
-	/* The moving spheres first, then the fixed ones within reach of them,
-	 * each group along a Morton curve. */
 	double reach = p->width + 2 * rmax + p->skin;
-	size_t *idx = xmalloc(S->n * sizeof *idx + 1), m = 0, nm = 0;
-	for (int pass = 0; pass < 2; pass++) {
-		size_t first = m;
-		for (size_t i = 0; i < S->n; i++) {
-			int moves = S->hi[i] < p->width;
-			if (pass == 0 ? moves : !moves && S->lo[i] < reach)
-				idx[m++] = i;
-		}
-		double *xg = xmalloc(3 * (m - first) * sizeof *xg + 1);
-		size_t *order = xmalloc((m - first) * sizeof *order + 1),
-		       *copy = xmalloc((m - first) * sizeof *copy + 1);
-		for (size_t k = first; k < m; k++)
-			v3_copy(xg + 3 * (k - first), S->x + 3 * idx[k]);
-		morton_order(xg, m - first, g->bbox_min, g->bbox_max, order);
-		for (size_t k = 0; k < m - first; k++)
-			copy[k] = idx[first + order[k]];
-		memcpy(idx + first, copy, (m - first) * sizeof *copy);
-		free(xg);
-		free(order);
-		free(copy);
-		if (pass == 0)
-			nm = m;
-	}
-	double *x = xmalloc(3 * m * sizeof *x + 1), *r = xmalloc(m * sizeof *r + 1);
-	double *r0 = xmalloc(nm * sizeof *r0 + 1);
-	soft_system sys;
-	soft_init(&sys, m, nm, x, r);
+	size_t *idx = xmalloc(S->n * sizeof *idx + 1), k = 0;
+	for (size_t i = 0; i < S->n; i++)
+		if (S->hi[i] < p->width)
+			idx[k++] = i;
+	morton_sort_group(S, g, idx, 0, k);
+	*nm = k;
+	for (size_t i = 0; i < S->n; i++)
+		if (!(S->hi[i] < p->width) && S->lo[i] < reach)
+			idx[k++] = i;
+	morton_sort_group(S, g, idx, *nm, k);
+	*m = k;
+	return idx;
+}
+
+/* The soft system over spheres idx[0..m) of S (positions x, radii r, the
+ * first nm mobile) against the boundary, each sphere's depth bound from S
+ * sparing its first query. */
+static void band_system(soft_system *sys, const spheres *S, const size_t *idx, size_t m, size_t nm,
+                        double *x, double *r, const surface *surf, const dem_geometry *g,
+                        double skin)
+{
+	soft_init(sys, m, nm, x, r);
 	for (size_t k = 0; k < m; k++) {
 		size_t i = idx[k];
 		v3_copy(x + 3 * k, S->x + 3 * i);
 		r[k] = S->r[i];
-		if (k < nm)
-			r0[k] = S->r0[i];
-		sys.wall_s0[k] = S->lo[i];
+		sys->wall_s0[k] = S->lo[i];
 	}
-	memcpy(sys.wall_xq, x, 3 * m * sizeof *x);
-	sys.wall = surf;
-	sys.wall_vert = g->vert;
-	sys.wall_tri = g->tri;
-	sys.skin = p->skin;
+	memcpy(sys->wall_xq, x, 3 * m * sizeof *x);
+	sys->wall = surf;
+	sys->wall_vert = g->vert;
+	sys->wall_tri = g->tri;
+	sys->skin = skin;
+}
+
+void band_relax(spheres *S, const surface *surf, const dem_geometry *g, const band_params *p,
+                band_result *res)
+{
+	size_t m, nm, *idx = band_spheres(S, g, p, &m, &nm);
+	double *x = xmalloc(3 * m * sizeof *x + 1), *r = xmalloc(m * sizeof *r + 1);
+	double *r0 = xmalloc(nm * sizeof *r0 + 1);
+	for (size_t k = 0; k < nm; k++)
+		r0[k] = S->r0[idx[k]];
+	soft_system sys;
+	band_system(&sys, S, idx, m, nm, x, r, surf, g, p->skin);
 	res->mobile = nm;
 	res->involved = m;
 	relax(&sys, r0, p, res);

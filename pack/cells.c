@@ -5,7 +5,7 @@
 #include "lib/err.h"
 #include "pack/cells.h"
 
-void cells_coord(const cells *g, const double p[3], int c[3])
+void pack_cells_coord(const pack_cells *g, const double p[3], int c[3])
 {
 	for (int k = 0; k < 3; k++) {
 		c[k] = (int)floor((p[k] - g->lo[k]) / g->edge[k]);
@@ -16,7 +16,7 @@ void cells_coord(const cells *g, const double p[3], int c[3])
 	}
 }
 
-size_t cells_index(const cells *g, const int c[3])
+size_t pack_cells_index(const pack_cells *g, const int c[3])
 {
 	size_t w[3];
 	for (int k = 0; k < 3; k++)
@@ -24,7 +24,7 @@ size_t cells_index(const cells *g, const int c[3])
 	return (w[2] * (size_t)g->dim[1] + w[1]) * (size_t)g->dim[0] + w[0];
 }
 
-void cells_build(cells *g, const double *x, size_t n, double reach, const double *box)
+void pack_cells_build(pack_cells *g, const double *x, size_t n, double reach, const double *box)
 {
 	double hi[3];
 	g->periodic = box != NULL;
@@ -53,8 +53,8 @@ void cells_build(cells *g, const double *x, size_t n, double reach, const double
 	g->cell = xmalloc(n * sizeof *g->cell);
 	for (size_t i = 0; i < n; i++) {
 		int c[3];
-		cells_coord(g, x + 3 * i, c);
-		g->cell[i] = (int32_t)cells_index(g, c);
+		pack_cells_coord(g, x + 3 * i, c);
+		g->cell[i] = (int32_t)pack_cells_index(g, c);
 		g->start[g->cell[i] + 1]++;
 	}
 	for (size_t c = 0; c < ncell; c++)
@@ -66,7 +66,7 @@ void cells_build(cells *g, const double *x, size_t n, double reach, const double
 	free(fill);
 }
 
-void cells_free(cells *g)
+void pack_cells_free(pack_cells *g)
 {
 	free(g->start);
 	free(g->item);

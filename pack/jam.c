@@ -61,14 +61,12 @@ static void settle(fire_state *st, soft_system *s, const double *r0, double *gro
 	}
 }
 
-void jam_make(jam_cell *c, const psd *d, size_t n, const double shape[3], uint64_t seed,
-              double otol, progress *prog)
+/* n radii drawn from d (into r0 and c->r), a box of the given shape that
+ * holds them at the solid fraction PHI_START, and uniform random centres in
+ * it, laid along a Morton curve so that neighbours sit near in memory. */
+static void random_cell(jam_cell *c, const psd *d, size_t n, const double shape[3], uint64_t seed,
+                        double *r0)
 {
-	memset(c, 0, sizeof *c);
-	c->n = n;
-	c->x = xmalloc(3 * n * sizeof *c->x + 1);
-	c->r = xmalloc(n * sizeof *c->r + 1);
-	double *r0 = xmalloc(n * sizeof *r0 + 1);
 	rng g;
 	rng_seed_stream(&g, seed, 0);
 	for (size_t i = 0; i < n; i++)
@@ -80,7 +78,6 @@ void jam_make(jam_cell *c, const psd *d, size_t n, const double shape[3], uint64
 	for (size_t i = 0; i < n; i++)
 		for (int k = 0; k < 3; k++)
 			c->x[3 * i + k] = c->box[k] * rng_uniform(&g);
-	/* Along a Morton curve, so that neighbours sit near in memory. */
 	double zero[3] = {0, 0, 0}, *xs = xmalloc(3 * n * sizeof *xs + 1);
 	size_t *order = xmalloc(n * sizeof *order + 1);
 	morton_order(c->x, n, zero, c->box, order);
@@ -90,10 +87,16 @@ void jam_make(jam_cell *c, const psd *d, size_t n, const double shape[3], uint64
 	free(xs);
 	free(order);
 	memcpy(c->r, r0, n * sizeof *r0);
+}
+
+/* Squeeze the cell, then release the pressure until the overlaps fall
+ * below otol (see the top of the file); returns the radius factor grown. */
+static double squeeze(jam_cell *c, const double *r0, double otol, progress *prog)
+{
+	size_t n = c->n;
 	double rmean = 0;
 	for (size_t i = 0; i < n; i++)
 		rmean += r0[i] / (double)n;
-
 	soft_system s;
 	soft_init(&s, n, n, c->x, c->r);
 	memcpy(s.box, c->box, sizeof s.box);
@@ -110,6 +113,19 @@ void jam_make(jam_cell *c, const psd *d, size_t n, const double shape[3], uint64
 	c->iter = st.iter;
 	fire_end(&st);
 	soft_free(&s);
+	return grow;
+}
+
+void jam_make(jam_cell *c, const psd *d, size_t n, const double shape[3], uint64_t seed,
+              double otol, progress *prog)
+{
+	memset(c, 0, sizeof *c);
+	c->n = n;
+	c->x = xmalloc(3 * n * sizeof *c->x + 1);
+	c->r = xmalloc(n * sizeof *c->r + 1);
+	double *r0 = xmalloc(n * sizeof *r0 + 1);
+	random_cell(c, d, n, shape, seed, r0);
+	double grow = squeeze(c, r0, otol, prog);
 	c->phi = PHI_START * grow * grow * grow;
 	/* Back to the sampled radii: scale the whole cell. */
 	double back = 1 / grow;

@@ -126,127 +126,199 @@ static void wait_passively(char **argv)
 	execv("/proc/self/exe", argv);
 }
 
-int main(int argc, char **argv)
+/* The relaxation loops allocate and free arrays of megabytes at every
+ * neighbour-list build; served from the heap and kept there, they are
+ * reused instead of being returned to the kernel and faulted in again,
+ * page by page, the next time. */
+static void keep_freed_memory(void)
 {
-	wait_passively(argv);
-	/* The relaxation loops allocate and free arrays of megabytes at every
-	 * neighbour-list build; served from the heap and kept there, they are
-	 * reused instead of being returned to the kernel and faulted in again,
-	 * page by page, the next time. */
 	mallopt(M_MMAP_THRESHOLD, 1 << 30);
 	mallopt(M_TRIM_THRESHOLD, 1 << 30);
-	pack_options o;
-	options_parse(&o, argc, argv);
-	afile_install_signal_cleanup();
-	if (o.threads > 0)
-		omp_set_num_threads((int)o.threads);
-	double t0 = timer_now();
+}
 
-	dem_assembly a;
-	memset(&a, 0, sizeof a);
-	/* A built-in shape's size is known before gmsh meshes it: then the
-	 * mesh is made on one thread while the periodic cell is made on the
-	 * other (below); a file is meshed first. */
+/* One run of pack: what each step below hands on to the next. */
+typedef struct {
+	pack_options o;
+	double t0; /* s, when the work began */
 	geometry_spec gs;
-	if (options_geometry(&o, &gs))
+	int builtin; /* a built-in shape, meshed beside the periodic cell */
+	dem_assembly a;
+	psd d, *target;     /* the sizes drawn from (target NULL: imported) */
+	double rmean, rmax; /* m */
+	double *xi, *ri;    /* the imported spheres, ni of them */
+	size_t ni;
+	surface *surf; /* the boundary's search tree */
+	zones z;       /* and its distance zones */
+	jam_cell cell; /* the periodic cell */
+	packer_params pp;
+	packer_stats st;
+	spheres S;
+	double grown; /* --grow-to's factor on the radii */
+} pack_run;
+
+/* The process, before any work: waiting threads, the heap, the options,
+ * cleanup on a signal, the thread count. */
+static void start(pack_run *r, int argc, char **argv)
+{
+	wait_passively(argv);
+	keep_freed_memory();
+	options_parse(&r->o, argc, argv);
+	afile_install_signal_cleanup();
+	if (r->o.threads > 0)
+		omp_set_num_threads((int)r->o.threads);
+	r->t0 = timer_now();
+}
+
+/* A built-in shape's size is known before gmsh meshes it: then the mesh is
+ * made on one thread while the periodic cell is made on the other
+ * (boundary_and_cell); a file is meshed first. */
+static void specimen(pack_run *r)
+{
+	if (options_geometry(&r->o, &r->gs))
 		fatal(NULL);
-	int builtin = geometry_extent(&gs, &a.geom) == 0;
-	if (!builtin && geometry_build(&gs, &a.geom))
+	r->builtin = geometry_extent(&r->gs, &r->a.geom) == 0;
+	if (!r->builtin && geometry_build(&r->gs, &r->a.geom))
 		fatal(NULL);
-	psd d = {0}, *target = NULL;
-	double rmean = 0, rmax = 0, *xi = NULL, *ri = NULL;
-	size_t ni = 0;
-	spheres S = {0};
-	if (o.import_path) {
-		if (o.count > 0 || o.mean_radius > 0)
+}
+
+/* The sizes: the imported spheres as listed, or the distribution scaled to
+ * --count or --mean-radius. */
+static void sizes(pack_run *r)
+{
+	const pack_options *o = &r->o;
+	if (o->import_path) {
+		if (o->count > 0 || o->mean_radius > 0)
 			fatal("--import %s: the spheres are taken as listed: --count and "
-			      "--mean-radius "
-			      "do not apply (expected 0)",
-			      o.import_path);
-		if (textio_read(o.import_path, &xi, &ri, &ni))
+			      "--mean-radius do not apply (expected 0)",
+			      o->import_path);
+		if (textio_read(o->import_path, &r->xi, &r->ri, &r->ni))
 			fatal(NULL);
-		for (size_t i = 0; i < ni; i++) {
-			rmean += ri[i] / (double)ni;
-			rmax = fmax(rmax, ri[i]);
+		for (size_t i = 0; i < r->ni; i++) {
+			r->rmean += r->ri[i] / (double)r->ni;
+			r->rmax = fmax(r->rmax, r->ri[i]);
 		}
-	} else {
-		if (options_psd(&o, &d))
-			fatal(NULL);
-		size_spheres(&o, &d, &a.geom);
-		target = &d;
-		rmean = psd_moment(&d, 1);
-		rmax = d.rmax;
+		return;
 	}
-	/* The periodic cell, on one thread, while another meshes a built-in
-	 * shape and builds the boundary's search tree and the distance zones. */
-	dem_geometry mesh = a.geom;
-	surface *surf = NULL;
-	zones z;
-	jam_cell cell = {0};
-	packer_stats st = {0};
-	packer_params pp = {(uint64_t)o.seed, o.cell, o.keep, o.band, o.count};
-	double depth = fmax(o.band, REPORT_PROFILE_DEPTH + 1) * 2 * rmean + 3 * rmax;
+	if (options_psd(o, &r->d))
+		fatal(NULL);
+	size_spheres(o, &r->d, &r->a.geom);
+	r->target = &r->d;
+	r->rmean = psd_moment(&r->d, 1);
+	r->rmax = r->d.rmax;
+}
+
+/* Mesh a built-in shape (into mesh), then build the boundary's search tree
+ * and distance zones down to `depth`. */
+static void build_boundary(pack_run *r, dem_geometry *mesh, double depth)
+{
+	if (r->builtin && geometry_build(&r->gs, mesh))
+		fatal(NULL);
+	r->surf = surface_new(mesh->vert, mesh->nvert, mesh->tri, mesh->ntri);
+	if (!r->surf)
+		fatal("out of memory building the boundary's search tree");
+	zones_build(&r->z, r->surf, mesh->bbox_min, mesh->bbox_max, 2 * r->rmean, depth);
+	r->a.report.time_geometry = timer_now() - r->t0;
+}
+
+/* The periodic cell, on one thread, while another builds the boundary; the
+ * cell reads the specimen's extent (a.geom), so the mesh goes to a copy
+ * that replaces it afterwards. */
+static void boundary_and_cell(pack_run *r)
+{
+	const pack_options *o = &r->o;
+	dem_geometry mesh = r->a.geom;
+	r->pp = (packer_params){(uint64_t)o->seed, o->cell, o->keep, o->band, o->count};
+	double depth = fmax(o->band, REPORT_PROFILE_DEPTH + 1) * 2 * r->rmean + 3 * r->rmax;
 #pragma omp parallel sections
 	{
 #pragma omp section
-		{
-			if (builtin && geometry_build(&gs, &mesh))
-				fatal(NULL);
-			surf = surface_new(mesh.vert, mesh.nvert, mesh.tri, mesh.ntri);
-			if (!surf)
-				fatal("out of memory building the boundary's search tree");
-			zones_build(&z, surf, mesh.bbox_min, mesh.bbox_max, 2 * rmean, depth);
-			a.report.time_geometry = timer_now() - t0;
-		}
+		build_boundary(r, &mesh, depth);
 #pragma omp section
-		if (!o.import_path)
-			packer_cell(&cell, &d, &a.geom, &pp, &st);
+		if (!o->import_path)
+			packer_cell(&r->cell, &r->d, &r->a.geom, &r->pp, &r->st);
 	}
-	a.geom = mesh;
-	if (o.import_path) {
-		import_spheres(&o, xi, ri, ni, &S, surf, &z, &a.geom);
-	} else {
-		packer_fill(&S, &cell, &d, &a.geom, surf, &z, &pp, &st);
-		jam_free(&cell);
-		a.report.time_cell = st.time_cell;
-		a.report.time_fill = st.time_fill;
+	r->a.geom = mesh;
+}
+
+/* The spheres in the specimen: the imported ones, checked, or the cell
+ * tiled over it and repaired along the boundary. */
+static void place_spheres(pack_run *r)
+{
+	if (r->o.import_path) {
+		import_spheres(&r->o, r->xi, r->ri, r->ni, &r->S, r->surf, &r->z, &r->a.geom);
+		return;
 	}
-	double grown = o.grow_to > 0 ? grow_spheres(&o, &S, &a.geom) : 1;
+	packer_fill(&r->S, &r->cell, &r->d, &r->a.geom, r->surf, &r->z, &r->pp, &r->st);
+	jam_free(&r->cell);
+	r->a.report.time_cell = r->st.time_cell;
+	r->a.report.time_fill = r->st.time_fill;
+}
+
+/* The assembly made of the spheres (grown if asked), and its report. */
+static void measure(pack_run *r)
+{
+	dem_assembly *a = &r->a;
+	r->grown = r->o.grow_to > 0 ? grow_spheres(&r->o, &r->S, &a->geom) : 1;
 	double t2 = timer_now();
-	a.n = S.n;
-	a.x = S.x;
-	a.r = S.r;
-	a.material = xcalloc(S.n + 1, sizeof *a.material);
-	report_compute(&a, surf, &z, target, o.beta);
-	if (o.import_path && a.report.overlap_max >= 2)
+	a->n = r->S.n;
+	a->x = r->S.x;
+	a->r = r->S.r;
+	a->material = xcalloc(r->S.n + 1, sizeof *a->material);
+	pack_report_compute(a, r->surf, &r->z, r->target, r->o.beta);
+	if (r->o.import_path && a->report.overlap_max >= 2)
 		fatal("%s: a sphere lies entirely inside another (overlap %.0f %% of the smaller "
 		      "radius): expected distinct spheres",
-		      o.import_path, 100 * a.report.overlap_max);
+		      r->o.import_path, 100 * a->report.overlap_max);
 	double t3 = timer_now();
-	a.report.time_report = t3 - t2;
-	a.report.time = t3 - t0;
-	char *config = options_json(&o);
-	prov_init(&a.prov, "pack", config, (uint64_t)o.seed);
+	a->report.time_report = t3 - t2;
+	a->report.time = t3 - r->t0;
+}
+
+/* The assembly with its provenance, and the side outputs. */
+static void write_output(pack_run *r)
+{
+	char *config = options_json(&r->o);
+	prov_init(&r->a.prov, "pack", config, (uint64_t)r->o.seed);
 	free(config);
-	side_outputs side = {&o, &a};
-	if (assembly_write_with(o.output, &a, write_side_outputs, &side))
+	side_outputs side = {&r->o, &r->a};
+	if (assembly_write_with(r->o.output, &r->a, write_side_outputs, &side))
 		fatal(NULL);
-	if (!o.quiet) {
-		report_print(&a, stdout);
-		if (!o.import_path)
-			packer_print(&st, stdout);
-		if (o.grow_to > 0)
-			printf(
-			    "  grown            radii x %.4f to solid fraction %.4f (--grow-to)\n",
-			    grown, o.grow_to);
-	}
-	free(S.r0);
-	free(S.lo);
-	free(S.hi);
-	assembly_free(&a);
-	zones_free(&z);
-	surface_free(surf);
-	psd_free(&d);
-	options_free(&o);
+}
+
+static void print_summary(const pack_run *r)
+{
+	pack_report_print(&r->a, stdout);
+	if (!r->o.import_path)
+		packer_print(&r->st, stdout);
+	if (r->o.grow_to > 0)
+		printf("  grown            radii x %.4f to solid fraction %.4f (--grow-to)\n",
+		       r->grown, r->o.grow_to);
+}
+
+static void free_run(pack_run *r)
+{
+	free(r->S.r0);
+	free(r->S.lo);
+	free(r->S.hi);
+	assembly_free(&r->a);
+	zones_free(&r->z);
+	surface_free(r->surf);
+	psd_free(&r->d);
+	options_free(&r->o);
+}
+
+int main(int argc, char **argv)
+{
+	pack_run r = {0};
+	start(&r, argc, argv);
+	specimen(&r);
+	sizes(&r);
+	boundary_and_cell(&r);
+	place_spheres(&r);
+	measure(&r);
+	write_output(&r);
+	if (!r.o.quiet)
+		print_summary(&r);
+	free_run(&r);
 	return 0;
 }

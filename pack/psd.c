@@ -55,6 +55,40 @@ static double class_moment(double a, double b, int k)
 	}
 }
 
+/* A grading table is at least two increasing sieve sizes with a
+ * cumulative passing fraction each, from 0 to 1 and never decreasing;
+ * returns 0, or -1 with the first fault in c's error. */
+static int check_grading(cfg *c, const double *sieve, size_t ns, const double *pass, size_t np)
+{
+	if (ns < 2)
+		return cfg_error(c, "sieve", "%zu value%s: expected at least 2 sieve sizes (m)", ns,
+		                 ns == 1 ? "" : "s");
+	if (np != ns)
+		return cfg_error(c, "passing", "%zu values: expected one per sieve size (%zu)", np,
+		                 ns);
+	for (size_t k = 1; k < ns; k++)
+		if (!(sieve[k] > sieve[k - 1]))
+			return cfg_error(c, "sieve",
+			                 "value %g after %g: expected increasing sizes (m)",
+			                 sieve[k], sieve[k - 1]);
+		else if (pass[k] < pass[k - 1])
+			return cfg_error(
+			    c, "passing",
+			    "value %g after %g: expected a non-decreasing cumulative fraction",
+			    pass[k], pass[k - 1]);
+	if (pass[0] != 0)
+		return cfg_error(
+		    c, "passing",
+		    "first value %g: expected 0 (the smallest sieve bounds the sizes; add "
+		    "a smaller sieve)",
+		    pass[0]);
+	if (pass[ns - 1] != 1)
+		return cfg_error(c, "passing",
+		                 "last value %g: expected 1 (everything passes the largest sieve)",
+		                 pass[ns - 1]);
+	return 0;
+}
+
 int psd_grading(psd *d, cfg *c)
 {
 	memset(d, 0, sizeof *d);
@@ -62,38 +96,8 @@ int psd_grading(psd *d, cfg *c)
 	size_t ns = 0, np = 0;
 	if (cfg_numbers(c, "sieve", &sieve, &ns, 0, "m", CFG_POS, 1e3))
 		return -1;
-	if (cfg_numbers(c, "passing", &pass, &np, 0, "", 0, 1)) {
-		free(sieve);
-		return -1;
-	}
-	int rc = 0;
-	if (ns < 2)
-		rc = cfg_error(c, "sieve", "%zu value%s: expected at least 2 sieve sizes (m)", ns,
-		               ns == 1 ? "" : "s");
-	else if (np != ns)
-		rc = cfg_error(c, "passing", "%zu values: expected one per sieve size (%zu)", np,
-		               ns);
-	for (size_t k = 1; rc == 0 && k < ns; k++)
-		if (!(sieve[k] > sieve[k - 1]))
-			rc = cfg_error(c, "sieve",
-			               "value %g after %g: expected increasing sizes (m)", sieve[k],
-			               sieve[k - 1]);
-		else if (pass[k] < pass[k - 1])
-			rc = cfg_error(
-			    c, "passing",
-			    "value %g after %g: expected a non-decreasing cumulative fraction",
-			    pass[k], pass[k - 1]);
-	if (rc == 0 && pass[0] != 0)
-		rc = cfg_error(
-		    c, "passing",
-		    "first value %g: expected 0 (the smallest sieve bounds the sizes; add "
-		    "a smaller sieve)",
-		    pass[0]);
-	if (rc == 0 && pass[ns - 1] != 1)
-		rc = cfg_error(c, "passing",
-		               "last value %g: expected 1 (everything passes the largest sieve)",
-		               pass[ns - 1]);
-	if (rc) {
+	if (cfg_numbers(c, "passing", &pass, &np, 0, "", 0, 1) ||
+	    check_grading(c, sieve, ns, pass, np)) {
 		free(sieve);
 		free(pass);
 		return -1;

@@ -193,137 +193,176 @@ static void profile(dem_assembly *a, const double *s, const surface *surf, const
 	rep->wall_deficit = dmean > 0 ? deficit / dmean : 0;
 }
 
+/* What the pair loop sums over one block of spheres. The blocks are fixed,
+ * and their sums added in block order, so that the totals do not depend on
+ * the number of threads; the maxima are exact in any order. */
+typedef struct {
+	double bonds;                     /* pairs within (1 + beta)(r_i + r_j) */
+	double fabric[6];                 /* sum of n n over core pairs: xx yy zz xy xz yz */
+	double ncore;                     /* core pairs */
+	double ov_sum, ov_n, ov_max;      /* overlaps relative to the smaller radius */
+	double wall_max;                  /* overlap with the boundary relative to the radius */
+	double core_spheres, core_ends;   /* spheres in the core, bond ends there */
+	double layer_spheres, layer_ends; /* the same in the boundary layer */
+} contact_sums;
+
+/* What every block reads: the spheres, the depth of each centre (s), where
+ * it lies ('c' core, 'l' boundary layer, 0 between) and the grid. */
+typedef struct {
+	const dem_assembly *a;
+	const double *s;
+	const char *where;
+	double beta;
+	pack_cells g;
+	char *bonded; /* set for each sphere in a bond, from any thread */
+} contact_scan;
+
+/* Add the pair (i, j) if it is a bond: within (1 + beta) (r_i + r_j). */
+static void add_pair(contact_sums *p, const contact_scan *cs, size_t i, size_t j)
+{
+	const dem_assembly *a = cs->a;
+	double ri = a->r[i], beta = cs->beta, d[3];
+	v3_sub(d, a->x + 3 * j, a->x + 3 * i);
+	double sum = ri + a->r[j], dd = v3_dot(d, d);
+	if (dd > (1 + beta) * (1 + beta) * sum * sum)
+		return;
+	double dist = sqrt(dd);
+	p->bonds += 1;
+	p->core_ends += (cs->where[i] == 'c') + (cs->where[j] == 'c');
+	p->layer_ends += (cs->where[i] == 'l') + (cs->where[j] == 'l');
+#pragma omp atomic write
+	cs->bonded[i] = 1;
+#pragma omp atomic write
+	cs->bonded[j] = 1;
+	if (dist < sum) {
+		double rel = (sum - dist) / fmin(ri, a->r[j]);
+		p->ov_sum += rel;
+		p->ov_n += 1;
+		p->ov_max = fmax(p->ov_max, rel);
+	}
+	if (cs->where[i] == 'c' && cs->where[j] == 'c' && dist > 0) {
+		double u[3];
+		v3_scale(u, d, 1 / dist);
+		p->fabric[0] += u[0] * u[0];
+		p->fabric[1] += u[1] * u[1];
+		p->fabric[2] += u[2] * u[2];
+		p->fabric[3] += u[0] * u[1];
+		p->fabric[4] += u[0] * u[2];
+		p->fabric[5] += u[1] * u[2];
+		p->ncore += 1;
+	}
+}
+
+/* The pairs that sphere i counts, so that each is counted once: with the
+ * offset o = (dx + 1) + 3 (dy + 1) + 9 (dz + 1) of a cell around i's, the
+ * later spheres of its own cell (13) and those of the cells after it in
+ * (z, y, x) order (14 to 26). */
+static void scan_sphere(contact_sums *p, const contact_scan *cs, size_t i)
+{
+	const pack_cells *g = &cs->g;
+	int c0[3];
+	pack_cells_coord(g, cs->a->x + 3 * i, c0);
+	for (int o = 13; o < 27; o++) {
+		int c[3];
+		if (!pack_cells_near(g->dim, c0, o, c))
+			continue;
+		size_t id = pack_cells_index(g, c);
+		for (size_t q = g->start[id]; q < g->start[id + 1]; q++) {
+			size_t j = (size_t)g->item[q];
+			if (o != 13 || j > i)
+				add_pair(p, cs, i, j);
+		}
+	}
+}
+
+/* The sums of spheres [first, end). */
+static void scan_block(contact_sums *p, const contact_scan *cs, size_t first, size_t end)
+{
+	for (size_t i = first; i < end; i++) {
+		double ri = cs->a->r[i], si = cs->s[i];
+		if (si < ri)
+			p->wall_max = fmax(p->wall_max, (ri - si) / ri);
+		p->core_spheres += cs->where[i] == 'c';
+		p->layer_spheres += cs->where[i] == 'l';
+		scan_sphere(p, cs, i);
+	}
+}
+
+static void add_sums(contact_sums *t, const contact_sums *p)
+{
+	t->bonds += p->bonds;
+	for (int k = 0; k < 6; k++)
+		t->fabric[k] += p->fabric[k];
+	t->ncore += p->ncore;
+	t->ov_sum += p->ov_sum;
+	t->ov_n += p->ov_n;
+	t->ov_max = fmax(t->ov_max, p->ov_max);
+	t->wall_max = fmax(t->wall_max, p->wall_max);
+	t->core_spheres += p->core_spheres;
+	t->core_ends += p->core_ends;
+	t->layer_spheres += p->layer_spheres;
+	t->layer_ends += p->layer_ends;
+}
+
+/* sqrt(3/2 D:D) of the mean fabric f = F / count, D = F - I/3. */
+static double anisotropy(const double fabric[6], double count)
+{
+	double f[6];
+	for (int k = 0; k < 6; k++)
+		f[k] = fabric[k] / count;
+	double tr = (f[0] + f[1] + f[2]) / 3;
+	double dd = (f[0] - tr) * (f[0] - tr) + (f[1] - tr) * (f[1] - tr) +
+	            (f[2] - tr) * (f[2] - tr) + 2 * (f[3] * f[3] + f[4] * f[4] + f[5] * f[5]);
+	return sqrt(1.5 * dd);
+}
+
+/* The report's coordination, overlap and fabric fields from the totals. */
+static void store_contacts(dem_report *rep, const contact_sums *t, size_t n, double beta)
+{
+	rep->beta = beta;
+	rep->coordination = n ? 2 * t->bonds / (double)n : 0;
+	rep->alpha = rep->coordination > 0 ? 40 * (1 - rep->solid_fraction) / rep->coordination : 0;
+	rep->coordination_core = t->core_spheres > 0 ? t->core_ends / t->core_spheres : 0;
+	rep->coordination_boundary = t->layer_spheres > 0 ? t->layer_ends / t->layer_spheres : 0;
+	rep->overlap_max = t->ov_max;
+	rep->overlap_mean = t->ov_n > 0 ? t->ov_sum / t->ov_n : 0;
+	rep->wall_overlap_max = t->wall_max;
+	rep->fabric_anisotropy = t->ncore > 0 ? anisotropy(t->fabric, t->ncore) : 0;
+}
+
 /* Coordination, fabric and overlaps: every pair once, found through a
- * cell grid (half of the 27 cells around each sphere); sums by fixed blocks of spheres so that they
- * do not depend on the number of threads (the maxima reduce exactly in any order). */
+ * cell grid, summed by fixed blocks of spheres (contact_sums). */
 static void contacts(dem_assembly *a, const double *s, double beta)
 {
 	dem_report *rep = &a->report;
 	size_t n = a->n;
-	double rmax = 0;
+	double rmax = 0, wc = REPORT_CORE_DEPTH * 2 * rep->mean_radius,
+	       we = REPORT_LAYER_DEPTH * 2 * rep->mean_radius;
 	for (size_t i = 0; i < n; i++)
 		rmax = fmax(rmax, a->r[i]);
-	cells g;
-	cells_build(&g, a->x, n, 2 * (1 + beta) * rmax, NULL);
-	double wc = REPORT_CORE_DEPTH * 2 * rep->mean_radius;
-	enum {
-		BONDS,
-		F_XX,
-		F_YY,
-		F_ZZ,
-		F_XY,
-		F_XZ,
-		F_YZ,
-		NCORE,
-		OV_SUM,
-		OV_N,
-		CORE_SPHERES,
-		CORE_ENDS,
-		LAYER_SPHERES,
-		LAYER_ENDS,
-		NSUM,
-		BLOCK = 1024
-	};
-	size_t nblock = (n + BLOCK - 1) / BLOCK;
-	double *part = xcalloc(NSUM * nblock + 1, sizeof *part);
-	char *bonded = xcalloc(n + 1, 1);
-	char *where = xmalloc(n + 1); /* 'c' core, 'l' boundary layer */
-	double we = REPORT_LAYER_DEPTH * 2 * rep->mean_radius;
+	char *where = xmalloc(n + 1);
 	for (size_t i = 0; i < n; i++)
 		where[i] = s[i] >= wc ? 'c' : s[i] < we ? 'l' : 0;
-	double ov_max = 0, wall_max = 0;
-#pragma omp parallel for schedule(dynamic, 4) reduction(max : ov_max, wall_max)
-	for (size_t b = 0; b < nblock; b++) {
-		double *p = part + NSUM * b;
-		size_t end = (b + 1) * BLOCK < n ? (b + 1) * BLOCK : n;
-		for (size_t i = b * BLOCK; i < end; i++) {
-			double ri = a->r[i];
-			if (s[i] < ri)
-				wall_max = fmax(wall_max, (ri - s[i]) / ri);
-			p[CORE_SPHERES] += where[i] == 'c';
-			p[LAYER_SPHERES] += where[i] == 'l';
-			int c0[3];
-			cells_coord(&g, a->x + 3 * i, c0);
-			/* Offset o = (dx + 1) + 3 (dy + 1) + 9 (dz + 1): the own cell
-			 * is 13, and the cells after it in (z, y, x) order, 14 to
-			 * 26, hold every pair with sphere i not met from a cell of
-			 * their own. */
-			for (int o = 13; o < 27; o++) {
-				int c[3] = {c0[0] + o % 3 - 1, c0[1] + o / 3 % 3 - 1,
-				            c0[2] + o / 9 - 1};
-				if (c[0] < 0 || c[1] < 0 || c[2] < 0 || c[0] >= g.dim[0] ||
-				    c[1] >= g.dim[1] || c[2] >= g.dim[2])
-					continue;
-				size_t id = cells_index(&g, c);
-				for (size_t q = g.start[id]; q < g.start[id + 1]; q++) {
-					size_t j = (size_t)g.item[q];
-					if (o == 13 && j <= i)
-						continue;
-					double d[3];
-					v3_sub(d, a->x + 3 * j, a->x + 3 * i);
-					double sum = ri + a->r[j], dd = v3_dot(d, d);
-					if (dd > (1 + beta) * (1 + beta) * sum * sum)
-						continue;
-					double dist = sqrt(dd);
-					p[BONDS] += 1;
-					p[CORE_ENDS] += (where[i] == 'c') + (where[j] == 'c');
-					p[LAYER_ENDS] += (where[i] == 'l') + (where[j] == 'l');
-#pragma omp atomic write
-					bonded[i] = 1;
-#pragma omp atomic write
-					bonded[j] = 1;
-					if (dist < sum) {
-						double rel = (sum - dist) / fmin(ri, a->r[j]);
-						p[OV_SUM] += rel;
-						p[OV_N] += 1;
-						ov_max = fmax(ov_max, rel);
-					}
-					if (s[i] >= wc && s[j] >= wc && dist > 0) {
-						double u[3];
-						v3_scale(u, d, 1 / dist);
-						p[F_XX] += u[0] * u[0];
-						p[F_YY] += u[1] * u[1];
-						p[F_ZZ] += u[2] * u[2];
-						p[F_XY] += u[0] * u[1];
-						p[F_XZ] += u[0] * u[2];
-						p[F_YZ] += u[1] * u[2];
-						p[NCORE] += 1;
-					}
-				}
-			}
-		}
-	}
-	cells_free(&g);
-	double tot[NSUM] = {0};
+	contact_scan cs = {
+	    .a = a, .s = s, .where = where, .beta = beta, .bonded = xcalloc(n + 1, 1)};
+	pack_cells_build(&cs.g, a->x, n, 2 * (1 + beta) * rmax, NULL);
+	enum { BLOCK = 1024 };
+	size_t nblock = (n + BLOCK - 1) / BLOCK;
+	contact_sums *part = xcalloc(nblock + 1, sizeof *part);
+#pragma omp parallel for schedule(dynamic, 4)
 	for (size_t b = 0; b < nblock; b++)
-		for (int k = 0; k < NSUM; k++)
-			tot[k] += part[NSUM * b + k];
-	free(part);
-	rep->beta = beta;
-	rep->coordination = n ? 2 * tot[BONDS] / (double)n : 0;
-	rep->alpha = rep->coordination > 0 ? 40 * (1 - rep->solid_fraction) / rep->coordination : 0;
-	rep->coordination_core = tot[CORE_SPHERES] > 0 ? tot[CORE_ENDS] / tot[CORE_SPHERES] : 0;
-	rep->coordination_boundary =
-	    tot[LAYER_SPHERES] > 0 ? tot[LAYER_ENDS] / tot[LAYER_SPHERES] : 0;
+		scan_block(&part[b], &cs, b * BLOCK, (b + 1) * BLOCK < n ? (b + 1) * BLOCK : n);
+	contact_sums tot = {0};
+	for (size_t b = 0; b < nblock; b++)
+		add_sums(&tot, &part[b]);
+	store_contacts(rep, &tot, n, beta);
 	rep->unbonded = 0;
 	for (size_t i = 0; i < n; i++)
-		rep->unbonded += !bonded[i];
-	free(bonded);
+		rep->unbonded += !cs.bonded[i];
+	pack_cells_free(&cs.g);
+	free(part);
+	free(cs.bonded);
 	free(where);
-	rep->overlap_max = ov_max;
-	rep->overlap_mean = tot[OV_N] > 0 ? tot[OV_SUM] / tot[OV_N] : 0;
-	rep->wall_overlap_max = wall_max;
-	rep->fabric_anisotropy = 0;
-	if (tot[NCORE] > 0) {
-		double f[6];
-		for (int k = 0; k < 6; k++)
-			f[k] = tot[F_XX + k] / tot[NCORE];
-		double tr = (f[0] + f[1] + f[2]) / 3;
-		double dd = (f[0] - tr) * (f[0] - tr) + (f[1] - tr) * (f[1] - tr) +
-		            (f[2] - tr) * (f[2] - tr) +
-		            2 * (f[3] * f[3] + f[4] * f[4] + f[5] * f[5]);
-		rep->fabric_anisotropy = sqrt(1.5 * dd);
-	}
 }
 
 static int cmp_double(const void *x, const void *y)
@@ -371,8 +410,8 @@ static void size_distribution(dem_assembly *a, const psd *target)
 	free(cumv);
 }
 
-void report_compute(dem_assembly *a, const surface *surf, const zones *z, const psd *target,
-                    double beta)
+void pack_report_compute(dem_assembly *a, const surface *surf, const zones *z, const psd *target,
+                         double beta)
 {
 	dem_report *rep = &a->report;
 	double rsum = 0;
@@ -401,7 +440,17 @@ static double percentile(const dem_report *r, const double *cum, double f)
 	return r->npsd ? r->psd_size[r->npsd - 1] : 0;
 }
 
-void report_print(const dem_assembly *a, FILE *out)
+/* d10, d50 and d90 achieved and targeted, by number or by volume. */
+static void print_diameters(FILE *out, const char *head, const dem_report *r, const double *cum,
+                            const double *target, const char *by)
+{
+	fprintf(out, "%sd10 %.3f  d50 %.3f  d90 %.3f by %s (target %.3f %.3f %.3f)\n", head,
+	        1e3 * percentile(r, cum, 0.1), 1e3 * percentile(r, cum, 0.5),
+	        1e3 * percentile(r, cum, 0.9), by, 1e3 * percentile(r, target, 0.1),
+	        1e3 * percentile(r, target, 0.5), 1e3 * percentile(r, target, 0.9));
+}
+
+void pack_report_print(const dem_assembly *a, FILE *out)
 {
 	const dem_report *r = &a->report;
 	const dem_geometry *g = &a->geom;
@@ -422,22 +471,10 @@ void report_print(const dem_assembly *a, FILE *out)
 		fprintf(out, " %.2fd:%.3f", r->profile_w[k] / (2 * r->mean_radius),
 		        r->profile_phi[k]);
 	fprintf(out, "\n");
-	fprintf(out,
-	        "  diameters (mm)   d10 %.3f  d50 %.3f  d90 %.3f by number (target %.3f %.3f "
-	        "%.3f)\n",
-	        1e3 * percentile(r, r->psd_number, 0.1), 1e3 * percentile(r, r->psd_number, 0.5),
-	        1e3 * percentile(r, r->psd_number, 0.9),
-	        1e3 * percentile(r, r->psd_target_number, 0.1),
-	        1e3 * percentile(r, r->psd_target_number, 0.5),
-	        1e3 * percentile(r, r->psd_target_number, 0.9));
-	fprintf(out,
-	        "                   d10 %.3f  d50 %.3f  d90 %.3f by volume (target %.3f %.3f "
-	        "%.3f)\n",
-	        1e3 * percentile(r, r->psd_volume, 0.1), 1e3 * percentile(r, r->psd_volume, 0.5),
-	        1e3 * percentile(r, r->psd_volume, 0.9),
-	        1e3 * percentile(r, r->psd_target_volume, 0.1),
-	        1e3 * percentile(r, r->psd_target_volume, 0.5),
-	        1e3 * percentile(r, r->psd_target_volume, 0.9));
+	print_diameters(out, "  diameters (mm)   ", r, r->psd_number, r->psd_target_number,
+	                "number");
+	print_diameters(out, "                   ", r, r->psd_volume, r->psd_target_volume,
+	                "volume");
 	fprintf(out,
 	        "  coordination     %.2f bonds per sphere at beta = %.2f; alpha = 40 P/N_c = "
 	        "%.3f\n",

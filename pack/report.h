@@ -1,5 +1,6 @@
 /* The packing report (share/doc/format.md, /report): what the assembly
- * achieved, measured from the spheres themselves. */
+ * achieved, measured from the spheres themselves. (solve/report.h is the
+ * run report of solve; hence the pack_ prefix.) */
 #ifndef PACK_REPORT_H
 #define PACK_REPORT_H
 
@@ -21,10 +22,10 @@
  * a->r, a->geom; `target` is the distribution the sizes were drawn from
  * (NULL for imported spheres: the target columns then repeat the achieved
  * ones). */
-void report_compute(dem_assembly *a, const surface *surf, const zones *z, const psd *target,
-                    double beta);
+void pack_report_compute(dem_assembly *a, const surface *surf, const zones *z, const psd *target,
+                         double beta);
 
 /* The readable summary pack prints. */
-void report_print(const dem_assembly *a, FILE *out);
+void pack_report_print(const dem_assembly *a, FILE *out);
 
 #endif

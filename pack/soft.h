@@ -50,12 +50,13 @@ typedef struct {
 	size_t nb_cap;
 	double *x_built; /* positions when the list was built */
 	double *r_built;
-	/* Boundary triangles near each moving sphere (see wall_update in
-	 * soft.c): wall_count[i] of them at wall_pool + i WALL_MAX, nearest
-	 * first from the position at the last build, wall_xb[i], valid while
-	 * the sphere is within wall_margin[i] of wall_xq[i]; wall_s0[i] is a
-	 * lower bound of the signed distance at wall_xq[i]. A caller that knows
-	 * one may store it (with wall_xq = the position) to spare a query. */
+	/* Boundary triangles near each moving sphere (see soft_walls.c):
+	 * wall_count[i] of them at wall_pool + i WALL_MAX, nearest first
+	 * from the position at the last build, wall_xb[i], valid while the
+	 * sphere is within wall_margin[i] of wall_xq[i]; wall_s0[i] is a
+	 * lower bound of the signed distance at wall_xq[i]. A caller that
+	 * knows one may store it (with wall_xq = the position) to spare a
+	 * query. */
 	double *wall_s0;
 	double *wall_xq; /* [n][3] */
 	double *wall_margin;
@@ -94,6 +95,9 @@ typedef struct {
 /* Forces on the mobile spheres (f, [nmobile][3]) at the positions and
  * radii of the last soft_update() or soft_rebuild(). */
 void soft_forces(soft_system *s, double *f, soft_stats *st);
+
+/* Whether the system is a periodic cell (box lengths set). */
+static inline int soft_periodic(const soft_system *s) { return s->box[0] > 0; }
 
 /* Minimum-image separation x_j - x_i. */
 void soft_delta(const soft_system *s, size_t i, size_t j, double d[3]);

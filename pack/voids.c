@@ -52,20 +52,17 @@ static double bound(const double q[3], const double n[3], const double *x, doubl
 /* The room at q against the spheres of g (points x, radii r), capped; once
  * it falls below `enough` the search stops (the point is of no use). The
  * cell of q comes first, as its spheres are the likeliest to bound it. */
-static double room(const cells *g, const double *x, const double *r, const double q[3],
+static double room(const pack_cells *g, const double *x, const double *r, const double q[3],
                    const double n[3], double cap, double enough)
 {
 	int c0[3];
-	cells_coord(g, q, c0);
+	pack_cells_coord(g, q, c0);
 	double c = cap;
 	for (int o = 0; o < 27; o++) {
-		int k = (o + 13) % 27; /* 13 is the cell itself */
-		int c1[3] = {c0[0] + k % 3 - 1, c0[1] + k / 3 % 3 - 1, c0[2] + k / 9 - 1}, out = 0;
-		for (int a = 0; a < 3; a++)
-			out |= c1[a] < 0 || c1[a] >= g->dim[a];
-		if (out)
+		int c1[3]; /* from offset 13, the cell itself */
+		if (!pack_cells_near(g->dim, c0, (o + 13) % 27, c1))
 			continue;
-		size_t id = cells_index(g, c1);
+		size_t id = pack_cells_index(g, c1);
 		for (size_t q2 = g->start[id]; q2 < g->start[id + 1]; q2++) {
 			size_t j = (size_t)g->item[q2];
 			c = fmin(c, bound(q, n, x + 3 * j, r[j]));
@@ -77,7 +74,7 @@ static double room(const cells *g, const double *x, const double *r, const doubl
 }
 
 /* Lattice points of triangle t with room >= cmin, appended to *out. */
-static void scan_triangle(const dem_geometry *geo, size_t t, double h, const cells *g,
+static void scan_triangle(const dem_geometry *geo, size_t t, double h, const pack_cells *g,
                           const double *x, const double *r, double cmin, double cap,
                           candidate **out, size_t *n, size_t *capn)
 {
@@ -131,26 +128,34 @@ static void scan_triangle(const dem_geometry *geo, size_t t, double h, const cel
 		}
 }
 
-size_t voids_fill(spheres *S, const surface *surf, const dem_geometry *geo, const psd *d,
-                  uint64_t seed)
+/* The spheres of S that can bound a tangent sphere, those whose depth may
+ * be below `reach`, copied to *x and *r (a grid over them alone is
+ * small); returns how many. */
+static size_t near_boundary(const spheres *S, double reach, double **x, double **r)
 {
-	double rmax = d->rmax;
+	size_t m = 0;
 	for (size_t i = 0; i < S->n; i++)
-		rmax = fmax(rmax, S->r[i]);
-	double cmin = d->rmin, cap = rmax, h = 0.6 * d->rmin;
-	/* The spheres that can bound a tangent sphere of radius <= cap. */
-	size_t m0 = 0, *idx = xmalloc(S->n * sizeof *idx + 1);
-	for (size_t i = 0; i < S->n; i++)
-		if (S->lo[i] < 2 * cap + rmax)
-			idx[m0++] = i;
-	double *x = xmalloc(3 * m0 * sizeof *x + 1), *r = xmalloc(m0 * sizeof *r + 1);
-	for (size_t k = 0; k < m0; k++) {
-		v3_copy(x + 3 * k, S->x + 3 * idx[k]);
-		r[k] = S->r[idx[k]];
-	}
-	free(idx);
-	cells g;
-	cells_build(&g, x, m0, 2 * cap + rmax, NULL);
+		m += S->lo[i] < reach;
+	*x = xmalloc(3 * m * sizeof **x + 1);
+	*r = xmalloc(m * sizeof **r + 1);
+	for (size_t i = 0, k = 0; i < S->n; i++)
+		if (S->lo[i] < reach) {
+			v3_copy(*x + 3 * k, S->x + 3 * i);
+			(*r)[k++] = S->r[i];
+		}
+	return m;
+}
+
+/* The lattice points of every boundary triangle with room >= cmin among
+ * the spheres of S, roomiest first (ties by triangle and point, so the
+ * order does not depend on the threads); their number in *count. */
+static candidate *candidates(const spheres *S, const dem_geometry *geo, double h, double cmin,
+                             double cap, double rmax, size_t *count)
+{
+	double *x, *r;
+	size_t m = near_boundary(S, 2 * cap + rmax, &x, &r);
+	pack_cells g;
+	pack_cells_build(&g, x, m, 2 * cap + rmax, NULL);
 	candidate *all = NULL;
 	size_t nall = 0, ntri = geo->ntri;
 #pragma omp parallel
@@ -170,60 +175,116 @@ size_t voids_fill(spheres *S, const surface *surf, const dem_geometry *geo, cons
 		}
 		free(mine);
 	}
-	cells_free(&g);
+	pack_cells_free(&g);
 	free(x);
 	free(r);
 	if (nall)
 		qsort(all, nall, sizeof *all, cmp_candidate);
+	*count = nall;
+	return all;
+}
 
-	/* Greedy insertion against the spheres inserted so far, kept in a
-	 * linked-cell grid over the boundary's bounding box. */
+/* The spheres inserted so far (those of S from index `first` on) in a
+ * linked-cell grid over the boundary's bounding box: they come one at a
+ * time, each to be checked against those before it. */
+typedef struct {
+	const double *lo; /* the grid's corner */
+	double edge;
+	int dim[3];
+	long *head, *next; /* the last sphere in each cell, the one before it */
+	size_t first, n;
+} inserted_grid;
+
+static void inserted_init(inserted_grid *g, const dem_geometry *geo, double edge, size_t first)
+{
+	size_t ngrid = 1;
+	g->lo = geo->bbox_min;
+	g->edge = edge;
+	for (int k = 0; k < 3; k++) {
+		g->dim[k] = (int)ceil((geo->bbox_max[k] - geo->bbox_min[k]) / edge) + 1;
+		ngrid *= (size_t)g->dim[k];
+	}
+	g->head = xmalloc(ngrid * sizeof *g->head);
+	for (size_t k = 0; k < ngrid; k++)
+		g->head[k] = -1;
+	g->next = NULL;
+	g->first = first;
+	g->n = 0;
+}
+
+/* The cell coordinates of p, clamped to the grid. */
+static void inserted_coord(const inserted_grid *g, const double p[3], int c[3])
+{
+	for (int q = 0; q < 3; q++) {
+		c[q] = (int)floor((p[q] - g->lo[q]) / g->edge);
+		c[q] = c[q] < 0 ? 0 : c[q] >= g->dim[q] ? g->dim[q] - 1 : c[q];
+	}
+}
+
+static size_t inserted_index(const inserted_grid *g, const int c[3])
+{
+	return ((size_t)c[2] * (size_t)g->dim[1] + (size_t)c[1]) * (size_t)g->dim[0] + (size_t)c[0];
+}
+
+/* cd's room, bounded again by the inserted spheres around it. */
+static void inserted_bound(const inserted_grid *g, const spheres *S, candidate *cd)
+{
+	int c[3];
+	inserted_coord(g, cd->q, c);
+	for (int o = 0; o < 27; o++) {
+		int cc[3];
+		if (!pack_cells_near(g->dim, c, o, cc))
+			continue;
+		size_t id = inserted_index(g, cc);
+		for (long j = g->head[id]; j >= 0; j = g->next[j]) {
+			size_t i = g->first + (size_t)j;
+			cd->room = fmin(cd->room, bound(cd->q, cd->n, S->x + 3 * i, S->r[i]));
+		}
+	}
+}
+
+static void inserted_add(inserted_grid *g, const double p[3])
+{
+	int c[3];
+	inserted_coord(g, p, c);
+	size_t id = inserted_index(g, c);
+	g->next = xrealloc(g->next, (g->n + 1) * sizeof *g->next);
+	g->next[g->n] = g->head[id];
+	g->head[id] = (long)g->n;
+	g->n++;
+}
+
+/* A radius from d, drawn again (up to 20 times) while larger than the
+ * room, then brought within [cmin, room]. */
+static double draw_radius(const psd *d, rng *gen, double room, double cmin)
+{
+	double rad = psd_sample(d, gen);
+	for (int t = 0; t < 20 && rad > room; t++)
+		rad = psd_sample(d, gen);
+	return fmax(cmin, fmin(rad, room));
+}
+
+size_t voids_fill(spheres *S, const surface *surf, const dem_geometry *geo, const psd *d,
+                  uint64_t seed)
+{
+	double rmax = d->rmax;
+	for (size_t i = 0; i < S->n; i++)
+		rmax = fmax(rmax, S->r[i]);
+	double cmin = d->rmin, cap = rmax, h = 0.6 * d->rmin;
+	size_t nall;
+	candidate *all = candidates(S, geo, h, cmin, cap, rmax, &nall);
+	/* Greedy insertion, roomiest first, against the spheres inserted so
+	 * far. */
 	rng gen;
 	rng_seed_stream(&gen, seed, 0x766f6964);
-	double edge = 2 * cap + rmax;
-	int dim[3];
-	size_t ngrid = 1;
-	for (int k = 0; k < 3; k++) {
-		dim[k] = (int)ceil((geo->bbox_max[k] - geo->bbox_min[k]) / edge) + 1;
-		ngrid *= (size_t)dim[k];
-	}
-	long *head = xmalloc(ngrid * sizeof *head), *next = NULL;
-	for (size_t k = 0; k < ngrid; k++)
-		head[k] = -1;
-	size_t first = S->n, inserted = 0;
+	inserted_grid g;
+	inserted_init(&g, geo, 2 * cap + rmax, S->n);
 	for (size_t k = 0; k < nall; k++) {
 		candidate *cd = &all[k];
-		int c[3];
-		for (int q = 0; q < 3; q++) {
-			c[q] = (int)floor((cd->q[q] - geo->bbox_min[q]) / edge);
-			c[q] = c[q] < 0 ? 0 : c[q] >= dim[q] ? dim[q] - 1 : c[q];
-		}
-		for (int dz = -1; dz <= 1; dz++)
-			for (int dy = -1; dy <= 1; dy++)
-				for (int dx = -1; dx <= 1; dx++) {
-					int cc[3] = {c[0] + dx, c[1] + dy, c[2] + dz}, out = 0;
-					for (int q = 0; q < 3; q++)
-						out |= cc[q] < 0 || cc[q] >= dim[q];
-					if (out)
-						continue;
-					size_t id =
-					    ((size_t)cc[2] * (size_t)dim[1] + (size_t)cc[1]) *
-					        (size_t)dim[0] +
-					    (size_t)cc[0];
-					for (long j = head[id]; j >= 0; j = next[j]) {
-						size_t i = first + (size_t)j;
-						cd->room =
-						    fmin(cd->room, bound(cd->q, cd->n, S->x + 3 * i,
-						                         S->r[i]));
-					}
-				}
+		inserted_bound(&g, S, cd);
 		if (cd->room < cmin)
 			continue;
-		double rad = psd_sample(d, &gen);
-		for (int t = 0; t < 20 && rad > cd->room; t++)
-			rad = psd_sample(d, &gen);
-		rad = fmax(cmin, fmin(rad, cd->room));
-		double p[3];
+		double rad = draw_radius(d, &gen, cd->room, cmin), p[3];
 		v3_copy(p, cd->q);
 		v3_axpy(p, cd->n, -rad);
 		int32_t hint = -1;
@@ -231,19 +292,10 @@ size_t voids_fill(spheres *S, const surface *surf, const dem_geometry *geo, cons
 		if (s < rad * (1 - 1e-9))
 			continue;
 		spheres_push(S, p, rad, s, s);
-		next = xrealloc(next, (inserted + 1) * sizeof *next);
-		for (int q = 0; q < 3; q++) {
-			c[q] = (int)floor((p[q] - geo->bbox_min[q]) / edge);
-			c[q] = c[q] < 0 ? 0 : c[q] >= dim[q] ? dim[q] - 1 : c[q];
-		}
-		size_t id =
-		    ((size_t)c[2] * (size_t)dim[1] + (size_t)c[1]) * (size_t)dim[0] + (size_t)c[0];
-		next[inserted] = head[id];
-		head[id] = (long)inserted;
-		inserted++;
+		inserted_add(&g, p);
 	}
-	free(head);
-	free(next);
+	free(g.head);
+	free(g.next);
 	free(all);
-	return inserted;
+	return g.n;
 }

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "lib/err.h"
+#include "lib/morton.h"
 #include "lib/vec3.h"
 #include "solve/blocks.h"
 #include "solve/bonds.h"
@@ -24,32 +25,8 @@
 #include "solve/timers.h"
 #include "solve/timestep.h"
 
-/* Spread the low 21 bits of v to every third bit. */
-static uint64_t spread(uint64_t v)
-{
-	v &= 0x1fffff;
-	v = (v | v << 32) & 0x1f00000000ffffULL;
-	v = (v | v << 16) & 0x1f0000ff0000ffULL;
-	v = (v | v << 8) & 0x100f00f00f00f00fULL;
-	v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-	v = (v | v << 2) & 0x1249249249249249ULL;
-	return v;
-}
-
-typedef struct {
-	uint64_t key;
-	int32_t i;
-} keyed;
-
-static int cmp_keyed(const void *a, const void *b)
-{
-	const keyed *x = a, *y = b;
-	if (x->key != y->key)
-		return x->key < y->key ? -1 : 1;
-	return (x->i > y->i) - (x->i < y->i);
-}
-
-/* Morton (Z-order) permutation of the assembly's particles. */
+/* Morton (Z-order) permutation of the assembly's particles: their bounding
+ * cube scaled to cells 0 to 2^21 - 1 a side (lib/morton.h). */
 static int32_t *morton_order(const dem_assembly *a)
 {
 	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -62,18 +39,20 @@ static int32_t *morton_order(const dem_assembly *a)
 	for (int k = 0; k < 3; k++)
 		span = fmax(span, hi[k] - lo[k]);
 	double scale = span > 0 ? 2097151.0 / span : 0;
-	keyed *ks = xmalloc((a->n + 1) * sizeof *ks);
+	uint64_t *key = xmalloc((a->n + 1) * sizeof *key);
 	for (size_t i = 0; i < a->n; i++) {
 		uint64_t c[3];
 		for (int k = 0; k < 3; k++)
 			c[k] = (uint64_t)((a->x[3 * i + k] - lo[k]) * scale);
-		ks[i] = (keyed){spread(c[0]) | spread(c[1]) << 1 | spread(c[2]) << 2, (int32_t)i};
+		key[i] = morton_key(c);
 	}
-	qsort(ks, a->n, sizeof *ks, cmp_keyed);
+	size_t *order = xmalloc((a->n + 1) * sizeof *order);
+	morton_sort(key, a->n, order);
 	int32_t *perm = xmalloc((a->n + 1) * sizeof *perm);
 	for (size_t i = 0; i < a->n; i++)
-		perm[i] = ks[i].i;
-	free(ks);
+		perm[i] = (int32_t)order[i];
+	free(key);
+	free(order);
 	return perm;
 }
 
