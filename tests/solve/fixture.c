@@ -8,6 +8,20 @@
 #include "lib/vec3.h"
 #include "tests/solve/fixture.h"
 
+void fixture_cylinder(dem_assembly *a, uint64_t seed)
+{
+	lattice l = {.kind = LATTICE_FCC,
+	             .nx = 9,
+	             .ny = 9,
+	             .nz = 14,
+	             .r = 1e-3,
+	             .jitter = 0.02,
+	             .polydisp = 0.02,
+	             .diameter = 0.0235,
+	             .seed = seed};
+	fixture_lattice(a, &l);
+}
+
 void fixture_lattice(dem_assembly *a, const lattice *l)
 {
 	memset(a, 0, sizeof *a);

@@ -24,6 +24,9 @@ typedef struct {
 /* Fill a (caller frees with assembly_free). Geometry: a box or a cylinder
  * along z, centred at the origin, sized to the sphere extents. */
 void fixture_lattice(dem_assembly *a, const lattice *l);
+/* The jittered, slightly polydisperse FCC cylinder (23.5 mm across, twice
+ * as high, about 2 500 spheres of radius 1 mm) of the whole-run tests. */
+void fixture_cylinder(dem_assembly *a, uint64_t seed);
 /* Rotate positions, centre and axis by the rotation matrix R (row-major). */
 void fixture_rotate(dem_assembly *a, const double R[9]);
 /* A rotation matrix from an axis and an angle (rad). */

@@ -14,17 +14,8 @@
 
 int main(void)
 {
-	lattice l = {.kind = LATTICE_FCC,
-	             .nx = 9,
-	             .ny = 9,
-	             .nz = 14,
-	             .r = 1e-3,
-	             .jitter = 0.02,
-	             .polydisp = 0.02,
-	             .diameter = 0.0235,
-	             .seed = 1};
 	dem_assembly a;
-	fixture_lattice(&a, &l);
+	fixture_cylinder(&a, 1);
 	const char *apath = check_tmp("demo-assembly.h5"), *out = check_tmp("demo-run.h5");
 	fixture_write(&a, apath);
 	char args[2048];

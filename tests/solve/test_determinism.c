@@ -94,17 +94,8 @@ static void corrupt_bond_state(const char *from, const char *to)
 
 int main(void)
 {
-	lattice l = {.kind = LATTICE_FCC,
-	             .nx = 9,
-	             .ny = 9,
-	             .nz = 14,
-	             .r = 1e-3,
-	             .jitter = 0.02,
-	             .polydisp = 0.02,
-	             .diameter = 0.0235,
-	             .seed = 5};
 	dem_assembly a;
-	fixture_lattice(&a, &l);
+	fixture_cylinder(&a, 5);
 	const char *apath = path("det.h5");
 	fixture_write(&a, apath);
 	fprintf(stderr, "%zu particles\n", a.n);

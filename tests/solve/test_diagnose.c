@@ -26,8 +26,20 @@ static const char *case_text =
 
 static dem_assembly a;
 
-/* Setup refuses the case (the material's density and E, the strain rate,
- * and more keys) with a message containing `expect`. */
+/* Setup refuses the case (JSON text) with a message containing `expect`. */
+static void refused(const char *json, const char *expect)
+{
+	dem_case c;
+	harness_case(&c, json);
+	engine e;
+	CHECK(engine_setup(&e, &c, &a, &(engine_opts){.quiet = 1}) == -1);
+	CHECK_CONTAINS(err_msg(), expect);
+	engine_free(&e);
+	case_free(&c);
+}
+
+/* The same for the case made of the material's density and E, the strain
+ * rate, and more keys. */
 static void refused_at_setup(const char *density, const char *E, const char *rate,
                              const char *extra, const char *expect)
 {
@@ -38,13 +50,7 @@ static void refused_at_setup(const char *density, const char *E, const char *rat
 	         "\"shear_strength\": 1e12}, %s \"loading\": [{\"axial\": {\"mode\": "
 	         "\"strain_rate\", \"rate\": %s}}], \"stop\": {\"steps\": 300}}",
 	         density, E, extra, rate);
-	dem_case c;
-	harness_case(&c, json);
-	engine e;
-	CHECK(engine_setup(&e, &c, &a, &(engine_opts){.quiet = 1}) == -1);
-	CHECK_CONTAINS(err_msg(), expect);
-	engine_free(&e);
-	case_free(&c);
+	refused(json, expect);
 }
 
 /* Run an engine prepared by the caller to its end; returns the status. */
@@ -98,30 +104,22 @@ int main(void)
 	refused_at_setup("1e300", "1e10", "1", "",
 	                 "it comes from the material's density (1e+300 kg/m^3) and stiffness)");
 	/* Ends that stand still, with only a strain rule to end the run. */
-	harness_case(&c, "{\"assembly\": \"-\", \"material\": {\"name\": \"m\", \"law\": "
-	                 "\"linear\", \"density\": 2500, \"E\": 1e10, \"nu\": 0.2, "
-	                 "\"tensile_strength\": 1e12, \"shear_strength\": 1e12}, \"loading\": "
-	                 "[{\"axial\": {\"mode\": \"strain_rate\", \"rate\": 0}}], "
-	                 "\"stop\": {\"strain_axial\": 0.01}}");
-	CHECK(engine_setup(&e, &c, &a, &(engine_opts){.quiet = 1}) == -1);
-	CHECK_CONTAINS(err_msg(), "loading stage 1: axial.rate 0: the ends stand still, so its "
-	                          "strain rule can never hold");
-	engine_free(&e);
-	case_free(&c);
+	refused("{\"assembly\": \"-\", \"material\": {\"name\": \"m\", \"law\": \"linear\", "
+	        "\"density\": 2500, \"E\": 1e10, \"nu\": 0.2, \"tensile_strength\": 1e12, "
+	        "\"shear_strength\": 1e12}, \"loading\": [{\"axial\": {\"mode\": "
+	        "\"strain_rate\", \"rate\": 0}}], \"stop\": {\"strain_axial\": 0.01}}",
+	        "loading stage 1: axial.rate 0: the ends stand still, so its strain rule can "
+	        "never hold");
 
 	/* A particle a thousand kilometres away: refused, not a search grid of
 	 * 1e19 bytes. */
 	snprintf(json, sizeof json, case_text, "", "strain_rate");
-	harness_case(&c, json);
 	double x0 = a.x[3 * 7];
 	a.x[3 * 7] = 1e6;
-	CHECK(engine_setup(&e, &c, &a, &(engine_opts){.quiet = 1}) == -1);
-	CHECK_CONTAINS(err_msg(), "too sparse for spheres of radius up to ");
-	CHECK_CONTAINS(err_msg(), ": particle 7 at (1e+06, ");
-	CHECK_CONTAINS(err_msg(), "expected a packed specimen (check the assembly's positions)");
+	refused(json, "too sparse for spheres of radius up to ");
+	refused(json, ": particle 7 at (1e+06, ");
+	refused(json, "expected a packed specimen (check the assembly's positions)");
 	a.x[3 * 7] = x0;
-	engine_free(&e);
-	case_free(&c);
 
 	/* Axes whose squared length overflows or underflows are still axes. */
 	const char *axes[] = {"[1e200, 0, 0]", "[1e-320, 0, 0]", "[-3e-310, 0, 0]"};
@@ -139,16 +137,12 @@ int main(void)
 		case_free(&c);
 	}
 	/* End layers thicker than half the specimen. */
-	harness_case(&c, "{\"assembly\": \"-\", \"material\": {\"name\": \"m\", \"law\": "
-	                 "\"linear\", \"density\": 2500, \"E\": 1e10, \"nu\": 0.2, "
-	                 "\"tensile_strength\": 1e12, \"shear_strength\": 1e12}, \"loading\": "
-	                 "[{\"axial\": {\"mode\": \"layers\", \"rate\": 1, \"thickness\": 1}}], "
-	                 "\"stop\": {\"steps\": 300}}");
-	CHECK(engine_setup(&e, &c, &a, &(engine_opts){.quiet = 1}) == -1);
-	CHECK_CONTAINS(err_msg(), "loading stage 1: axial.thickness 1 m: expected less than half "
-	                          "the specimen's height");
-	engine_free(&e);
-	case_free(&c);
+	refused("{\"assembly\": \"-\", \"material\": {\"name\": \"m\", \"law\": \"linear\", "
+	        "\"density\": 2500, \"E\": 1e10, \"nu\": 0.2, \"tensile_strength\": 1e12, "
+	        "\"shear_strength\": 1e12}, \"loading\": [{\"axial\": {\"mode\": \"layers\", "
+	        "\"rate\": 1, \"thickness\": 1}}], \"stop\": {\"steps\": 300}}",
+	        "loading stage 1: axial.thickness 1 m: expected less than half the specimen's "
+	        "height");
 
 	/* A skin so wide that no neighbour rebuild (and its time-step check) comes. */
 	snprintf(json, sizeof json, case_text, "\"neighbours\": {\"skin\": 1},", "layers");

@@ -106,17 +106,8 @@ static void damage(const char *from, const char *to)
 
 int main(void)
 {
-	lattice l = {.kind = LATTICE_FCC,
-	             .nx = 9,
-	             .ny = 9,
-	             .nz = 14,
-	             .r = 1e-3,
-	             .jitter = 0.02,
-	             .polydisp = 0.02,
-	             .diameter = 0.0235,
-	             .seed = 5};
 	dem_assembly a;
-	fixture_lattice(&a, &l);
+	fixture_cylinder(&a, 5);
 	char apath[1024], run[1024], ckpt[1100], ref[1024], json[2048];
 	snprintf(apath, sizeof apath, "%s", check_tmp("kill.h5"));
 	fixture_write(&a, apath);
