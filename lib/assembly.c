@@ -157,6 +157,25 @@ int assembly_write_groups(hid_t file, const dem_assembly *a)
 	return 0;
 }
 
+/* Whether a sphere of radius r at x is larger than the geometry's bounding
+ * box or lies outside it by more than its diameter (a damaged file; pack's
+ * spheres have their centres inside). A geometry without a box passes. */
+static int outside(const dem_geometry *g, const double x[3], double r)
+{
+	double size = 0;
+	for (int k = 0; k < 3; k++) {
+		if (!(g->bbox_max[k] > g->bbox_min[k]))
+			return 0;
+		size = fmax(size, g->bbox_max[k] - g->bbox_min[k]);
+	}
+	if (r > size)
+		return 1;
+	for (int k = 0; k < 3; k++)
+		if (x[k] < g->bbox_min[k] - 2 * r || x[k] > g->bbox_max[k] + 2 * r)
+			return 1;
+	return 0;
+}
+
 int assembly_read_groups(hid_t file, dem_assembly *a)
 {
 	hid_t p = h5_open_group(file, "particles");
@@ -181,6 +200,14 @@ int assembly_read_groups(hid_t file, dem_assembly *a)
 			    "%s: dataset '/particles/x': row %zu is (%g, %g, %g): expected a "
 			    "finite position (m)",
 			    h5_name(file), i, x[0], x[1], x[2]);
+		if (outside(&a->geom, x, a->r[i]))
+			return err_set(
+			    "%s: particle %zu (radius %g m at (%g, %g, %g) m) does not fit "
+			    "the geometry's bounding box [%g, %g] x [%g, %g] x [%g, %g] m: "
+			    "expected the spheres of the specimen",
+			    h5_name(file), i, a->r[i], x[0], x[1], x[2], a->geom.bbox_min[0],
+			    a->geom.bbox_max[0], a->geom.bbox_min[1], a->geom.bbox_max[1],
+			    a->geom.bbox_min[2], a->geom.bbox_max[2]);
 	}
 	return 0;
 }

@@ -7,8 +7,10 @@
 #include "lib/err.h"
 #include "lib/h5.h"
 
-/* The format versions this build reads (and writes). */
-#define FORMAT_VERSION 1
+/* The format version this build writes, and the oldest it reads: 2 stores
+ * strings with a fixed length, 1 with a variable length. */
+#define FORMAT_VERSION 2
+#define FORMAT_OLDEST 1
 
 /* HDF5 closes the files still open when the process exits. After a write
  * that failed (a full disk), its close of such a file crashes inside the
@@ -126,10 +128,12 @@ hid_t h5_open(const char *path, const char *format, int readwrite)
 		return -1;
 	}
 	free(fmt);
-	if (h5_read_attr_i64(f, "format_version", &version) || version != FORMAT_VERSION) {
+	if (h5_read_attr_i64(f, "format_version", &version) || version < FORMAT_OLDEST ||
+	    version > FORMAT_VERSION) {
 		H5Fclose(f);
-		return err_set("%s: attribute 'format_version': value %lld: expected %d", path,
-		               (long long)version, FORMAT_VERSION);
+		return err_set("%s: attribute 'format_version': value %lld: expected %d to %d "
+		               "(a file of another version of this toolchain)",
+		               path, (long long)version, FORMAT_OLDEST, FORMAT_VERSION);
 	}
 	return f;
 }
@@ -179,20 +183,53 @@ static int write_attr(hid_t obj, const char *name, hid_t type, hid_t space, cons
 	return 0;
 }
 
-static hid_t str_type(void)
+/* Strings are fixed-length, NUL-terminated UTF-8. (Format 1 stored them
+ * with a variable length, in HDF5's global heap, where one damaged byte
+ * crashes or hangs the library's reader.) size is in bytes, 0 for a
+ * variable length. */
+static hid_t str_type(size_t size)
 {
 	hid_t t = H5Tcopy(H5T_C_S1);
-	H5Tset_size(t, H5T_VARIABLE);
+	H5Tset_size(t, size ? size : H5T_VARIABLE);
+	H5Tset_strpad(t, H5T_STR_NULLTERM);
 	H5Tset_cset(t, H5T_CSET_UTF8);
 	return t;
 }
 
 int h5_attr_str(hid_t obj, const char *name, const char *value)
 {
-	hid_t t = str_type();
-	int rc = write_attr(obj, name, t, H5Screate(H5S_SCALAR), &value);
+	hid_t t = str_type(strlen(value) + 1);
+	int rc = write_attr(obj, name, t, H5Screate(H5S_SCALAR), value);
 	H5Tclose(t);
 	return rc;
+}
+
+/* The longest string attribute read (a configuration is a few kB). */
+enum { STR_MAX = 64 << 20 };
+
+/* The value of string attribute a of type ft, or NULL. */
+static char *read_str(hid_t a, hid_t ft)
+{
+	if (H5Tis_variable_str(ft) > 0) {
+		hid_t t = str_type(0);
+		char *value = NULL, *out = NULL;
+		if (H5Aread(a, t, &value) >= 0 && value) {
+			out = xstrdup(value);
+			H5free_memory(value);
+		}
+		H5Tclose(t);
+		return out;
+	}
+	size_t size = H5Tget_size(ft);
+	if (size == 0 || size > STR_MAX)
+		return NULL;
+	char *out = xmalloc(size + 1);
+	if (H5Aread(a, ft, out) < 0) {
+		free(out);
+		return NULL;
+	}
+	out[size] = '\0';
+	return out;
 }
 
 int h5_attr_f64(hid_t obj, const char *name, double value)
@@ -235,16 +272,7 @@ char *h5_read_attr_str(hid_t obj, const char *name)
 	if (a < 0)
 		return NULL;
 	hid_t ft = H5Aget_type(a);
-	char *out = NULL;
-	if (H5Tget_class(ft) == H5T_STRING && H5Tis_variable_str(ft) > 0) {
-		hid_t t = str_type();
-		char *value = NULL;
-		if (H5Aread(a, t, &value) >= 0 && value) {
-			out = xstrdup(value);
-			H5free_memory(value);
-		}
-		H5Tclose(t);
-	}
+	char *out = H5Tget_class(ft) == H5T_STRING ? read_str(a, ft) : NULL;
 	H5Tclose(ft);
 	H5Aclose(a);
 	if (!out)

@@ -16,6 +16,18 @@
 #include "solve/measure.h"
 #include "solve/pairlist.h"
 
+/* Whether the centre of one of spheres i, j lies inside the other. */
+static int nested(const particles *P, size_t i, int32_t j)
+{
+	double d2 = 0;
+	for (int k = 0; k < 3; k++) {
+		double dx = P->x[3 * j + k] - P->x[3 * i + k];
+		d2 += dx * dx;
+	}
+	double r = fmax(P->r[i], P->r[j]);
+	return d2 < r * r;
+}
+
 int bonds_form(engine *e)
 {
 	particles *P = &e->p;
@@ -36,6 +48,18 @@ int bonds_form(engine *e)
 			    "overlapping spheres?",
 			    P->orig[i], CAP);
 		}
+		for (int q = 0; q < nj; q++)
+			if (nested(P, i, js[q])) {
+				cells_free(&g);
+				const double *xi = P->x + 3 * i;
+				return err_set(
+				    "particles %d and %d (radii %g and %g m, at (%g, %g, "
+				    "%g) m): the centre of one lies inside the other: "
+				    "expected the spheres of a packing (a damaged "
+				    "assembly?)",
+				    P->orig[i], P->orig[js[q]], P->r[i], P->r[js[q]], xi[0], xi[1],
+				    xi[2]);
+			}
 		count += (size_t)nj;
 	}
 	L->rec = xmalloc((count + 1) * sizeof *L->rec);
