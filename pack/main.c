@@ -26,6 +26,25 @@ static double smallest_extent(const dem_geometry *g)
 	return e;
 }
 
+/* The most spheres pack makes, as --count allows: more would need more
+ * memory than a machine has (about 1 kB each while packing). */
+enum { MAX_SPHERES = 1000000000 };
+
+/* The options that set the sizes, for a message. */
+static const char *sizes_from(const pack_options *o)
+{
+	static char s[600];
+	if (o->mean_radius > 0)
+		snprintf(s, sizeof s, "--mean-radius %g m", o->mean_radius);
+	else if (strcmp(o->dist, "uniform") == 0)
+		snprintf(s, sizeof s, "--rmin %g m, --rmax %g m", o->rmin, o->rmax);
+	else if (strcmp(o->dist, "grading") == 0)
+		snprintf(s, sizeof s, "--grading %s", o->grading ? o->grading : "(inline)");
+	else
+		snprintf(s, sizeof s, "--radius %g m", o->radius);
+	return s;
+}
+
 /* Apply --count / --mean-radius and check that the spheres fit. */
 static void size_spheres(const pack_options *o, psd *d, const dem_geometry *g)
 {
@@ -36,6 +55,11 @@ static void size_spheres(const pack_options *o, psd *d, const dem_geometry *g)
 		psd_scale(d, packer_count_scale(d, g->volume, o->count));
 	else if (o->mean_radius > 0)
 		psd_scale(d, o->mean_radius / psd_moment(d, 1));
+	double n = packer_count_estimate(d, g->volume);
+	if (n > MAX_SPHERES)
+		fatal("%s: the specimen (%.3g m^3) would hold about %.3g spheres of these sizes: "
+		      "expected at most %.0g (larger radii, or --count)",
+		      sizes_from(o), g->volume, n, (double)MAX_SPHERES);
 	double ext = smallest_extent(g);
 	if (2 * d->rmax < ext)
 		return;
@@ -164,6 +188,12 @@ static void start(pack_run *r, int argc, char **argv)
 	keep_freed_memory();
 	options_parse(&r->o, argc, argv);
 	afile_install_signal_cleanup();
+	/* Far more threads than cores only wait, and may fail to start. */
+	int most = 4 * omp_get_num_procs();
+	if (r->o.threads > most)
+		fatal("--threads %ld: expected at most %d (four per core of this machine; 0 uses "
+		      "every core)",
+		      r->o.threads, most);
 	if (r->o.threads > 0)
 		omp_set_num_threads((int)r->o.threads);
 	r->t0 = timer_now();

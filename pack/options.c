@@ -2,6 +2,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
 
 #include "lib/cli.h"
 #include "lib/err.h"
@@ -9,6 +11,9 @@
 #include "pack/options.h"
 
 #define LEN 1e-9, 1e3 /* bounds of a length (m) */
+/* Bounds of a specimen's size (m): the geometry kernel (OpenCASCADE) works
+ * to 1e-7 m and throws on smaller shapes. */
+#define SIZE 1e-6, 1e3
 
 enum { NOPT = 32 }; /* room in the option table */
 
@@ -21,11 +26,11 @@ static int table(pack_options *o, cli_opt *t)
 	     "specimen from a file gmsh reads (.geo, .step/.stp, .brep, .msh, .stl) instead of "
 	     "--shape",
 	     0, 0},
-	    {"diameter", CLI_NUM, &o->diameter, "D", "m", "cylinder or disc diameter", LEN},
-	    {"height", CLI_NUM, &o->height, "H", "m", "cylinder height; box edge along z", LEN},
-	    {"thickness", CLI_NUM, &o->thickness, "T", "m", "disc thickness", LEN},
-	    {"length", CLI_NUM, &o->length, "L", "m", "box edge along x", LEN},
-	    {"width", CLI_NUM, &o->width, "W", "m", "box edge along y", LEN},
+	    {"diameter", CLI_NUM, &o->diameter, "D", "m", "cylinder or disc diameter", SIZE},
+	    {"height", CLI_NUM, &o->height, "H", "m", "cylinder height; box edge along z", SIZE},
+	    {"thickness", CLI_NUM, &o->thickness, "T", "m", "disc thickness", SIZE},
+	    {"length", CLI_NUM, &o->length, "L", "m", "box edge along x", SIZE},
+	    {"width", CLI_NUM, &o->width, "W", "m", "box edge along y", SIZE},
 	    {"scale", CLI_NUM, &o->scale, "S", "",
 	     "factor on the coordinates of a --geometry file (STEP files are read in metres)",
 	     1e-12, 1e12},
@@ -271,6 +276,26 @@ void options_free(pack_options *o)
 		free(o->resolved[k]);
 }
 
+/* A geometry file is a file of a kind gmsh reads, by its name: a directory
+ * or a specimen file (.json) given here would fail inside gmsh with a
+ * message that names neither the option nor what was expected. */
+static int geometry_file_kind(const char *path)
+{
+	static const char *const kinds[] = {".geo", ".step", ".stp", ".brep", ".msh", ".stl"};
+	struct stat st;
+	if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+		return err_set("--geometry %s: a directory: expected a geometry file", path);
+	const char *dot = strrchr(path, '.');
+	for (size_t k = 0; dot && k < sizeof kinds / sizeof *kinds; k++)
+		if (strcasecmp(dot, kinds[k]) == 0)
+			return 0;
+	return err_set("--geometry %s: expected a file gmsh reads, named .geo, .step/.stp, .brep, "
+	               ".msh or .stl%s",
+	               path,
+	               dot && strcasecmp(dot, ".json") == 0 ? " (a specimen file goes to --config)"
+	                                                    : "");
+}
+
 int options_geometry(const pack_options *o, geometry_spec *g)
 {
 	memset(g, 0, sizeof *g);
@@ -278,7 +303,7 @@ int options_geometry(const pack_options *o, geometry_spec *g)
 	if (o->geometry) {
 		g->kind = SHAPE_FILE;
 		g->file = o->geometry;
-		return 0;
+		return geometry_file_kind(o->geometry);
 	}
 	if (strcmp(o->shape, "cylinder") == 0 || strcmp(o->shape, "disc") == 0) {
 		g->kind = o->shape[0] == 'c' ? SHAPE_CYLINDER : SHAPE_DISC;

@@ -33,10 +33,17 @@ static const double CELL_MIN = 1000;
 static const double COUNT_TOL = 0.003; /* on the size scale: 1 % on the count */
 static const int COUNT_PASSES = 3;
 
+/* The mean volume of a sphere of d. */
+static double mean_volume(const psd *d) { return 4.0 / 3.0 * M_PI * psd_moment(d, 3); }
+
+double packer_count_estimate(const psd *d, double volume)
+{
+	return PHI_RCP * volume / mean_volume(d);
+}
+
 double packer_count_scale(const psd *d, double volume, long count)
 {
-	double v = 4.0 / 3.0 * M_PI * psd_moment(d, 3);
-	return cbrt(PHI_RCP * volume / ((double)count * v));
+	return cbrt(PHI_RCP * volume / ((double)count * mean_volume(d)));
 }
 
 static void cell_shape(const psd *d, const dem_geometry *g, long cell_max, double shape[3],

@@ -39,6 +39,8 @@ typedef struct {
 /* The scale on the sizes of d that makes about `count` spheres fill a
  * volume at the solid fraction of a random close packing. */
 double packer_count_scale(const psd *d, double volume, long count);
+/* About how many spheres of d fill the volume at that solid fraction. */
+double packer_count_estimate(const psd *d, double volume);
 
 /* The periodic cell (pack/jam.h) for d and the specimen g, made on the
  * calling thread alone (its parallel loops would meet at a barrier several

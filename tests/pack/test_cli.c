@@ -77,8 +77,23 @@ static void test_bad_input(void)
 	        0, "--rmin 0.002 --rmax 0.0015");
 	refused(2, "pack: --rmin -0.001: expected a number in [1e-09, 1000] (m)\n", 0,
 	        "--rmin -0.001");
-	refused(2, "pack: --diameter -0.05: expected a number in [1e-09, 1000] (m)\n", 0,
+	refused(2, "pack: --diameter -0.05: expected a number in [1e-06, 1000] (m)\n", 0,
 	        "--diameter -0.05");
+	/* A 1 nm box made the geometry kernel throw. */
+	refused(2, "pack: --length 1e-9: expected a number in [1e-06, 1000] (m)\n", 0,
+	        "--shape box --length 1e-9");
+	/* Sizes that would need petabytes. */
+	refused(1,
+	        "pack: --radius 1e-07 m: the specimen (2.45e-05 m^3) would hold about 3.61e+15 "
+	        "spheres of these sizes: expected at most 1e+09 (larger radii, or --count)\n",
+	        0, "--dist fuzz --radius 1e-7 --fuzz 0.2");
+	refused(1, "pack: --threads 4000: expected at most ", 1, "--threads 4000");
+	refused(1, "pack: --geometry /tmp: a directory: expected a geometry file\n", 0,
+	        "--geometry /tmp");
+	refused(1,
+	        "pack: --geometry share/specimens/demo.json: expected a file gmsh reads, named "
+	        ".geo, .step/.stp, .brep, .msh or .stl (a specimen file goes to --config)\n",
+	        0, "--geometry share/specimens/demo.json");
 	refused(1,
 	        "pack: spheres of radius up to 0.012 m do not fit in the specimen: expected the "
 	        "largest diameter below its smallest extent (0.02 m)\n",
