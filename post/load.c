@@ -14,6 +14,18 @@ static void readable_or_die(const char *path)
 		fatal("%s: cannot read: %s", path, strerror(errno));
 }
 
+/* A file that did not read, named like the temporary of a program that
+ * has not finished writing it: say so. */
+static void unfinished(const char *cmd, const char *path)
+{
+	size_t len = strlen(path);
+	if (len > 4 && strcmp(path + len - 4, ".tmp") == 0)
+		fatal("%s: the temporary file of a program still writing it, or killed: post %s "
+		      "reads finished files (after a killed solve, continue the run with solve "
+		      "--restart %.*s)",
+		      path, cmd, (int)(len - 4), path);
+}
+
 file_kind load_kind(const char *cmd, const char *path)
 {
 	readable_or_die(path);
@@ -28,6 +40,8 @@ file_kind load_kind(const char *cmd, const char *path)
 		kind = strcmp(fmt, RUN_FORMAT) == 0 ? FILE_RUN : FILE_ASSEMBLY;
 	free(fmt);
 	if (!known)
+		unfinished(cmd, path);
+	if (!known)
 		fatal("%s: not a run file (solve) or an assembly file (pack): post %s reads one of "
 		      "them",
 		      path, cmd);
@@ -39,6 +53,7 @@ void load_run(const char *cmd, const char *path, dem_run *r)
 	readable_or_die(path);
 	if (run_read(path, r) == 0)
 		return;
+	unfinished(cmd, path);
 	if (!strstr(err_msg(), "\"" ASSEMBLY_FORMAT "\""))
 		fatal(NULL);
 	fatal("%s (an assembly written by pack: post %s reads a run file written by solve)",

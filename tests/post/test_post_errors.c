@@ -68,6 +68,25 @@ int main(void)
 		         assembly, commands[c]);
 		expect(1, msg, commands[c], assembly);
 	}
+	/* the temporary of a killed run */
+	char killed[1200], stem[1100];
+	snprintf(stem, sizeof stem, "%s/killed.h5", dir);
+	snprintf(killed, sizeof killed, "%s.tmp", stem);
+	FILE *k = fopen(killed, "w");
+	CHECK(k != NULL);
+	if (k) {
+		fputs("half an HDF5 file\n", k);
+		fclose(k);
+	}
+	for (int c = 0; c < 4; c++) {
+		snprintf(
+		    msg, sizeof msg,
+		    "post: %s: the temporary file of a program still writing it, or killed: "
+		    "post %s reads finished files (after a killed solve, continue the run with "
+		    "solve --restart %s)\n",
+		    killed, commands[c], stem);
+		expect(1, msg, commands[c], killed);
+	}
 	/* an empty run: nothing was written after the start */
 	snprintf(msg, sizeof msg,
 	         "post: %s: the run has no snapshots (it stopped before writing one)\n", empty);
