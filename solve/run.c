@@ -235,7 +235,7 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 			        "%s: interrupted at step %" PRId64
 			        " (%s); continue with: solve --restart %s\n",
 			        err_program_name(), e->clock.step,
-			        interrupted ? "signal" : "budget", o->output);
+			        interrupted ? strsignal(interrupted) : "budget", o->output);
 		}
 		return end(L, END_INTERRUPTED, RUN_INTERRUPTED, "interrupted");
 	}
