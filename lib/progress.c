@@ -5,8 +5,11 @@
 #include "lib/timer.h"
 
 static int forced = -1;
+static double log_every = 30;
 
 void progress_force(int on) { forced = on; }
+
+void progress_log_every(double s) { log_every = s; }
 
 void progress_start(progress *p, const char *what, double total)
 {
@@ -14,6 +17,7 @@ void progress_start(progress *p, const char *what, double total)
 	p->total = total;
 	p->t_start = p->t_last = timer_now();
 	p->active = forced >= 0 ? forced : isatty(STDERR_FILENO);
+	p->log = !p->active && forced != 0 && log_every > 0;
 }
 
 static void format_duration(char *buf, size_t n, double s)
@@ -30,23 +34,23 @@ static void format_duration(char *buf, size_t n, double s)
 
 void progress_update(progress *p, double done, const char *detail)
 {
-	if (!p->active)
-		return;
 	double now = timer_now();
-	if (now - p->t_last < 0.2)
+	if (!(p->active && now - p->t_last >= 0.2) && !(p->log && now - p->t_last >= log_every))
 		return;
 	p->t_last = now;
 	double rate = done / (now - p->t_start > 0 ? now - p->t_start : 1e-9);
-	char eta[32] = "--";
+	char eta[32] = "--", elapsed[32];
 	if (p->total > 0 && rate > 0)
 		format_duration(eta, sizeof eta, (p->total - done) / rate);
+	format_duration(elapsed, sizeof elapsed, now - p->t_start);
+	const char *start = p->active ? "\r\033[K" : "", *end = p->active ? "" : "\n";
 	if (p->total > 0)
-		fprintf(stderr, "\r\033[K%.0f/%.0f %s (%.0f%%)  %.3g %s/s  ETA %s  %s", done,
-		        p->total, p->what, 100.0 * done / p->total, rate, p->what, eta,
-		        detail ? detail : "");
+		fprintf(stderr, "%s%.0f/%.0f %s (%.0f%%)  %.3g %s/s  %s elapsed, ETA %s  %s%s",
+		        start, done, p->total, p->what, 100.0 * done / p->total, rate, p->what,
+		        elapsed, eta, detail ? detail : "", end);
 	else
-		fprintf(stderr, "\r\033[K%.0f %s  %.3g %s/s  %s", done, p->what, rate, p->what,
-		        detail ? detail : "");
+		fprintf(stderr, "%s%.0f %s  %.3g %s/s  %s elapsed  %s%s", start, done, p->what,
+		        rate, p->what, elapsed, detail ? detail : "", end);
 	fflush(stderr);
 }
 

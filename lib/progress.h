@@ -1,6 +1,8 @@
 /* A one-line progress report on stderr for long work: done/total, rate,
- * ETA and a caller-supplied detail (e.g. strain and stress). Quiet when
- * stderr is not a terminal, so logs and CI output stay clean. */
+ * ETA and a caller-supplied detail (e.g. strain and stress). On a terminal
+ * the line is redrawn in place; in a log (make, a batch job) the same line
+ * is written once every log interval, as LAMMPS's thermo output is, so a
+ * long run is never silent. */
 #ifndef DEM_PROGRESS_H
 #define DEM_PROGRESS_H
 
@@ -8,7 +10,8 @@ typedef struct {
 	const char *what; /* "steps", "spheres", ... */
 	double total;     /* expected amount of work, <= 0 if unknown */
 	double t_start, t_last;
-	int active;
+	int active; /* redrawn on a terminal */
+	int log;    /* written as lines to a log */
 } progress;
 
 void progress_start(progress *p, const char *what, double total);
@@ -18,5 +21,7 @@ void progress_update(progress *p, double done, const char *detail);
 void progress_end(progress *p);
 /* Force the progress line on or off regardless of the terminal (tests). */
 void progress_force(int on);
+/* Seconds between two lines in a log (30 by default); 0 writes none. */
+void progress_log_every(double s);
 
 #endif

@@ -16,7 +16,7 @@ int main(int argc, char **argv)
 	const char *assembly = NULL, *output = "run.h5", *restart = NULL, *report = NULL,
 	           *depfile = NULL;
 	long threads = 0, max_steps = 0;
-	double max_wall = 0;
+	double max_wall = 0, log_every = 30;
 	int quiet = 0, show_progress = 0;
 	report_start();
 	const cli_opt opts[] = {
@@ -42,6 +42,8 @@ int main(int argc, char **argv)
 	     0, 0},
 	    {"progress", CLI_FLAG, &show_progress, NULL, "",
 	     "show the progress line even when stderr is not a terminal", 0, 0},
+	    {"log-every", CLI_NUM, &log_every, "S", "s",
+	     "when stderr is not a terminal, a progress line every S seconds (0: none)", 0, 1e9},
 	    {"quiet", CLI_FLAG, &quiet, NULL, "", "print nothing but errors", 0, 0},
 	};
 	static const char summary[] =
@@ -65,6 +67,7 @@ int main(int argc, char **argv)
 	char *pos[1];
 	int npos = cli_parse(&spec, argc, argv, pos);
 	afile_install_signal_cleanup();
+	progress_log_every(log_every);
 	if (show_progress)
 		progress_force(1);
 	if (quiet)

@@ -39,6 +39,9 @@ typedef struct {
 	double wall0, last_checkpoint, last_row_wall;
 	int64_t last_row_step, step0, last_snapshot_step;
 	progress pg;
+	/* the recent pace: strain and stress per step since the sample */
+	double pace[2], pace_wall, pace_strain, pace_stress;
+	int64_t pace_step;
 	int how, code;    /* END_*, RUN_* once the run ends */
 	char ending[600]; /* the status of a stop rule that held after a step that
 	                     wrote no history row: the run ends after one more */
@@ -113,26 +116,51 @@ static int history(loop_state *L)
 	return run_history(L->w, row);
 }
 
+/* The steps one rule leaves before it ends the run (its clock counted from
+ * t0, s0), at the recent pace of the strain and the stress per step; after
+ * the peak, a stress-drop rule ends it once the stress has fallen to its
+ * fraction of the peak. INFINITY where the rule gives no estimate. */
+static double rule_left(const engine *e, const stop_rule *r, double t0, int64_t s0, double peak,
+                        const double pace[2])
+{
+	double left = INFINITY, strain = engine_strain(e), stress = engine_stress(e);
+	if (r->steps)
+		left = fmin(left, (double)(r->steps - (e->clock.step - s0)));
+	if (!isnan(r->time))
+		left = fmin(left, (r->time - (e->clock.t - t0)) / e->clock.dt);
+	if (!isnan(r->strain_axial) && (r->strain_axial - strain) * pace[0] > 0)
+		left = fmin(left, (r->strain_axial - strain) / pace[0]);
+	if (!isnan(r->stress_drop) && e->prog.drop_armed && peak > 0 && stress < peak &&
+	    pace[1] < 0)
+		left = fmin(left, (stress - r->stress_drop * peak) / -pace[1]);
+	return left;
+}
+
 static void show_progress(loop_state *L)
 {
 	engine *e = L->e;
 	const dem_case *cs = e->cs;
-	const stop_rule *r[2] = {&cs->stop, &cs->stages[cs->nstages - 1].until};
-	double frac = 0;
-	for (int k = 0; k < 2; k++) {
-		if (r[k]->steps)
-			frac = fmax(frac, (double)e->clock.step / (double)r[k]->steps);
-		if (!isnan(r[k]->time))
-			frac = fmax(frac, e->clock.t / r[k]->time);
-		if (!isnan(r[k]->strain_axial) && r[k]->strain_axial != 0)
-			frac = fmax(frac, engine_strain(e) / r[k]->strain_axial);
+	double now = timer_now();
+	if (now - L->pace_wall >= 1 && e->clock.step > L->pace_step) {
+		double steps = (double)(e->clock.step - L->pace_step);
+		L->pace[0] = (engine_strain(e) - L->pace_strain) / steps;
+		L->pace[1] = (engine_stress(e) - L->pace_stress) / steps;
+		L->pace_wall = now;
+		L->pace_step = e->clock.step;
+		L->pace_strain = engine_strain(e);
+		L->pace_stress = engine_stress(e);
 	}
+	double left = rule_left(e, &cs->stop, 0, 0, e->prog.peak, L->pace);
+	if (e->prog.stage + 1 == cs->nstages)
+		left = fmin(left, rule_left(e, &cs->stages[e->prog.stage].until, e->prog.stage_t,
+		                            e->prog.stage_step, e->prog.stage_peak, L->pace));
 	double done = (double)(e->clock.step - L->step0);
-	L->pg.total = frac > 0 ? (double)e->clock.step / fmin(frac, 1) - (double)L->step0 : 0;
+	L->pg.total = isfinite(left) ? done + fmax(left, 0) : 0;
 	const double *c = e->sums.bonds.count;
-	char detail[160];
-	snprintf(detail, sizeof detail, "stage %d  strain %.4g%%  stress %.4g MPa  broken %.0f",
-	         e->prog.stage + 1, 100 * engine_strain(e), 1e-6 * engine_stress(e),
+	char detail[200];
+	snprintf(detail, sizeof detail,
+	         "stage %d  t %.4g s  strain %.4g%%  stress %.4g MPa  broken %.0f",
+	         e->prog.stage + 1, e->clock.t, 100 * engine_strain(e), 1e-6 * engine_stress(e),
 	         c[BOND_BROKEN_TENSION] + c[BOND_BROKEN_SHEAR]);
 	progress_update(&L->pg, done, detail);
 }
@@ -265,7 +293,10 @@ static int run_loop(engine *e, run_writer *w, const run_opts *o)
 	phase_start(&e->tm, TM_TOTAL);
 	loop_state L = {.e = e, .w = w, .o = o, .last_snapshot_step = -1};
 	L.wall0 = L.last_checkpoint = L.last_row_wall = timer_now();
-	L.last_row_step = L.step0 = e->clock.step;
+	L.last_row_step = L.step0 = L.pace_step = e->clock.step;
+	L.pace_wall = L.wall0;
+	L.pace_strain = engine_strain(e);
+	L.pace_stress = engine_stress(e);
 	progress_start(&L.pg, "steps", 0);
 	/* Any signal that asks the program to end finishes the step and
 	 * checkpoints: a closed terminal, or a batch scheduler before its kill. */
