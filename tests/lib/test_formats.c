@@ -37,7 +37,7 @@ static void make_assembly(dem_assembly *a, size_t n)
 		g->axis[k] = k == 2;
 		g->size[k] = 0.01 * k;
 		g->bbox_min[k] = -0.025 - k;
-		g->bbox_max[k] = 0.025 + k;
+		g->bbox_max[k] = 1e4 + k; /* around every sphere of seq() */
 	}
 	g->diameter = 0.05;
 	g->height = 0.1;
@@ -139,6 +139,16 @@ static void test_assembly_roundtrip(const char *path)
 	CHECK(assembly_read(path, &b) == 0);
 	compare_assembly(&a, &b);
 	assembly_free(&b);
+
+	/* A sphere that does not fit the geometry's box (a damaged file). */
+	const char *far = check_tmp("far_assembly.h5");
+	a.x[3 * 7] = 3e4;
+	CHECK(assembly_write(far, &a) == 0);
+	CHECK(assembly_read(far, &b) == -1);
+	CHECK_CONTAINS(err_msg(), "far_assembly.h5: particle 7 (radius 3.5005 m at (30000, ");
+	CHECK_CONTAINS(err_msg(),
+	               ") m) does not fit the geometry's bounding box [-0.025, 10000] x ");
+	a.x[3 * 7] = 0.001 + 0.5 * 21;
 
 	/* A file from before the report had its coordination by layer reads,
 	 * with those figures unknown (NaN) and the rest as written. */
