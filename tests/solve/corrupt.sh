@@ -10,15 +10,10 @@ set -eu
 bin=$1 tmp=$2 step=${3:-23}
 rm -rf "$tmp"
 mkdir -p "$tmp"
-"$bin/lattice-assembly" --spheres 300 "$tmp/a.h5" > /dev/null
-cat > "$tmp/case.json" <<JSON
-{"assembly": "$tmp/a.h5",
- "material": {"name": "m", "law": "linear", "density": 2500, "E": 1e10, "nu": 0.2,
-              "tensile_strength": 2e6, "shear_strength": 4e6},
- "output": {"history_every": 10, "snapshot_every": 100},
- "loading": [{"axial": {"mode": "strain_rate", "rate": 1}}],
- "stop": {"steps": 200}}
-JSON
+. "$(dirname "$0")/case.sh"
+lattice 300
+case_file "$tmp/case.json" '"output": {"history_every": 10, "snapshot_every": 100},
+ "stop": {"steps": 200}' 1 2e6
 "$bin/solve" --quiet --output "$tmp/run.h5" "$tmp/case.json"
 code=0
 "$bin/solve" --quiet --max-steps 150 --output "$tmp/int.h5" "$tmp/case.json" || code=$?

@@ -119,6 +119,21 @@ void fixture_rotate(dem_assembly *a, const double R[9])
 		rotate(R, a->x + 3 * i);
 	rotate(R, a->geom.center);
 	rotate(R, a->geom.axis);
+	/* The box around the turned box's corners. */
+	dem_geometry *g = &a->geom;
+	double lo[3], hi[3];
+	for (int k = 0; k < 3; k++)
+		lo[k] = INFINITY, hi[k] = -INFINITY;
+	for (int c = 0; c < 8; c++) {
+		double x[3];
+		for (int k = 0; k < 3; k++)
+			x[k] = c >> k & 1 ? g->bbox_max[k] : g->bbox_min[k];
+		rotate(R, x);
+		for (int k = 0; k < 3; k++)
+			lo[k] = fmin(lo[k], x[k]), hi[k] = fmax(hi[k], x[k]);
+	}
+	memcpy(g->bbox_min, lo, sizeof lo);
+	memcpy(g->bbox_max, hi, sizeof hi);
 }
 
 void fixture_write(const dem_assembly *a, const char *path)

@@ -27,7 +27,8 @@ void fixture_lattice(dem_assembly *a, const lattice *l);
 /* The jittered, slightly polydisperse FCC cylinder (23.5 mm across, twice
  * as high, about 2 500 spheres of radius 1 mm) of the whole-run tests. */
 void fixture_cylinder(dem_assembly *a, uint64_t seed);
-/* Rotate positions, centre and axis by the rotation matrix R (row-major). */
+/* Rotate positions, centre and axis by the rotation matrix R (row-major),
+ * and grow the bounding box to enclose the turned one. */
 void fixture_rotate(dem_assembly *a, const double R[9]);
 /* A rotation matrix from an axis and an angle (rad). */
 void fixture_rotation(const double axis[3], double angle, double R[9]);

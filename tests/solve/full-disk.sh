@@ -9,15 +9,9 @@ set -eu
 bin=$1 tmp=$2
 rm -rf "$tmp"
 mkdir -p "$tmp"
-"$bin/lattice-assembly" --spheres 3000 "$tmp/a.h5"
-cat > "$tmp/case.json" <<JSON
-{"assembly": "$tmp/a.h5",
- "material": {"name": "m", "law": "linear", "density": 2500, "E": 1e10, "nu": 0.2,
-              "tensile_strength": 1e12, "shear_strength": 1e12},
- "output": {"snapshot_every": 200},
- "loading": [{"axial": {"mode": "strain_rate", "rate": 1}}],
- "stop": {"steps": 1000000000}}
-JSON
+. "$(dirname "$0")/case.sh"
+lattice 3000
+case_file "$tmp/case.json" '"output": {"snapshot_every": 200}, "stop": {"steps": 1000000000}'
 limited() { # the command, with writes beyond about 1 MB failing
 	(ulimit -f 2048; trap '' XFSZ; exec "$@")
 }

@@ -1,10 +1,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include "lib/err.h"
 #include "tests/check.h"
+#include "tests/harness.h"
 #include "tests/solve/harness.h"
 
 void harness_case(dem_case *c, const char *json)
@@ -111,4 +113,29 @@ int harness_same_runs(const char *pa, const char *pb)
 	run_free(&a);
 	run_free(&b);
 	return diff;
+}
+
+void harness_edit_copy(const char *from, const char *to, const char *dataset, hid_t type,
+                       void (*edit)(void *first))
+{
+	char *data = harness_slurp(from);
+	struct stat st;
+	FILE *f = fopen(to, "wb");
+	CHECK(data && f && stat(from, &st) == 0 &&
+	      fwrite(data, 1, (size_t)st.st_size, f) == (size_t)st.st_size);
+	if (f)
+		fclose(f);
+	free(data);
+	hid_t h = H5Fopen(to, H5F_ACC_RDWR, H5P_DEFAULT);
+	hid_t d = H5Dopen2(h, dataset, H5P_DEFAULT);
+	hid_t space = H5Dget_space(d);
+	hssize_t n = H5Sget_simple_extent_npoints(space);
+	char *values = calloc((size_t)(n > 0 ? n : 1), H5Tget_size(type));
+	CHECK(n > 0 && H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values) >= 0);
+	edit(values);
+	CHECK(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values) >= 0);
+	free(values);
+	H5Sclose(space);
+	H5Dclose(d);
+	H5Fclose(h);
 }

@@ -4,6 +4,7 @@
 #ifndef DEM_TEST_SOLVE_HARNESS_H
 #define DEM_TEST_SOLVE_HARNESS_H
 
+#include <hdf5.h>
 #include <stddef.h>
 
 #include "lib/assembly.h"
@@ -22,6 +23,10 @@ int harness_solve(const char *args);
 void harness_read(const char *path, dem_run *r);
 /* Write text to a scratch file and return its path. */
 const char *harness_file(const char *name, const char *text);
+/* A copy at `to` of the HDF5 file `from` whose first element of dataset
+ * (read and written as type) is changed by edit; aborts on error. */
+void harness_edit_copy(const char *from, const char *to, const char *dataset, hid_t type,
+                       void (*edit)(void *first));
 /* Compare two runs: histories (every column but the wall-clock "rate"),
  * cracks and snapshots, bit for bit. Returns the number of differences and
  * prints the first ones. */

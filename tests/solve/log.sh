@@ -7,14 +7,9 @@ set -eu
 bin=$1 tmp=$2
 rm -rf "$tmp"
 mkdir -p "$tmp"
-"$bin/lattice-assembly" --spheres 2000 "$tmp/a.h5" > /dev/null
-cat > "$tmp/case.json" <<JSON
-{"assembly": "$tmp/a.h5",
- "material": {"name": "m", "law": "linear", "density": 2500, "E": 1e10, "nu": 0.2,
-              "tensile_strength": 1e12, "shear_strength": 1e12},
- "loading": [{"axial": {"mode": "strain_rate", "rate": 1}}],
- "stop": {"steps": 6000}}
-JSON
+. "$(dirname "$0")/case.sh"
+lattice 2000
+case_file "$tmp/case.json" '"stop": {"steps": 6000}'
 "$bin/solve" --log-every 0.05 --output "$tmp/run.h5" "$tmp/case.json" 2> "$tmp/log"
 cat "$tmp/log"
 lines=$(grep -c '^[0-9]*/6000 steps ([0-9]*%)  .* steps/s  .* elapsed, ETA .*  stage 1  t .* s  strain .*%  stress .* MPa  broken 0$' "$tmp/log")

@@ -7,14 +7,9 @@ set -eu
 bin=$1 tmp=$2
 rm -rf "$tmp"
 mkdir -p "$tmp"
-"$bin/lattice-assembly" --spheres 2000 "$tmp/a.h5"
-cat > "$tmp/case.json" <<JSON
-{"assembly": "$tmp/a.h5",
- "material": {"name": "m", "law": "linear", "density": 2500, "E": 1e10, "nu": 0.2,
-              "tensile_strength": 1e12, "shear_strength": 1e12},
- "loading": [{"axial": {"mode": "strain_rate", "rate": 1}}],
- "stop": {"steps": 100000000}}
-JSON
+. "$(dirname "$0")/case.sh"
+lattice 2000
+case_file "$tmp/case.json" '"stop": {"steps": 100000000}'
 for sig in INT TERM HUP USR1 USR2 XCPU; do
 	out=$tmp/$sig.h5
 	"$bin/solve" --quiet --threads 1 --output "$out" "$tmp/case.json" &

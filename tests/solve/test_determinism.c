@@ -66,31 +66,8 @@ static int interrupted_run(const char *out, const char *casefile)
 	return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-/* A copy of the run file `from` whose first bond has state 200. */
-static void corrupt_bond_state(const char *from, const char *to)
-{
-	char *data = harness_slurp(from);
-	struct stat st;
-	FILE *f = fopen(to, "wb");
-	CHECK(data && f && stat(from, &st) == 0 &&
-	      fwrite(data, 1, (size_t)st.st_size, f) == (size_t)st.st_size);
-	if (f)
-		fclose(f);
-	free(data);
-	hid_t h = H5Fopen(to, H5F_ACC_RDWR, H5P_DEFAULT);
-	hid_t d = H5Dopen2(h, "/checkpoint/bond_state", H5P_DEFAULT);
-	hid_t space = H5Dget_space(d);
-	hsize_t n = 0;
-	H5Sget_simple_extent_dims(space, &n, NULL);
-	uint8_t *state = calloc(n + 1, 1);
-	CHECK(n > 0 && H5Dread(d, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, state) >= 0);
-	state[0] = 200;
-	CHECK(H5Dwrite(d, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, state) >= 0);
-	free(state);
-	H5Sclose(space);
-	H5Dclose(d);
-	H5Fclose(h);
-}
+/* A bond state that does not exist. */
+static void state_200(void *first) { *(uint8_t *)first = 200; }
 
 int main(void)
 {
@@ -121,7 +98,8 @@ int main(void)
 	char bad[1024], said[1024];
 	snprintf(bad, sizeof bad, "%s", path("det-bad.h5"));
 	snprintf(said, sizeof said, "%s", path("det-bad.txt"));
-	corrupt_bond_state(path("det-C.h5"), bad);
+	harness_edit_copy(path("det-C.h5"), bad, "/checkpoint/bond_state", H5T_NATIVE_UINT8,
+	                  state_200);
 	snprintf(args, sizeof args, "--restart %s 2> %s", bad, said);
 	CHECK(solve(args) == 1);
 	char *message = harness_slurp(said);

@@ -6,15 +6,10 @@ set -eu
 bin=$1 tmp=$2
 rm -rf "$tmp"
 mkdir -p "$tmp"
-"$bin/lattice-assembly" --spheres 300 "$tmp/a.h5"
+. "$(dirname "$0")/case.sh"
+lattice 300
 run() { # NAME RATE SKIN_KEY: solve one step, keep stderr
-	cat > "$tmp/$1.json" <<JSON
-{"assembly": "$tmp/a.h5",
- "material": {"name": "m", "law": "linear", "density": 2500, "E": 1e10, "nu": 0.2,
-              "tensile_strength": 1e12, "shear_strength": 1e12},
- $3 "loading": [{"axial": {"mode": "strain_rate", "rate": $2}}],
- "stop": {"strain_axial": 0.01}}
-JSON
+	case_file "$tmp/$1.json" "$3 \"stop\": {\"strain_axial\": 0.01}" "$2"
 	code=0
 	"$bin/solve" --max-steps 1 --output "$tmp/$1.h5" "$tmp/$1.json" 2> "$tmp/$1.err" || code=$?
 	cat "$tmp/$1.err"
