@@ -12,6 +12,7 @@
 #include "lib/assembly.h"
 #include "lib/depfile.h"
 #include "lib/err.h"
+#include "lib/progress.h"
 #include "lib/timer.h"
 #include "pack/options.h"
 #include "pack/packer.h"
@@ -188,6 +189,8 @@ static void start(pack_run *r, int argc, char **argv)
 	keep_freed_memory();
 	options_parse(&r->o, argc, argv);
 	afile_install_signal_cleanup();
+	if (r->o.quiet)
+		progress_force(0);
 	/* Far more threads than cores only wait, and may fail to start. */
 	int most = 4 * omp_get_num_procs();
 	if (r->o.threads > most)

@@ -81,7 +81,8 @@ static int table(pack_options *o, cli_opt *t)
 	     "write a make rule to FILE: OUTPUT depends on the configuration, geometry, "
 	     "grading and import files read",
 	     0, 0},
-	    {"quiet", CLI_FLAG, &o->quiet, NULL, "", "do not print the summary", 0, 0},
+	    {"quiet", CLI_FLAG, &o->quiet, NULL, "",
+	     "print nothing but errors (no summary, no progress)", 0, 0},
 	};
 	_Static_assert(sizeof opts / sizeof opts[0] <= NOPT, "option table too small");
 	memcpy(t, opts, sizeof opts);
