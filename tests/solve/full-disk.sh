@@ -12,8 +12,8 @@ mkdir -p "$tmp"
 . "$(dirname "$0")/case.sh"
 lattice 3000
 case_file "$tmp/case.json" '"output": {"snapshot_every": 200}, "stop": {"steps": 1000000000}'
-limited() { # the command, with writes beyond about 1 MB failing
-	(ulimit -f 2048; trap '' XFSZ; exec "$@")
+limited() { # BLOCKS COMMAND...: the command, with writes beyond BLOCKS of 512 bytes failing
+	(ulimit -f "$1"; shift; trap '' XFSZ; exec "$@")
 }
 check() { # NAME FILE CODE: exit 1, one message naming the file, the old file kept
 	if [ "$3" -ne 1 ] || ! grep -q "^$1: $2.tmp: cannot write .*: \(File too large\|the file system is full\)" "$tmp/err"; then
@@ -29,11 +29,11 @@ check() { # NAME FILE CODE: exit 1, one message naming the file, the old file ke
 "$bin/solve" --quiet --max-steps 10 --output "$tmp/run.h5" "$tmp/case.json" || [ $? -eq 3 ]
 cksum < "$tmp/run.h5" > "$tmp/before"
 code=0
-limited "$bin/solve" --quiet --output "$tmp/run.h5" "$tmp/case.json" 2> "$tmp/err" || code=$?
+limited 2048 "$bin/solve" --quiet --output "$tmp/run.h5" "$tmp/case.json" 2> "$tmp/err" || code=$?
 check solve "$tmp/run.h5" $code
 
 cp "$tmp/a.h5" "$tmp/p.h5"
 cksum < "$tmp/p.h5" > "$tmp/before"
 code=0
-limited "$bin/pack" --quiet --count 60000 --shape box "$tmp/p.h5" 2> "$tmp/err" || code=$?
+limited 256 "$bin/pack" --quiet --count 10000 --shape box "$tmp/p.h5" 2> "$tmp/err" || code=$?
 check pack "$tmp/p.h5" $code
