@@ -8,7 +8,7 @@ bin=$1 tmp=$2
 rm -rf "$tmp"
 mkdir -p "$tmp"
 . "$(dirname "$0")/case.sh"
-lattice 2000
+lattice 300
 case_file "$tmp/case.json" '"stop": {"steps": 6000}'
 "$bin/solve" --log-every 0.05 --output "$tmp/run.h5" "$tmp/case.json" 2> "$tmp/log"
 cat "$tmp/log"
