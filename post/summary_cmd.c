@@ -9,41 +9,11 @@
 #include "lib/cfg.h"
 #include "lib/cli.h"
 #include "lib/err.h"
+#include "lib/json.h"
 #include "post/load.h"
 #include "post/output.h"
 #include "post/post.h"
 #include "post/summary.h"
-
-static void json_str(FILE *f, const char *s)
-{
-	fputc('"', f);
-	for (; *s; s++) {
-		if (*s == '"' || *s == '\\')
-			fprintf(f, "\\%c", *s);
-		else if ((unsigned char)*s < 0x20)
-			fprintf(f, "\\u%04x", (unsigned char)*s);
-		else
-			fputc(*s, f);
-	}
-	fputc('"', f);
-}
-
-static void json_num(FILE *f, const char *key, double v, int last)
-{
-	fprintf(f, "  \"%s\": ", key);
-	if (isfinite(v))
-		fprintf(f, "%.12g", v);
-	else
-		fputs("null", f);
-	fputs(last ? "\n" : ",\n", f);
-}
-
-static void json_text(FILE *f, const char *key, const char *v)
-{
-	fprintf(f, "  \"%s\": ", key);
-	json_str(f, v);
-	fputs(",\n", f);
-}
 
 /* The test and material named in the run's configuration ("" when absent). */
 typedef struct {
@@ -83,53 +53,47 @@ static summary_kind kind_of(const char *test)
 static void write_json(const char *path, const char *label, const dem_run *r, const run_names *nm,
                        const summary *s, const char *warning)
 {
-	out_text o;
-	out_text_open(&o, path);
-	FILE *f = o.f;
-	fputs("{\n", f);
-	json_text(f, "case", label);
-	json_text(f, "test", nm->test);
-	json_text(f, "material", nm->material);
-	json_text(f, "law", nm->law);
-	json_text(f, "status", r->status ? r->status : "");
-	json_num(f, "spheres", (double)r->assembly.n, 0);
-	json_num(f, "bonds", (double)r->bonds.n, 0);
-	json_num(f, "peak_stress", s->peak_stress, 0);
-	json_num(f, "strain_at_peak", s->strain_at_peak, 0);
-	json_num(f, "peak_deviator", s->peak_deviator, 0);
-	json_num(f, "strain_at_peak_deviator", s->strain_at_peak_deviator, 0);
-	json_num(f, "confining_pressure", s->pressure_at_peak, 0);
-	json_num(f, "young_modulus", s->young_modulus, 0);
-	json_num(f, "poisson_ratio", s->poisson_ratio, 0);
-	json_num(f, "peak_force", s->peak_force, 0);
-	json_num(f, "bts_strength", s->bts_strength, 0);
-	json_num(f, "bulk_modulus", s->bulk_modulus, 0);
-	json_num(f, "residual_stress", s->residual_stress, 0);
-	json_num(f, "residual_deviator", s->residual_deviator, 0);
-	json_num(f, "pressure_final", s->pressure_final, 0);
-	json_num(f, "strain_axial_final", s->strain_axial_final, 0);
-	json_num(f, "strain_volumetric_final", s->strain_volumetric_final, 0);
-	json_num(f, "bonds_intact", s->bonds_intact, 0);
-	json_num(f, "bonds_damaged", s->bonds_damaged, 0);
-	json_num(f, "bonds_broken_tension", s->bonds_broken_tension, 0);
-	json_num(f, "bonds_broken_shear", s->bonds_broken_shear, 0);
-	json_num(f, "steps", s->steps, 0);
-	json_num(f, "time", s->time, 0);
-	json_num(f, "wall_time", s->wall_time, 0);
-	json_num(f, "particle_steps_per_second",
-	         s->wall_time > 0 ? (double)r->assembly.n * s->steps / s->wall_time : NAN, 0);
-	json_num(f, "kinetic_elastic_ratio", s->ke_ratio_max, 0);
-	fprintf(f, "  \"quasi_static\": %s,\n",
-	        isnan(s->ke_ratio_max)                    ? "null"
-	        : s->ke_ratio_max <= SUMMARY_KE_RATIO_MAX ? "true"
-	                                                  : "false");
-	fputs("  \"warning\": ", f);
+	cJSON *j = cJSON_CreateObject();
+	json_str(j, "case", label);
+	json_str(j, "test", nm->test);
+	json_str(j, "material", nm->material);
+	json_str(j, "law", nm->law);
+	json_str(j, "status", r->status);
+	json_num(j, "spheres", (double)r->assembly.n);
+	json_num(j, "bonds", (double)r->bonds.n);
+	json_num(j, "peak_stress", s->peak_stress);
+	json_num(j, "strain_at_peak", s->strain_at_peak);
+	json_num(j, "peak_deviator", s->peak_deviator);
+	json_num(j, "strain_at_peak_deviator", s->strain_at_peak_deviator);
+	json_num(j, "confining_pressure", s->pressure_at_peak);
+	json_num(j, "young_modulus", s->young_modulus);
+	json_num(j, "poisson_ratio", s->poisson_ratio);
+	json_num(j, "peak_force", s->peak_force);
+	json_num(j, "bts_strength", s->bts_strength);
+	json_num(j, "bulk_modulus", s->bulk_modulus);
+	json_num(j, "residual_stress", s->residual_stress);
+	json_num(j, "residual_deviator", s->residual_deviator);
+	json_num(j, "pressure_final", s->pressure_final);
+	json_num(j, "strain_axial_final", s->strain_axial_final);
+	json_num(j, "strain_volumetric_final", s->strain_volumetric_final);
+	json_num(j, "bonds_intact", s->bonds_intact);
+	json_num(j, "bonds_damaged", s->bonds_damaged);
+	json_num(j, "bonds_broken_tension", s->bonds_broken_tension);
+	json_num(j, "bonds_broken_shear", s->bonds_broken_shear);
+	json_num(j, "steps", s->steps);
+	json_num(j, "time", s->time);
+	json_num(j, "wall_time", s->wall_time);
+	json_num(j, "particle_steps_per_second",
+	         s->wall_time > 0 ? (double)r->assembly.n * s->steps / s->wall_time : NAN);
+	json_num(j, "kinetic_elastic_ratio", s->ke_ratio_max);
+	json_bool(j, "quasi_static", !isnan(s->ke_ratio_max),
+	          s->ke_ratio_max <= SUMMARY_KE_RATIO_MAX);
 	if (warning)
-		json_str(f, warning);
+		json_str(j, "warning", warning);
 	else
-		fputs("null", f);
-	fputs("\n}\n", f);
-	out_text_commit(&o);
+		cJSON_AddNullToObject(j, "warning");
+	if (json_write(path, j))
+		fatal(NULL);
 }
 
 int post_summary(int argc, char **argv)

@@ -5,6 +5,7 @@
 #include <sys/resource.h>
 
 #include "lib/err.h"
+#include "lib/json.h"
 #include "solve/report.h"
 
 static const char *const phase_names[] = {"neighbour", "bonds", "contacts", "integration",
@@ -59,26 +60,24 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	}
 	if (!o->report)
 		return;
-	FILE *f = fopen(o->report, "w");
-	if (!f)
-		fatal("%s: cannot create: %s", o->report, strerror(errno));
-	fputs("{\"status\": \"", f);
-	for (const char *c = status; *c; c++) {
-		if (*c == '"' || *c == '\\')
-			fputc('\\', f);
-		fputc(*c, f);
-	}
-	fprintf(f,
-	        "\", \"particles\": %zu, \"bonds\": %zu, \"threads\": %d, "
-	        "\"steps\": %.0f, \"wall\": %.6g, \"particle_steps_per_s\": %.6g, "
-	        "\"ns_per_bond\": %.6g, \"state_bytes\": %zu, \"peak_rss_bytes\": %ld, "
-	        "\"start_rss_bytes\": %ld, "
-	        "\"rebuilds\": %" PRId64 ", \"dt\": %.6g, \"setup\": %.6g, \"phases\": {",
-	        e->p.n, e->pairs.bonds.n, e->team, steps, wall, rate, ns_bond, state, rss,
-	        rss_start, e->pairs.rebuilds, e->clock.dt, e->tm.total[TM_SETUP]);
+	cJSON *j = cJSON_CreateObject();
+	json_str(j, "status", status);
+	json_num(j, "particles", n);
+	json_num(j, "bonds", nb);
+	json_num(j, "threads", e->team);
+	json_num(j, "steps", steps);
+	json_num(j, "wall", wall);
+	json_num(j, "particle_steps_per_second", rate);
+	json_num(j, "ns_per_bond", ns_bond);
+	json_num(j, "state_bytes", (double)state);
+	json_num(j, "peak_rss_bytes", (double)rss);
+	json_num(j, "start_rss_bytes", (double)rss_start);
+	json_num(j, "rebuilds", (double)e->pairs.rebuilds);
+	json_num(j, "dt", e->clock.dt);
+	json_num(j, "setup", e->tm.total[TM_SETUP]);
+	cJSON *ph = cJSON_AddObjectToObject(j, "phases");
 	for (int k = 0; k < TM_TOTAL; k++)
-		fprintf(f, "%s\"%s\": %.6g", k ? ", " : "", phase_names[k], e->tm.total[k]);
-	fprintf(f, "}}\n");
-	if (fclose(f))
-		fatal("%s: cannot write", o->report);
+		json_num(ph, phase_names[k], e->tm.total[k]);
+	if (json_write(o->report, j))
+		fatal(NULL);
 }
