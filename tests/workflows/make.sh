@@ -49,11 +49,15 @@ for f in assembly.h5 assembly.d pack.txt run.h5 run.d report.json summary.json c
 	[ -s "$tmp/runs/a/$f" ] || fail "runs/a/$f missing"
 done
 expect "" a
+expect "" a -n
 sleep 1
 touch "$tmp/share/materials/m.json"
+# A dry run tells the truth: solve and post, not pack.
+expect "solve post post post post" a -n
 expect "solve post post post post" a
 touch "$tmp/share/specimens/small.json"
 expect "pack solve post post post post" a
+expect "pack solve post post post post" a SEED=7 -n
 expect "pack solve post post post post" a SEED=7
 expect "" a SEED=7
 expect "pack solve post post post post" a
