@@ -76,7 +76,7 @@ static law_params *onate_parse(cfg *m)
 	    cfg_choice_or(m, "criterion", &p->coupled, criteria, 0) || area_parse(m, &p->area))
 		goto fail;
 	for (int k = 0; k < 3; k++) {
-		char lcs[8], prev[8];
+		char lcs[16], prev[16];
 		snprintf(lcs, sizeof lcs, "LCS%d", k + 1);
 		snprintf(prev, sizeof prev, "LCS%d", k);
 		if (cfg_number(m, lcs, &p->lcs[k], "Pa", CFG_POS, INFINITY))
@@ -90,7 +90,7 @@ static law_params *onate_parse(cfg *m)
 	}
 	/* The YRC after the LCS so messages come in the order of the table. */
 	for (int k = 0; k < 3; k++) {
-		char yrck[8];
+		char yrck[16];
 		snprintf(yrck, sizeof yrck, "YRC%d", k + 1);
 		if (cfg_number(m, yrck, &yrc[k], "", 1, INFINITY))
 			goto fail;

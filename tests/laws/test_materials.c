@@ -120,7 +120,7 @@ static void test_tables(void)
 		CHECK(number(c, "mu1") == onate[k].mu1 && number(c, "mu2") == onate[k].mu2);
 		CHECK(number(c, "tensile_strength") == onate[k].sigt);
 		CHECK(number(c, "shear_strength") == onate[k].tau);
-		char key[8];
+		char key[16];
 		for (int i = 0; i < 3; i++) {
 			snprintf(key, sizeof key, "LCS%d", i + 1);
 			CHECK(number(c, key) == onate[k].lcs[i]);
