@@ -36,8 +36,9 @@ static void make_assembly(dem_assembly *a, size_t n)
 		g->center[k] = 0.1 * k;
 		g->axis[k] = k == 2;
 		g->size[k] = 0.01 * k;
-		g->bbox_min[k] = -0.025 - k;
-		g->bbox_max[k] = 0.025 + k;
+		/* Holding every sphere: the reader refuses one that does not fit. */
+		g->bbox_min[k] = -1e4 - k;
+		g->bbox_max[k] = 1e4 + k;
 	}
 	g->diameter = 0.05;
 	g->height = 0.1;
