@@ -104,25 +104,20 @@ void h5_discard(hid_t file, const char *tmp)
 	afile_discard(tmp);
 }
 
-hid_t h5_open(const char *path, const char *format, int readwrite)
+/* Check that open file f (named name in messages) has the `format`
+ * attribute format and a format_version this build reads; close it if not. */
+static hid_t check_format(hid_t f, const char *name, const char *format)
 {
-	h5_quiet();
-	if (H5Fis_hdf5(path) <= 0)
-		return err_set(
-		    "%s: not a readable HDF5 file (missing, truncated or another format)", path);
-	hid_t f = H5Fopen(path, readwrite ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT);
-	if (f < 0)
-		return err_set("%s: cannot open HDF5 file", path);
 	char *fmt = NULL;
 	int64_t version = 0;
 	if (H5Aexists(f, "format") <= 0 || !(fmt = h5_read_attr_str(f, "format"))) {
 		H5Fclose(f);
 		return err_set("%s: attribute 'format': missing: expected \"%s\" (not a file "
 		               "written by this toolchain)",
-		               path, format);
+		               name, format);
 	}
 	if (strcmp(fmt, format) != 0) {
-		err_set("%s: attribute 'format': value \"%s\": expected \"%s\"", path, fmt, format);
+		err_set("%s: attribute 'format': value \"%s\": expected \"%s\"", name, fmt, format);
 		free(fmt);
 		H5Fclose(f);
 		return -1;
@@ -133,9 +128,38 @@ hid_t h5_open(const char *path, const char *format, int readwrite)
 		H5Fclose(f);
 		return err_set("%s: attribute 'format_version': value %lld: expected %d to %d "
 		               "(a file of another version of this toolchain)",
-		               path, (long long)version, FORMAT_OLDEST, FORMAT_VERSION);
+		               name, (long long)version, FORMAT_OLDEST, FORMAT_VERSION);
 	}
 	return f;
+}
+
+hid_t h5_open(const char *path, const char *format, int readwrite)
+{
+	h5_quiet();
+	if (H5Fis_hdf5(path) <= 0)
+		return err_set(
+		    "%s: not a readable HDF5 file (missing, truncated or another format)", path);
+	hid_t f = H5Fopen(path, readwrite ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT);
+	if (f < 0)
+		return err_set("%s: cannot open HDF5 file", path);
+	return check_format(f, path, format);
+}
+
+hid_t h5_open_image(const void *buf, size_t n, const char *format)
+{
+	h5_quiet();
+	/* The core driver holds the file in memory; without a backing store
+	 * nothing is read from or written to disk. */
+	hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+	herr_t rc = H5Pset_fapl_core(fapl, 1 << 16, 0);
+	if (rc >= 0)
+		rc = H5Pset_file_image(fapl, (void *)buf, n);
+	hid_t f = rc < 0 ? -1 : H5Fopen(H5_IMAGE_NAME, H5F_ACC_RDONLY, fapl);
+	H5Pclose(fapl);
+	if (f < 0)
+		return err_set("%s: not a readable HDF5 file image (truncated or another format)",
+		               H5_IMAGE_NAME);
+	return check_format(f, H5_IMAGE_NAME, format);
 }
 
 hid_t h5_group(hid_t loc, const char *name)

@@ -429,18 +429,15 @@ static int read_surface(hid_t g, engine *e)
 	return 0;
 }
 
-int checkpoint_read(engine *e, const char *path)
+int checkpoint_read_file(engine *e, hid_t f)
 {
-	hid_t f = h5_open(path, RUN_FORMAT, 0);
-	if (f < 0)
-		return -1;
-	if (!h5_exists(f, "checkpoint")) {
-		H5Fclose(f);
+	char path[1024];
+	snprintf(path, sizeof path, "%s", h5_name(f));
+	if (!h5_exists(f, "checkpoint"))
 		return err_set(
 		    "%s: no checkpoint to restart from (the run stopped before its first "
 		    "one)",
 		    path);
-	}
 	hid_t g = h5_open_group(f, "checkpoint");
 	int64_t complete = 0;
 	int rc = h5_read_attr_i64(g, "complete", &complete);
@@ -497,6 +494,15 @@ int checkpoint_read(engine *e, const char *path)
 		             "written by an older version): not restartable",
 		             path);
 	H5Gclose(g);
-	H5Fclose(f);
 	return rc ? -1 : 0;
+}
+
+int checkpoint_read(engine *e, const char *path)
+{
+	hid_t f = h5_open(path, RUN_FORMAT, 0);
+	if (f < 0)
+		return -1;
+	int rc = checkpoint_read_file(e, f);
+	H5Fclose(f);
+	return rc;
 }

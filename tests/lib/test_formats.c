@@ -282,6 +282,66 @@ static void test_run_roundtrip(const char *path)
 	assembly_free(&a);
 }
 
+/* The whole file at path (caller frees); *n gets its size. */
+static void *slurp(const char *path, size_t *n)
+{
+	FILE *in = fopen(path, "rb");
+	fseek(in, 0, SEEK_END);
+	*n = (size_t)ftell(in);
+	fseek(in, 0, SEEK_SET);
+	void *buf = malloc(*n);
+	CHECK(fread(buf, 1, *n, in) == *n);
+	fclose(in);
+	return buf;
+}
+
+/* The same files read from memory (h5_open_image, what the fuzz targets
+ * do) read the same, and an image of another format or of garbage is
+ * refused with a message. */
+static void test_images(const char *apath, const char *rpath)
+{
+	size_t n;
+	void *img = slurp(apath, &n);
+	dem_assembly a, b;
+	CHECK(assembly_read(apath, &a) == 0);
+	hid_t f = h5_open_image(img, n, ASSEMBLY_FORMAT);
+	CHECK(f >= 0 && assembly_read_file(f, &b) == 0);
+	if (f >= 0) {
+		compare_assembly(&a, &b);
+		assembly_free(&b);
+		H5Fclose(f);
+	}
+	CHECK(h5_open_image(img, n, RUN_FORMAT) < 0);
+	CHECK_CONTAINS(err_msg(), "(file image): attribute 'format': value \"dem-assembly\"");
+	CHECK(h5_open_image(img, n / 3, ASSEMBLY_FORMAT) < 0);
+	CHECK(h5_open_image("not hdf5", 8, ASSEMBLY_FORMAT) < 0);
+	CHECK_CONTAINS(err_msg(), "(file image): not a readable HDF5 file image");
+	free(img);
+	assembly_free(&a);
+
+	img = slurp(rpath, &n);
+	dem_run r, q;
+	CHECK(run_read(rpath, &r) == 0);
+	f = h5_open_image(img, n, RUN_FORMAT);
+	CHECK(f >= 0 && run_read_file(f, &q) == 0);
+	if (f >= 0) {
+		CHECK(q.nrows == r.nrows && q.nsnap == r.nsnap && q.ncracks == r.ncracks);
+		compare_assembly(&r.assembly, &q.assembly);
+		dem_snapshot s, t;
+		CHECK(run_read_snapshot(rpath, &r, 1, &s) == 0);
+		CHECK(run_read_snapshot_file(f, &q, 1, &t) == 0);
+		CHECK(s.step == t.step && s.n == t.n && s.nbonds == t.nbonds);
+		SAME_ARRAY(s.x, t.x, 3 * s.n);
+		SAME_ARRAY(s.fs, t.fs, 3 * s.nbonds);
+		snapshot_free(&s);
+		snapshot_free(&t);
+		run_free(&q);
+		H5Fclose(f);
+	}
+	run_free(&r);
+	free(img);
+}
+
 static void copy_truncated(const char *from, const char *to, double fraction)
 {
 	FILE *in = fopen(from, "rb"), *out = fopen(to, "wb");
@@ -387,6 +447,7 @@ int main(void)
 	const char *rp = check_tmp("formats-run.h5");
 	test_assembly_roundtrip(ap);
 	test_run_roundtrip(rp);
+	test_images(ap, rp);
 	test_rows(check_tmp("formats-rows.h5"));
 	test_bad_files(ap, rp);
 	return check_done();
