@@ -1,4 +1,5 @@
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/statvfs.h>
@@ -429,6 +430,25 @@ int h5_write(hid_t loc, const char *name, hid_t type, const void *data, size_t r
 	return h5_rows_close(&r) || rc ? -1 : 0;
 }
 
+/* Whether dataset d can hold n values: a damaged dataspace can claim any
+ * number of rows, which would then be allocated before anything is read.
+ * Every value takes at least a byte of the storage (its chunks may be
+ * compressed, by deflate to at most a 1032th), and the storage cannot be
+ * larger than the file. */
+static int stored_holds(hid_t d, double n)
+{
+	if (n == 0)
+		return 1;
+	double stored = (double)H5Dget_storage_size(d);
+	hsize_t size = 0;
+	hid_t f = H5Iget_file_id(d);
+	if (f < 0 || H5Fget_filesize(f, &size) < 0)
+		size = 0;
+	if (f >= 0)
+		H5Fclose(f);
+	return n <= 1100 * fmin(stored, (double)size);
+}
+
 int h5_read(hid_t loc, const char *name, hid_t type, void **data, size_t *rows, size_t cols)
 {
 	*data = NULL;
@@ -451,6 +471,12 @@ int h5_read(hid_t loc, const char *name, hid_t type, void **data, size_t *rows, 
 			return err_set("%s: dataset '%s': wrong shape: expected [N, %zu]",
 			               h5_name(loc), name, cols);
 		return err_set("%s: dataset '%s': wrong shape: expected [N]", h5_name(loc), name);
+	}
+	if (!stored_holds(d, (double)dims[0] * (double)(cols ? cols : 1))) {
+		H5Dclose(d);
+		return err_set("%s: dataset '%s': %llu rows, more than the file holds (a damaged "
+		               "file)",
+		               h5_name(loc), name, (unsigned long long)dims[0]);
 	}
 	size_t n = (size_t)dims[0] * (cols ? cols : 1);
 	void *buf = xmalloc(n * H5Tget_size(type));

@@ -397,6 +397,36 @@ static void test_bad_files(const char *assembly_path, const char *run_path)
 
 /* A dataset written in pieces (h5_rows) reads back as written, across
  * several pieces; missing or extra rows are errors. */
+/* A dataset whose dataspace claims more rows than its storage and the file
+ * hold (a damaged header) is refused before anything is allocated: reading
+ * it used to end the program out of memory. */
+static void test_claimed_rows(const char *path)
+{
+	char tmp[4096];
+	hid_t f = h5_create(path, tmp, sizeof tmp);
+	CHECK(f >= 0);
+	if (f < 0)
+		return;
+	hsize_t dims[1] = {(hsize_t)1 << 40}, chunk[1] = {1024};
+	hid_t space = H5Screate_simple(1, dims, NULL);
+	hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+	H5Pset_chunk(dcpl, 1, chunk);
+	hid_t d = H5Dcreate2(f, "huge", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+	CHECK(d >= 0);
+	H5Dclose(d);
+	H5Pclose(dcpl);
+	H5Sclose(space);
+	double one = 1;
+	CHECK(h5_write(f, "one", H5T_NATIVE_DOUBLE, &one, 1, 0, NULL) == 0);
+	void *data = NULL;
+	size_t rows = 0;
+	CHECK(h5_read(f, "huge", H5T_NATIVE_DOUBLE, &data, &rows, 0) == -1 && !data);
+	CHECK_CONTAINS(err_msg(), "dataset 'huge': 1099511627776 rows, more than the file holds");
+	CHECK(h5_read(f, "one", H5T_NATIVE_DOUBLE, &data, &rows, 0) == 0 && rows == 1);
+	free(data);
+	h5_discard(f, tmp);
+}
+
 static void test_rows(const char *path)
 {
 	char tmp[4096];
@@ -449,6 +479,7 @@ int main(void)
 	test_run_roundtrip(rp);
 	test_images(ap, rp);
 	test_rows(check_tmp("formats-rows.h5"));
+	test_claimed_rows(check_tmp("formats-claimed.h5"));
 	test_bad_files(ap, rp);
 	return check_done();
 }
