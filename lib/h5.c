@@ -432,8 +432,8 @@ int h5_write(hid_t loc, const char *name, hid_t type, const void *data, size_t r
 
 /* Whether dataset d can hold n values: a damaged dataspace can claim any
  * number of rows, which would then be allocated before anything is read.
- * Every value takes at least a byte of the storage (its chunks may be
- * compressed, by deflate to at most a 1032th), and the storage cannot be
+ * The values take their type's size in the storage, unless a filter
+ * compresses them (deflate to a 1032th at most), and the storage cannot be
  * larger than the file. */
 static int stored_holds(hid_t d, double n)
 {
@@ -446,7 +446,14 @@ static int stored_holds(hid_t d, double n)
 		size = 0;
 	if (f >= 0)
 		H5Fclose(f);
-	return n <= 1100 * fmin(stored, (double)size);
+	hid_t t = H5Dget_type(d), dcpl = H5Dget_create_plist(d);
+	double bytes = n * (double)(t < 0 ? 1 : H5Tget_size(t));
+	int filtered = dcpl < 0 || H5Pget_nfilters(dcpl) != 0;
+	if (t >= 0)
+		H5Tclose(t);
+	if (dcpl >= 0)
+		H5Pclose(dcpl);
+	return bytes <= (filtered ? 1032 : 1) * fmin(stored, (double)size);
 }
 
 int h5_read(hid_t loc, const char *name, hid_t type, void **data, size_t *rows, size_t cols)
