@@ -231,19 +231,25 @@ int assembly_write(const char *path, const dem_assembly *a)
 	return assembly_write_with(path, a, NULL, NULL);
 }
 
+int assembly_read_file(hid_t file, dem_assembly *a)
+{
+	memset(a, 0, sizeof *a);
+	if (assembly_read_groups(file, a)) {
+		assembly_free(a);
+		return -1;
+	}
+	return 0;
+}
+
 int assembly_read(const char *path, dem_assembly *a)
 {
 	memset(a, 0, sizeof *a);
 	hid_t f = h5_open(path, ASSEMBLY_FORMAT, 0);
 	if (f < 0)
 		return -1;
-	int rc = assembly_read_groups(f, a);
+	int rc = assembly_read_file(f, a);
 	H5Fclose(f);
-	if (rc) {
-		assembly_free(a);
-		return -1;
-	}
-	return 0;
+	return rc;
 }
 
 void assembly_free(dem_assembly *a)

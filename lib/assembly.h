@@ -80,6 +80,9 @@ int assembly_write(const char *path, const dem_assembly *a);
  * fails, the file is discarded and whatever was at `path` stays. */
 int assembly_write_with(const char *path, const dem_assembly *a, int (*before)(void *), void *ctx);
 int assembly_read(const char *path, dem_assembly *a);
+/* The same from an open file whose format was checked (h5_open, or
+ * h5_open_image); the file stays open. */
+int assembly_read_file(hid_t file, dem_assembly *a);
 void assembly_free(dem_assembly *a);
 
 /* Particles (with the assembly's provenance as attributes of /particles),

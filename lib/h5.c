@@ -1,4 +1,5 @@
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/statvfs.h>
@@ -104,25 +105,20 @@ void h5_discard(hid_t file, const char *tmp)
 	afile_discard(tmp);
 }
 
-hid_t h5_open(const char *path, const char *format, int readwrite)
+/* Check that open file f (named name in messages) has the `format`
+ * attribute format and a format_version this build reads; close it if not. */
+static hid_t check_format(hid_t f, const char *name, const char *format)
 {
-	h5_quiet();
-	if (H5Fis_hdf5(path) <= 0)
-		return err_set(
-		    "%s: not a readable HDF5 file (missing, truncated or another format)", path);
-	hid_t f = H5Fopen(path, readwrite ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT);
-	if (f < 0)
-		return err_set("%s: cannot open HDF5 file", path);
 	char *fmt = NULL;
 	int64_t version = 0;
 	if (H5Aexists(f, "format") <= 0 || !(fmt = h5_read_attr_str(f, "format"))) {
 		H5Fclose(f);
 		return err_set("%s: attribute 'format': missing: expected \"%s\" (not a file "
 		               "written by this toolchain)",
-		               path, format);
+		               name, format);
 	}
 	if (strcmp(fmt, format) != 0) {
-		err_set("%s: attribute 'format': value \"%s\": expected \"%s\"", path, fmt, format);
+		err_set("%s: attribute 'format': value \"%s\": expected \"%s\"", name, fmt, format);
 		free(fmt);
 		H5Fclose(f);
 		return -1;
@@ -133,9 +129,38 @@ hid_t h5_open(const char *path, const char *format, int readwrite)
 		H5Fclose(f);
 		return err_set("%s: attribute 'format_version': value %lld: expected %d to %d "
 		               "(a file of another version of this toolchain)",
-		               path, (long long)version, FORMAT_OLDEST, FORMAT_VERSION);
+		               name, (long long)version, FORMAT_OLDEST, FORMAT_VERSION);
 	}
 	return f;
+}
+
+hid_t h5_open(const char *path, const char *format, int readwrite)
+{
+	h5_quiet();
+	if (H5Fis_hdf5(path) <= 0)
+		return err_set(
+		    "%s: not a readable HDF5 file (missing, truncated or another format)", path);
+	hid_t f = H5Fopen(path, readwrite ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT);
+	if (f < 0)
+		return err_set("%s: cannot open HDF5 file", path);
+	return check_format(f, path, format);
+}
+
+hid_t h5_open_image(const void *buf, size_t n, const char *format)
+{
+	h5_quiet();
+	/* The core driver holds the file in memory; without a backing store
+	 * nothing is read from or written to disk. */
+	hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+	herr_t rc = H5Pset_fapl_core(fapl, 1 << 16, 0);
+	if (rc >= 0)
+		rc = H5Pset_file_image(fapl, (void *)buf, n);
+	hid_t f = rc < 0 ? -1 : H5Fopen(H5_IMAGE_NAME, H5F_ACC_RDONLY, fapl);
+	H5Pclose(fapl);
+	if (f < 0)
+		return err_set("%s: not a readable HDF5 file image (truncated or another format)",
+		               H5_IMAGE_NAME);
+	return check_format(f, H5_IMAGE_NAME, format);
 }
 
 hid_t h5_group(hid_t loc, const char *name)
@@ -405,6 +430,32 @@ int h5_write(hid_t loc, const char *name, hid_t type, const void *data, size_t r
 	return h5_rows_close(&r) || rc ? -1 : 0;
 }
 
+/* Whether dataset d can hold n values: a damaged dataspace can claim any
+ * number of rows, which would then be allocated before anything is read.
+ * The values take their type's size in the storage, unless a filter
+ * compresses them (deflate to a 1032th at most), and the storage cannot be
+ * larger than the file. */
+static int stored_holds(hid_t d, double n)
+{
+	if (n == 0)
+		return 1;
+	double stored = (double)H5Dget_storage_size(d);
+	hsize_t size = 0;
+	hid_t f = H5Iget_file_id(d);
+	if (f < 0 || H5Fget_filesize(f, &size) < 0)
+		size = 0;
+	if (f >= 0)
+		H5Fclose(f);
+	hid_t t = H5Dget_type(d), dcpl = H5Dget_create_plist(d);
+	double bytes = n * (double)(t < 0 ? 1 : H5Tget_size(t));
+	int filtered = dcpl < 0 || H5Pget_nfilters(dcpl) != 0;
+	if (t >= 0)
+		H5Tclose(t);
+	if (dcpl >= 0)
+		H5Pclose(dcpl);
+	return bytes <= (filtered ? 1032 : 1) * fmin(stored, (double)size);
+}
+
 int h5_read(hid_t loc, const char *name, hid_t type, void **data, size_t *rows, size_t cols)
 {
 	*data = NULL;
@@ -427,6 +478,12 @@ int h5_read(hid_t loc, const char *name, hid_t type, void **data, size_t *rows, 
 			return err_set("%s: dataset '%s': wrong shape: expected [N, %zu]",
 			               h5_name(loc), name, cols);
 		return err_set("%s: dataset '%s': wrong shape: expected [N]", h5_name(loc), name);
+	}
+	if (!stored_holds(d, (double)dims[0] * (double)(cols ? cols : 1))) {
+		H5Dclose(d);
+		return err_set("%s: dataset '%s': %llu rows, more than the file holds (a damaged "
+		               "file)",
+		               h5_name(loc), name, (unsigned long long)dims[0]);
 	}
 	size_t n = (size_t)dims[0] * (cols ? cols : 1);
 	void *buf = xmalloc(n * H5Tget_size(type));

@@ -26,6 +26,11 @@ void h5_discard(hid_t file, const char *tmp);
 /* Open an existing file and check its `format` attribute equals format and
  * its format_version is one this build reads. */
 hid_t h5_open(const char *path, const char *format, int readwrite);
+/* The same for a file image of n bytes in memory (HDF5's core driver; the
+ * buffer is copied and nothing touches the disk), read-only. Messages name
+ * the file H5_IMAGE_NAME. */
+#define H5_IMAGE_NAME "(file image)"
+hid_t h5_open_image(const void *buf, size_t n, const char *format);
 
 /* The file name an object belongs to (for messages). */
 const char *h5_name(hid_t obj);

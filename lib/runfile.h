@@ -130,11 +130,16 @@ typedef struct {
 } dem_run;
 
 int run_read(const char *path, dem_run *r);
+/* The same from an open file whose format was checked (h5_open, or
+ * h5_open_image); the file stays open. */
+int run_read_file(hid_t file, dem_run *r);
 void run_free(dem_run *r);
 /* The history column of that name, or NULL. */
 const double *run_column_data(const dem_run *r, const char *name);
 /* Read snapshot k (0 <= k < r->nsnap). */
 int run_read_snapshot(const char *path, const dem_run *r, size_t k, dem_snapshot *s);
+/* The same from the open run file r was read from. */
+int run_read_snapshot_file(hid_t file, const dem_run *r, size_t k, dem_snapshot *s);
 void snapshot_free(dem_snapshot *s);
 void bonds_free(dem_bonds *b);
 

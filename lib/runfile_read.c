@@ -175,21 +175,28 @@ static int read_cracks(hid_t f, dem_run *r)
 	return rc ? -1 : 0;
 }
 
+int run_read_file(hid_t f, dem_run *r)
+{
+	memset(r, 0, sizeof *r);
+	int rc = prov_read(f, &r->prov) || !(r->status = h5_read_attr_str(f, "status")) ||
+	         assembly_read_groups(f, &r->assembly) || read_bonds(f, &r->bonds, r->assembly.n) ||
+	         read_history(f, r) || read_snapshot_index(f, r) || read_cracks(f, r);
+	if (rc) {
+		run_free(r);
+		return -1;
+	}
+	return 0;
+}
+
 int run_read(const char *path, dem_run *r)
 {
 	memset(r, 0, sizeof *r);
 	hid_t f = h5_open(path, RUN_FORMAT, 0);
 	if (f < 0)
 		return -1;
-	int rc = prov_read(f, &r->prov) || !(r->status = h5_read_attr_str(f, "status")) ||
-	         assembly_read_groups(f, &r->assembly) || read_bonds(f, &r->bonds, r->assembly.n) ||
-	         read_history(f, r) || read_snapshot_index(f, r) || read_cracks(f, r);
+	int rc = run_read_file(f, r);
 	H5Fclose(f);
-	if (rc) {
-		run_free(r);
-		return -1;
-	}
-	return 0;
+	return rc;
 }
 
 void run_free(dem_run *r)
@@ -224,15 +231,12 @@ void snapshot_free(dem_snapshot *s)
 	memset(s, 0, sizeof *s);
 }
 
-int run_read_snapshot(const char *path, const dem_run *r, size_t k, dem_snapshot *s)
+int run_read_snapshot_file(hid_t f, const dem_run *r, size_t k, dem_snapshot *s)
 {
 	memset(s, 0, sizeof *s);
 	if (k >= r->nsnap)
-		return err_set("%s: snapshot %zu: out of range (the run has %zu)", path, k,
+		return err_set("%s: snapshot %zu: out of range (the run has %zu)", h5_name(f), k,
 		               r->nsnap);
-	hid_t f = h5_open(path, RUN_FORMAT, 0);
-	if (f < 0)
-		return -1;
 	char name[64];
 	snprintf(name, sizeof name, "snapshots/" RUN_SNAPSHOT, r->snap_step[k]);
 	hid_t g = h5_open_group(f, name);
@@ -251,7 +255,6 @@ int run_read_snapshot(const char *path, const dem_run *r, size_t k, dem_snapshot
 	         h5_read_n(g, "bond_fs", H5T_NATIVE_DOUBLE, (void **)&s->fs, nb, 3);
 	if (g >= 0)
 		H5Gclose(g);
-	H5Fclose(f);
 	s->n = n;
 	s->nbonds = nb;
 	if (rc) {
@@ -259,4 +262,15 @@ int run_read_snapshot(const char *path, const dem_run *r, size_t k, dem_snapshot
 		return -1;
 	}
 	return 0;
+}
+
+int run_read_snapshot(const char *path, const dem_run *r, size_t k, dem_snapshot *s)
+{
+	memset(s, 0, sizeof *s);
+	hid_t f = h5_open(path, RUN_FORMAT, 0);
+	if (f < 0)
+		return -1;
+	int rc = run_read_snapshot_file(f, r, k, s);
+	H5Fclose(f);
+	return rc;
 }

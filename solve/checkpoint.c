@@ -223,7 +223,8 @@ static int get_field(hid_t g, const field *f, bond *rec, size_t n)
 	hid_t sp = H5Dget_space(d);
 	hsize_t dims[2] = {0, 0};
 	int rank = H5Sget_simple_extent_ndims(sp);
-	H5Sget_simple_extent_dims(sp, dims, NULL);
+	if (rank == (cols ? 2 : 1)) /* dims holds no more */
+		H5Sget_simple_extent_dims(sp, dims, NULL);
 	H5Sclose(sp);
 	if (rank != (cols ? 2 : 1) || dims[0] != n || (cols && dims[1] != cols)) {
 		H5Dclose(d);
@@ -341,6 +342,11 @@ static int get(hid_t g, const char *name, hid_t type, void *dst, size_t rows, si
 static int read_pairs(hid_t g, engine *e, size_t nc)
 {
 	pairlist *L = &e->pairs.contacts;
+	/* Read before the lists are sized by nc, a count from the file: the
+	 * dataset's rows are checked against what the file holds. */
+	double *kk;
+	if (h5_read_n(g, "contact_k", H5T_NATIVE_DOUBLE, (void **)&kk, nc, 3))
+		return -1;
 	if (nc > L->cap) {
 		L->cap = nc;
 		L->rec = xrealloc(L->rec, nc * sizeof *L->rec);
@@ -348,8 +354,11 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 		L->k = xrealloc(L->k, 3 * nc * sizeof *L->k);
 		L->ref = xrealloc(L->ref, 2 * nc * sizeof *L->ref);
 	}
+	if (nc)
+		memcpy(L->k, kk, 3 * nc * sizeof *kk);
+	free(kk);
 	memset(L->rec, 0, nc * sizeof *L->rec);
-	int rc = get(g, "contact_k", H5T_NATIVE_DOUBLE, L->k, nc, 3);
+	int rc = 0;
 	for (int k = 0; !rc && k < 3; k++)
 		rc = get_field(g, &contact_fields[k], L->rec, nc);
 	for (size_t q = 0; !rc && q < nc; q++) {
@@ -374,6 +383,17 @@ static int read_platens(hid_t g, engine *e)
 	particles *P = &e->p;
 	for (int k = 0; k < 2; k++) {
 		size_t n = e->bc.pl.ncand[k];
+		char who[32], con[32];
+		snprintf(who, sizeof who, "platen%d_particle", k);
+		snprintf(con, sizeof con, "platen%d_contact", k);
+		/* Read before the lists are sized by n, a count from the file. */
+		double *pc = NULL;
+		int32_t *ids = NULL;
+		if (h5_read_n(g, who, H5T_NATIVE_INT32, (void **)&ids, n, 0) ||
+		    h5_read_n(g, con, H5T_NATIVE_DOUBLE, (void **)&pc, n, 6)) {
+			free(ids);
+			return -1;
+		}
 		if (n > e->bc.pl.cap[k]) {
 			e->bc.pl.cap[k] = n;
 			e->bc.pl.pc[k] = xrealloc(e->bc.pl.pc[k], n * sizeof *e->bc.pl.pc[k]);
@@ -381,12 +401,10 @@ static int read_platens(hid_t g, engine *e)
 			    xrealloc(e->bc.pl.pc_old[k], n * sizeof *e->bc.pl.pc_old[k]);
 			e->bc.pl.who[k] = xrealloc(e->bc.pl.who[k], n * sizeof *e->bc.pl.who[k]);
 		}
-		double *pc = xmalloc((6 * n + 1) * sizeof *pc);
-		char who[32], con[32];
-		snprintf(who, sizeof who, "platen%d_particle", k);
-		snprintf(con, sizeof con, "platen%d_contact", k);
-		int rc = get(g, who, H5T_NATIVE_INT32, e->bc.pl.who[k], n, 0) ||
-		         get(g, con, H5T_NATIVE_DOUBLE, pc, n, 6);
+		if (n)
+			memcpy(e->bc.pl.who[k], ids, n * sizeof *ids);
+		free(ids);
+		int rc = 0;
 		for (size_t i = 0; i < P->n; i++)
 			P->pslot[k][i] = -1;
 		for (size_t c = 0; !rc && c < n; c++) {
@@ -429,18 +447,15 @@ static int read_surface(hid_t g, engine *e)
 	return 0;
 }
 
-int checkpoint_read(engine *e, const char *path)
+int checkpoint_read_file(engine *e, hid_t f)
 {
-	hid_t f = h5_open(path, RUN_FORMAT, 0);
-	if (f < 0)
-		return -1;
-	if (!h5_exists(f, "checkpoint")) {
-		H5Fclose(f);
+	char path[1024];
+	snprintf(path, sizeof path, "%s", h5_name(f));
+	if (!h5_exists(f, "checkpoint"))
 		return err_set(
 		    "%s: no checkpoint to restart from (the run stopped before its first "
 		    "one)",
 		    path);
-	}
 	hid_t g = h5_open_group(f, "checkpoint");
 	int64_t complete = 0;
 	int rc = h5_read_attr_i64(g, "complete", &complete);
@@ -497,6 +512,15 @@ int checkpoint_read(engine *e, const char *path)
 		             "written by an older version): not restartable",
 		             path);
 	H5Gclose(g);
-	H5Fclose(f);
 	return rc ? -1 : 0;
+}
+
+int checkpoint_read(engine *e, const char *path)
+{
+	hid_t f = h5_open(path, RUN_FORMAT, 0);
+	if (f < 0)
+		return -1;
+	int rc = checkpoint_read_file(e, f);
+	H5Fclose(f);
+	return rc;
 }

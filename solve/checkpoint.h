@@ -11,5 +11,7 @@ int checkpoint_write(engine *e, hid_t file);
 /* Restore the state of an engine freshly set up from the same assembly and
  * configuration. */
 int checkpoint_read(engine *e, const char *path);
+/* The same from an open run file (h5_open, or h5_open_image). */
+int checkpoint_read_file(engine *e, hid_t file);
 
 #endif

@@ -291,6 +291,66 @@ static void test_run_roundtrip(const char *path)
 	assembly_free(&a);
 }
 
+/* The whole file at path (caller frees); *n gets its size. */
+static void *slurp(const char *path, size_t *n)
+{
+	FILE *in = fopen(path, "rb");
+	fseek(in, 0, SEEK_END);
+	*n = (size_t)ftell(in);
+	fseek(in, 0, SEEK_SET);
+	void *buf = malloc(*n);
+	CHECK(fread(buf, 1, *n, in) == *n);
+	fclose(in);
+	return buf;
+}
+
+/* The same files read from memory (h5_open_image, what the fuzz targets
+ * do) read the same, and an image of another format or of garbage is
+ * refused with a message. */
+static void test_images(const char *apath, const char *rpath)
+{
+	size_t n;
+	void *img = slurp(apath, &n);
+	dem_assembly a, b;
+	CHECK(assembly_read(apath, &a) == 0);
+	hid_t f = h5_open_image(img, n, ASSEMBLY_FORMAT);
+	CHECK(f >= 0 && assembly_read_file(f, &b) == 0);
+	if (f >= 0) {
+		compare_assembly(&a, &b);
+		assembly_free(&b);
+		H5Fclose(f);
+	}
+	CHECK(h5_open_image(img, n, RUN_FORMAT) < 0);
+	CHECK_CONTAINS(err_msg(), "(file image): attribute 'format': value \"dem-assembly\"");
+	CHECK(h5_open_image(img, n / 3, ASSEMBLY_FORMAT) < 0);
+	CHECK(h5_open_image("not hdf5", 8, ASSEMBLY_FORMAT) < 0);
+	CHECK_CONTAINS(err_msg(), "(file image): not a readable HDF5 file image");
+	free(img);
+	assembly_free(&a);
+
+	img = slurp(rpath, &n);
+	dem_run r, q;
+	CHECK(run_read(rpath, &r) == 0);
+	f = h5_open_image(img, n, RUN_FORMAT);
+	CHECK(f >= 0 && run_read_file(f, &q) == 0);
+	if (f >= 0) {
+		CHECK(q.nrows == r.nrows && q.nsnap == r.nsnap && q.ncracks == r.ncracks);
+		compare_assembly(&r.assembly, &q.assembly);
+		dem_snapshot s, t;
+		CHECK(run_read_snapshot(rpath, &r, 1, &s) == 0);
+		CHECK(run_read_snapshot_file(f, &q, 1, &t) == 0);
+		CHECK(s.step == t.step && s.n == t.n && s.nbonds == t.nbonds);
+		SAME_ARRAY(s.x, t.x, 3 * s.n);
+		SAME_ARRAY(s.fs, t.fs, 3 * s.nbonds);
+		snapshot_free(&s);
+		snapshot_free(&t);
+		run_free(&q);
+		H5Fclose(f);
+	}
+	run_free(&r);
+	free(img);
+}
+
 static void copy_truncated(const char *from, const char *to, double fraction)
 {
 	FILE *in = fopen(from, "rb"), *out = fopen(to, "wb");
@@ -346,6 +406,36 @@ static void test_bad_files(const char *assembly_path, const char *run_path)
 
 /* A dataset written in pieces (h5_rows) reads back as written, across
  * several pieces; missing or extra rows are errors. */
+/* A dataset whose dataspace claims more rows than its storage and the file
+ * hold (a damaged header) is refused before anything is allocated: reading
+ * it used to end the program out of memory. */
+static void test_claimed_rows(const char *path)
+{
+	char tmp[4096];
+	hid_t f = h5_create(path, tmp, sizeof tmp);
+	CHECK(f >= 0);
+	if (f < 0)
+		return;
+	hsize_t dims[1] = {(hsize_t)1 << 40}, chunk[1] = {1024};
+	hid_t space = H5Screate_simple(1, dims, NULL);
+	hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+	H5Pset_chunk(dcpl, 1, chunk);
+	hid_t d = H5Dcreate2(f, "huge", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+	CHECK(d >= 0);
+	H5Dclose(d);
+	H5Pclose(dcpl);
+	H5Sclose(space);
+	double one = 1;
+	CHECK(h5_write(f, "one", H5T_NATIVE_DOUBLE, &one, 1, 0, NULL) == 0);
+	void *data = NULL;
+	size_t rows = 0;
+	CHECK(h5_read(f, "huge", H5T_NATIVE_DOUBLE, &data, &rows, 0) == -1 && !data);
+	CHECK_CONTAINS(err_msg(), "dataset 'huge': 1099511627776 rows, more than the file holds");
+	CHECK(h5_read(f, "one", H5T_NATIVE_DOUBLE, &data, &rows, 0) == 0 && rows == 1);
+	free(data);
+	h5_discard(f, tmp);
+}
+
 static void test_rows(const char *path)
 {
 	char tmp[4096];
@@ -396,7 +486,9 @@ int main(void)
 	const char *rp = check_tmp("formats-run.h5");
 	test_assembly_roundtrip(ap);
 	test_run_roundtrip(rp);
+	test_images(ap, rp);
 	test_rows(check_tmp("formats-rows.h5"));
+	test_claimed_rows(check_tmp("formats-claimed.h5"));
 	test_bad_files(ap, rp);
 	return check_done();
 }
