@@ -36,7 +36,7 @@ typedef struct {
 	engine *e;
 	run_writer *w;
 	const run_opts *o;
-	double wall0, last_checkpoint, last_row_wall;
+	double wall0, last_checkpoint, last_row_wall, last_flush;
 	int64_t last_row_step, step0, last_snapshot_step;
 	progress pg;
 	/* the recent pace: strain and stress per step since the sample */
@@ -48,6 +48,19 @@ typedef struct {
 	char status[1100];
 } loop_state;
 
+/* Flush the run file at most every few seconds, so that a full disk is
+ * noticed soon after, not at the end of the run; a flush costs tens of ms,
+ * too much after every snapshot of a short run. */
+static int flush_now_and_then(loop_state *L)
+{
+	enum { FLUSH_EVERY = 5 /* s */ };
+	double now = timer_now();
+	if (now - L->last_flush < FLUSH_EVERY)
+		return 0;
+	L->last_flush = now;
+	return run_flush(L->w);
+}
+
 static int snapshot(loop_state *L)
 {
 	engine *e = L->e;
@@ -55,8 +68,7 @@ static int snapshot(loop_state *L)
 		return 0;
 	L->last_snapshot_step = e->clock.step;
 	e->out.last_snapshot_strain = engine_strain(e);
-	/* Flushed, so that a full disk is noticed here, not at the end. */
-	return output_snapshot(e, L->w) || run_flush(L->w);
+	return output_snapshot(e, L->w) || flush_now_and_then(L);
 }
 
 static int snapshot_due(loop_state *L)
@@ -252,7 +264,7 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 		fatal(NULL);
 	if (checkpoint_due(L) && (checkpoint(L) || run_save_recovery(L->w)))
 		fatal(NULL);
-	if (e->out.cracks.n >= 4096 && (output_cracks(e, L->w) || run_flush(L->w)))
+	if (e->out.cracks.n >= 4096 && (output_cracks(e, L->w) || flush_now_and_then(L)))
 		fatal(NULL);
 	int budget = (o->max_steps && e->clock.step - L->step0 >= o->max_steps) ||
 	             (o->max_wall > 0 && timer_now() - L->wall0 >= o->max_wall);
@@ -292,7 +304,7 @@ static int run_loop(engine *e, run_writer *w, const run_opts *o)
 {
 	phase_start(&e->tm, TM_TOTAL);
 	loop_state L = {.e = e, .w = w, .o = o, .last_snapshot_step = -1};
-	L.wall0 = L.last_checkpoint = L.last_row_wall = timer_now();
+	L.wall0 = L.last_checkpoint = L.last_row_wall = L.last_flush = timer_now();
 	L.last_row_step = L.step0 = L.pace_step = e->clock.step;
 	L.pace_wall = L.wall0;
 	L.pace_strain = engine_strain(e);
