@@ -6,6 +6,7 @@
 
 #include "lib/afile.h"
 #include "lib/err.h"
+#include "lib/h5.h"
 #include "lib/json.h"
 
 void json_num(cJSON *o, const char *key, double v)
@@ -37,7 +38,7 @@ int json_write(const char *path, cJSON *o)
 	if (f) {
 		int bad = fputs(text, f) < 0 || fputc('\n', f) < 0;
 		if (fclose(f) || bad)
-			rc = err_set("%s: cannot write (disk full?)", tmp);
+			rc = h5_write_error(tmp, "the JSON text");
 		rc = rc || afile_commit(tmp, path);
 		if (rc)
 			afile_discard(tmp);
