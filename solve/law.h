@@ -118,14 +118,22 @@ typedef struct law {
 } law;
 
 /* Defines `static void NAME_batch(...)` looping over an inline force
- * function FORCE with the signature of law.force. */
-#define LAW_BATCH(NAME, FORCE)                                                              \
-	static void NAME##_batch(const law_params *p, int n, const law_pair *pair, bond *b, \
-	                         const law_kin *k, law_out *out)                            \
-	{                                                                                   \
-		for (int q = 0; q < n; q++)                                                 \
-			FORCE(p, &pair[q], &b[q], &k[q], &out[q]);                          \
+ * function FORCE with the signature of law.force. Everything FORCE calls is
+ * inlined into the loop (flatten), so a law's helpers cost no calls. */
+#define LAW_BATCH(NAME, FORCE)                                                            \
+	__attribute__((flatten)) static void NAME##_batch(const law_params *p, int n,     \
+	                                                  const law_pair *pair, bond *b,  \
+	                                                  const law_kin *k, law_out *out) \
+	{                                                                                 \
+		for (int q = 0; q < n; q++)                                               \
+			FORCE(p, &pair[q], &b[q], &k[q], &out[q]);                        \
 	}
+
+/* The smaller and the larger of two numbers, inline: the compiler calls the
+ * C library for fmin and fmax unless it may ignore NaNs, which it may not
+ * here. (A NaN stops the run anyway; it is diagnosed after the step.) */
+static inline double law_min(double a, double b) { return a < b ? a : b; }
+static inline double law_max(double a, double b) { return a > b ? a : b; }
 
 /* law.copy of a law whose parameters are one struct of size bytes with no
  * pointers inside. */

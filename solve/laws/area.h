@@ -33,7 +33,7 @@ void area_setup(area_keys *a, const law_packing *pk);
 static inline double area_range(const area_keys *a) { return 1 + a->beta; }
 
 /* The contact radius r_c = min(r_i, r_j) (Eq. 21). */
-static inline double area_rc(const law_pair *pair) { return fmin(pair->ri, pair->rj); }
+static inline double area_rc(const law_pair *pair) { return law_min(pair->ri, pair->rj); }
 
 /* A-bar = alpha pi r_c^2 (Eq. 21). */
 static inline double area_of(double alpha, const law_pair *pair)

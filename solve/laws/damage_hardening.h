@@ -114,7 +114,7 @@ static inline double dh_normal(const dh_params *q, dh_curve curve, const void *l
 		return q->E0 * e;
 	if (broken)
 		return 0;
-	double d = fmin(1, fmax(h[0], dh_damage_at(e, q->eps_t, q->delta_n)));
+	double d = law_min(1, law_max(h[0], dh_damage_at(e, q->eps_t, q->delta_n)));
 	*w += 0.5 * q->E0 * q->eps_t * q->eps_t * (1 + q->delta_n) * (d - h[0]);
 	h[0] = d;
 	if (d >= 1) {

@@ -86,7 +86,7 @@ static double exp_curve(const void *law, double c, double *cp)
 		*cp = 0;
 		return p->q.E0 * c;
 	}
-	double r = fmin(1, p->g3 + p->g1 * exp(p->g2 * (c - p->eps_max)));
+	double r = law_min(1, p->g3 + p->g1 * exp(p->g2 * (c - p->eps_max)));
 	double s = p->q.E0 * p->eps_max + r * p->q.E0 * (c - p->eps_max);
 	*cp = c - s / p->q.E0;
 	return s;

@@ -99,7 +99,7 @@ static void jcfpm_constants(const law_params *lp, const law_pair *pair, law_cons
 /* A broken pair apart: the interaction is gone until the spheres touch. */
 static void apart(const law_pair *pair, bond *b, double un, law_out *out)
 {
-	b->h[0] = fmin(un, pair->ri + pair->rj - pair->d0);
+	b->h[0] = law_min(un, pair->ri + pair->rj - pair->d0);
 	memset(b->t, 0, sizeof b->t);
 	out->fn = 0;
 	memset(out->fs, 0, sizeof out->fs);
