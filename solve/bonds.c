@@ -115,8 +115,7 @@ void bonds_init_history(engine *e)
 }
 
 /* A failure as a crack record, with the force the bond carried before it. */
-static void record_crack(engine *e, crack_buf *cb, size_t b, const law_out *o, const batch_geom *g,
-                         int q)
+static void record_crack(engine *e, crack_buf *cb, size_t b, int mode, const batch_geom *g, int q)
 {
 	double n[3] = {g->n[0][q], g->n[1][q], g->n[2][q]}, d = g->d[q];
 	if (cb->n == cb->cap) {
@@ -138,7 +137,7 @@ static void record_crack(engine *e, crack_buf *cb, size_t b, const law_out *o, c
 	                 .step = e->clock.step,
 	                 .i = oi < oj ? oi : oj,
 	                 .j = oi < oj ? oj : oi,
-	                 .mode = o->failed,
+	                 .mode = mode,
 	                 .radius = P->r[bd->i] < P->r[bd->j] ? P->r[bd->i] : P->r[bd->j],
 	                 .fn = fn,
 	                 .fs = sqrt(fs[0] * fs[0] + fs[1] * fs[1] + fs[2] * fs[2])};
@@ -149,35 +148,35 @@ static void record_crack(engine *e, crack_buf *cb, size_t b, const law_out *o, c
 }
 
 /* One block of bonds [lo, hi). */
-static void bond_block(engine *e, size_t lo, size_t hi, int measure, pair_sums *s, crack_buf *cb)
+DEM_VECTOR_CLONES static void bond_block(engine *e, size_t lo, size_t hi, int measure, pair_sums *s,
+                                         crack_buf *cb)
 {
 	const particles *P = &e->p;
 	pairlist *L = &e->pairs.bonds;
-	law_pair pair[BATCH];
-	law_kin kin[BATCH];
-	law_out out[BATCH];
+	law_batch B;
 	batch_geom g;
 	memset(s, 0, sizeof *s);
 	for (size_t b0 = lo; b0 < hi; b0 += BATCH) {
 		int nq = (int)(hi - b0 < BATCH ? hi - b0 : BATCH);
-		batch_kinematics(P->x, P->v, P->w, P->r, P->m, &L->rec[b0], nq, e->clock.dt, pair,
-		                 kin, &g);
-		for (int q = 0; q < nq; q++)
-			out[q].fn_viscous = out[q].e_damage = out[q].e_friction = 0;
-		e->law->force_batch(e->lp, nq, pair, &L->rec[b0], kin, out);
+		bond *rec = &L->rec[b0];
+		batch_kinematics(P->x, P->v, P->w, P->r, P->m, rec, nq, e->clock.dt, &B, &g);
+		batch_history_load(rec, &B);
+		e->law->force_batch(e->lp, &B);
+		batch_history_store(rec, &B);
 		for (int q = 0; q < nq; q++) {
 			size_t b = b0 + q;
-			if (out[q].failed)
-				record_crack(e, cb, b, &out[q], &g, q);
+			if (B.failed[q])
+				record_crack(e, cb, b, B.failed[q], &g, q);
 			double *f = L->f + 6 * b;
-			batch_force(&out[q], &g, q, f);
-			s->e_damage += out[q].e_damage;
-			s->e_friction += out[q].e_friction;
-			s->e_viscous += out[q].fn_viscous * kin[q].vn * e->clock.dt;
+			batch_force(&B, &g, q, f);
+			s->e_damage += B.e_damage[q];
+			s->e_friction += B.e_friction[q];
+			s->e_viscous += B.fn_viscous[q] * B.vn[q] * e->clock.dt;
 			if (measure) {
-				s->e_elastic += e->law->energy(e->lp, &pair[q], &L->rec[b]);
+				law_pair pair = law_lane_pair(&B, q);
+				s->e_elastic += e->law->energy(e->lp, &pair, &rec[q]);
 				love_add(s->love, &g, q, f);
-				s->count[L->rec[b].state]++;
+				s->count[rec[q].state]++;
 			}
 		}
 	}

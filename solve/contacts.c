@@ -108,33 +108,40 @@ void contacts_rebuild(engine *e)
 	e->pairs.rebuild = 0;
 }
 
-static void contact_block(engine *e, size_t lo, size_t hi, int measure, pair_sums *s)
+DEM_VECTOR_CLONES static void contact_block(engine *e, size_t lo, size_t hi, int measure,
+                                            pair_sums *s)
 {
 	const particles *P = &e->p;
 	pairlist *L = &e->pairs.contacts;
 	double mu = e->cs->mat.friction;
-	law_pair pair[BATCH];
-	law_kin kin[BATCH];
+	law_batch B;
 	batch_geom g;
 	memset(s, 0, sizeof *s);
 	for (size_t c0 = lo; c0 < hi; c0 += BATCH) {
 		int nq = (int)(hi - c0 < BATCH ? hi - c0 : BATCH);
-		batch_kinematics(P->x, P->v, P->w, P->r, P->m, &L->rec[c0], nq, e->clock.dt, pair,
-		                 kin, &g);
+		bond *rec = &L->rec[c0];
+		batch_kinematics(P->x, P->v, P->w, P->r, P->m, rec, nq, e->clock.dt, &B, &g);
 		for (int q = 0; q < nq; q++) {
 			size_t c = c0 + q;
 			const double *k = L->k + 3 * c;
 			cundall cd = {.kn = k[0], .ks = k[1], .cn = k[2], .mu = mu};
 			law_out out = {0};
-			cundall_force(&cd, kin[q].un, kin[q].vn, kin[q].dus, L->rec[c].t, &out);
+			double dus[3] = {B.dus[0][q], B.dus[1][q], B.dus[2][q]};
+			double *t = rec[q].t;
+			for (int d = 0; d < 3; d++)
+				t[d] = B.t[d][q];
+			cundall_force(&cd, B.un[q], B.vn[q], dus, t, &out);
+			for (int d = 0; d < 3; d++)
+				B.fs[d][q] = out.fs[d];
+			B.fn[q] = out.fn;
 			double *f = L->f + 6 * c;
-			batch_force(&out, &g, q, f);
+			batch_force(&B, &g, q, f);
 			s->e_friction += out.e_friction;
-			s->e_viscous += out.fn_viscous * kin[q].vn * e->clock.dt;
+			s->e_viscous += out.fn_viscous * B.vn[q] * e->clock.dt;
 			if (measure) {
-				s->e_elastic += cundall_energy(&cd, kin[q].un, L->rec[c].t);
+				s->e_elastic += cundall_energy(&cd, B.un[q], t);
 				love_add(s->love, &g, q, f);
-				s->count[4] += kin[q].un < 0;
+				s->count[4] += B.un[q] < 0;
 			}
 		}
 	}

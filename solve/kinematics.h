@@ -34,17 +34,20 @@ typedef struct {
 	double s[BATCH];
 } batch_geom;
 
-/* Kinematics of the nq pairs rec[0..nq) for the law (pair, kin), rotating
- * their tangential histories. Staged over the batch so that the square
- * roots and divisions of independent pairs overlap (and vectorise). */
+_Static_assert((int)BATCH == (int)LAW_LANES, "a batch of pairs is a batch of the laws' lanes");
+
+/* Kinematics of the nq pairs rec[0..nq) into the pair and kinematics lanes
+ * of B (B->n = nq), with their tangential histories rotated into B->t.
+ * Staged: the records are read into arrays, one loop does all the
+ * arithmetic on them (so the square roots and divisions of independent
+ * pairs overlap, and the compiler can use the vector units). */
 static inline void batch_kinematics(const double *restrict x, const double *restrict v,
                                     const double *restrict w, const double *restrict r,
-                                    const double *restrict m, bond *restrict rec, int nq, double dt,
-                                    law_pair *restrict pair, law_kin *restrict kin,
-                                    batch_geom *restrict g)
+                                    const double *restrict m, const bond *restrict rec, int nq,
+                                    double dt, law_batch *restrict B, batch_geom *restrict g)
 {
-	double dx[3][BATCH], dv[3][BATCH], wi[3][BATCH], wj[3][BATCH], ri[BATCH], rj[BATCH];
-	double d0[BATCH], un[BATCH], vn[BATCH], spin[BATCH], dus[3][BATCH];
+	double dx[3][BATCH], dv[3][BATCH], wi[3][BATCH], wj[3][BATCH];
+	B->n = nq;
 	for (int q = 0; q < nq; q++) {
 		int32_t i = rec[q].i, j = rec[q].j;
 		for (int c = 0; c < 3; c++) {
@@ -52,61 +55,79 @@ static inline void batch_kinematics(const double *restrict x, const double *rest
 			dv[c][q] = v[3 * j + c] - v[3 * i + c];
 			wi[c][q] = w[3 * i + c];
 			wj[c][q] = w[3 * j + c];
+			B->t[c][q] = rec[q].t[c];
 		}
-		ri[q] = r[i];
-		rj[q] = r[j];
-		d0[q] = rec[q].d0;
-		pair[q] =
-		    (law_pair){.ri = r[i], .rj = r[j], .mi = m[i], .mj = m[j], .d0 = rec[q].d0};
+		B->ri[q] = r[i];
+		B->rj[q] = r[j];
+		B->mi[q] = m[i];
+		B->mj[q] = m[j];
+		B->d0[q] = rec[q].d0;
 	}
 	for (int q = 0; q < nq; q++) {
 		double d = sqrt(dx[0][q] * dx[0][q] + dx[1][q] * dx[1][q] + dx[2][q] * dx[2][q]);
-		double inv = 1 / d, s = d / (ri[q] + rj[q]);
+		double inv = 1 / d, s = d / (B->ri[q] + B->rj[q]);
 		double n0 = dx[0][q] * inv, n1 = dx[1][q] * inv, n2 = dx[2][q] * inv;
-		double ai = s * ri[q], aj = s * rj[q];
+		double ai = s * B->ri[q], aj = s * B->rj[q];
 		double ws0 = aj * wj[0][q] + ai * wi[0][q], ws1 = aj * wj[1][q] + ai * wi[1][q],
 		       ws2 = aj * wj[2][q] + ai * wi[2][q];
 		double vc0 = dv[0][q] - (ws1 * n2 - ws2 * n1),
 		       vc1 = dv[1][q] - (ws2 * n0 - ws0 * n2),
 		       vc2 = dv[2][q] - (ws0 * n1 - ws1 * n0);
 		double vcn = vc0 * n0 + vc1 * n1 + vc2 * n2;
-		un[q] = d - d0[q];
-		vn[q] = dv[0][q] * n0 + dv[1][q] * n1 + dv[2][q] * n2;
-		dus[0][q] = (vc0 - vcn * n0) * dt;
-		dus[1][q] = (vc1 - vcn * n1) * dt;
-		dus[2][q] = (vc2 - vcn * n2) * dt;
-		spin[q] = 0.5 * dt *
-		          ((wi[0][q] + wj[0][q]) * n0 + (wi[1][q] + wj[1][q]) * n1 +
-		           (wi[2][q] + wj[2][q]) * n2);
+		B->un[q] = d - B->d0[q];
+		B->vn[q] = dv[0][q] * n0 + dv[1][q] * n1 + dv[2][q] * n2;
+		B->dus[0][q] = (vc0 - vcn * n0) * dt;
+		B->dus[1][q] = (vc1 - vcn * n1) * dt;
+		B->dus[2][q] = (vc2 - vcn * n2) * dt;
+		double spin = 0.5 * dt *
+		              ((wi[0][q] + wj[0][q]) * n0 + (wi[1][q] + wj[1][q]) * n1 +
+		               (wi[2][q] + wj[2][q]) * n2);
+		double t0 = B->t[0][q], t1 = B->t[1][q], t2 = B->t[2][q];
+		double tn = t0 * n0 + t1 * n1 + t2 * n2;
+		double u0 = t0 - tn * n0, u1 = t1 - tn * n1, u2 = t2 - tn * n2;
+		B->t[0][q] = u0 + spin * (n1 * u2 - n2 * u1);
+		B->t[1][q] = u1 + spin * (n2 * u0 - n0 * u2);
+		B->t[2][q] = u2 + spin * (n0 * u1 - n1 * u0);
 		g->n[0][q] = n0;
 		g->n[1][q] = n1;
 		g->n[2][q] = n2;
 		g->d[q] = d;
 		g->s[q] = s;
 	}
-	for (int q = 0; q < nq; q++) {
-		double *t = rec[q].t, n0 = g->n[0][q], n1 = g->n[1][q], n2 = g->n[2][q];
-		double tn = t[0] * n0 + t[1] * n1 + t[2] * n2;
-		double u0 = t[0] - tn * n0, u1 = t[1] - tn * n1, u2 = t[2] - tn * n2;
-		t[0] = u0 + spin[q] * (n1 * u2 - n2 * u1);
-		t[1] = u1 + spin[q] * (n2 * u0 - n0 * u2);
-		t[2] = u2 + spin[q] * (n0 * u1 - n1 * u0);
-		kin[q] =
-		    (law_kin){.un = un[q], .vn = vn[q], .dus = {dus[0][q], dus[1][q], dus[2][q]}};
+}
+
+/* The law's history of the bonds rec[0..B->n) into B, and back. */
+static inline void batch_history_load(const bond *restrict rec, law_batch *restrict B)
+{
+	for (int q = 0; q < B->n; q++) {
+		for (int c = 0; c < LAW_NHIST; c++)
+			B->h[c][q] = rec[q].h[c];
+		B->state[q] = rec[q].state;
+	}
+}
+static inline void batch_history_store(bond *restrict rec, const law_batch *restrict B)
+{
+	for (int q = 0; q < B->n; q++) {
+		for (int c = 0; c < 3; c++)
+			rec[q].t[c] = B->t[c][q];
+		for (int c = 0; c < LAW_NHIST; c++)
+			rec[q].h[c] = B->h[c][q];
+		rec[q].state = B->state[q];
 	}
 }
 
-/* The force on i and the torque per unit radius of pair q of a batch from
+/* The force on i and the torque per unit radius of lane q of a batch from
  * the law's output: the torque on i is (a_i n) × F_s = r_i (d / (r_i + r_j))
  * n × F_s, on j r_j times the same vector (Eq. 4). */
-static inline void batch_force(const law_out *o, const batch_geom *g, int q, double f[6])
+static inline void batch_force(const law_batch *B, const batch_geom *g, int q, double f[6])
 {
 	double n[3] = {g->n[0][q], g->n[1][q], g->n[2][q]}, s = g->s[q];
+	double fs[3] = {B->fs[0][q], B->fs[1][q], B->fs[2][q]};
 	for (int c = 0; c < 3; c++)
-		f[c] = o->fn * n[c] + o->fs[c];
-	f[3] = s * (n[1] * o->fs[2] - n[2] * o->fs[1]);
-	f[4] = s * (n[2] * o->fs[0] - n[0] * o->fs[2]);
-	f[5] = s * (n[0] * o->fs[1] - n[1] * o->fs[0]);
+		f[c] = B->fn[q] * n[c] + fs[c];
+	f[3] = s * (n[1] * fs[2] - n[2] * fs[1]);
+	f[4] = s * (n[2] * fs[0] - n[0] * fs[2]);
+	f[5] = s * (n[0] * fs[1] - n[1] * fs[0]);
 }
 
 #endif

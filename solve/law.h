@@ -32,6 +32,7 @@
 #include <stdint.h>
 
 #include "lib/cfg.h"
+#include "solve/clones.h"
 
 enum { LAW_NHIST = 4 };
 
@@ -84,6 +85,23 @@ typedef struct {
 	double coordination; /* mean bonds per sphere */
 } law_packing;
 
+/* A batch of up to LAW_LANES bonds as force_batch sees them: the fields of
+ * law_pair, law_kin, bond (history) and law_out as arrays over the lanes
+ * q = 0 .. n - 1, so a law can compute many bonds at once in the vector
+ * units. force_batch reads the pair, kinematics and history, and writes
+ * the history and every output (the energies from zero). */
+enum { LAW_LANES = 32 };
+typedef struct {
+	int n;
+	double ri[LAW_LANES], rj[LAW_LANES], mi[LAW_LANES], mj[LAW_LANES], d0[LAW_LANES];
+	double un[LAW_LANES], vn[LAW_LANES], dus[3][LAW_LANES];
+	double t[3][LAW_LANES], h[LAW_NHIST][LAW_LANES];
+	int32_t state[LAW_LANES]; /* lib/states.h */
+	double fn[LAW_LANES], fs[3][LAW_LANES], fn_viscous[LAW_LANES];
+	double e_damage[LAW_LANES], e_friction[LAW_LANES];
+	int failed[LAW_LANES];
+} law_batch;
+
 typedef struct law_params law_params; /* each law's own, opaque */
 
 typedef struct law {
@@ -108,25 +126,72 @@ typedef struct law {
 	/* Forces for this step's kinematics; updates b->t, b->h and b->state. */
 	void (*force)(const law_params *p, const law_pair *pair, bond *b, const law_kin *k,
 	              law_out *out);
-	/* The same over n bonds (a loop the compiler can inline force into). */
-	void (*force_batch)(const law_params *p, int n, const law_pair *pair, bond *b,
-	                    const law_kin *k, law_out *out);
+	/* The same over a batch, exactly (bit for bit) as force bond by bond. */
+	void (*force_batch)(const law_params *p, law_batch *b);
 	/* Elastic energy stored in the bond (J). */
 	double (*energy)(const law_params *p, const law_pair *pair, const bond *b);
 	/* Damage in tension and in shear, each in [0, 1]. */
 	void (*damage)(const law_params *p, const bond *b, double *dn, double *ds);
 } law;
 
-/* Defines `static void NAME_batch(...)` looping over an inline force
- * function FORCE with the signature of law.force. Everything FORCE calls is
- * inlined into the loop (flatten), so a law's helpers cost no calls. */
-#define LAW_BATCH(NAME, FORCE)                                                            \
-	__attribute__((flatten)) static void NAME##_batch(const law_params *p, int n,     \
-	                                                  const law_pair *pair, bond *b,  \
-	                                                  const law_kin *k, law_out *out) \
-	{                                                                                 \
-		for (int q = 0; q < n; q++)                                               \
-			FORCE(p, &pair[q], &b[q], &k[q], &out[q]);                        \
+/* Lane q of a batch as force() takes it, and back. */
+static inline law_pair law_lane_pair(const law_batch *B, int q)
+{
+	return (law_pair){
+	    .ri = B->ri[q], .rj = B->rj[q], .mi = B->mi[q], .mj = B->mj[q], .d0 = B->d0[q]};
+}
+static inline law_kin law_lane_kin(const law_batch *B, int q)
+{
+	return (law_kin){
+	    .un = B->un[q], .vn = B->vn[q], .dus = {B->dus[0][q], B->dus[1][q], B->dus[2][q]}};
+}
+static inline bond law_lane_bond(const law_batch *B, int q)
+{
+	bond b = {.d0 = B->d0[q], .state = B->state[q]};
+	for (int c = 0; c < 3; c++)
+		b.t[c] = B->t[c][q];
+	for (int c = 0; c < LAW_NHIST; c++)
+		b.h[c] = B->h[c][q];
+	return b;
+}
+static inline void law_lane_put(law_batch *B, int q, const bond *b, const law_out *o)
+{
+	for (int c = 0; c < 3; c++) {
+		B->t[c][q] = b->t[c];
+		B->fs[c][q] = o->fs[c];
+	}
+	for (int c = 0; c < LAW_NHIST; c++)
+		B->h[c][q] = b->h[c];
+	B->state[q] = b->state;
+	B->fn[q] = o->fn;
+	B->fn_viscous[q] = o->fn_viscous;
+	B->e_damage[q] = o->e_damage;
+	B->e_friction[q] = o->e_friction;
+	B->failed[q] = o->failed;
+}
+
+/* Lane q of a batch computed by FORCE (a function with the signature of
+ * law.force), as the engine would call it for that bond alone. */
+#define LAW_LANE(FORCE, p, B, q)                                            \
+	do {                                                                \
+		law_pair lane_pair_ = law_lane_pair(B, q);                  \
+		law_kin lane_kin_ = law_lane_kin(B, q);                     \
+		bond lane_bond_ = law_lane_bond(B, q);                      \
+		law_out lane_out_ = {0};                                    \
+		FORCE(p, &lane_pair_, &lane_bond_, &lane_kin_, &lane_out_); \
+		law_lane_put(B, q, &lane_bond_, &lane_out_);                \
+	} while (0)
+
+/* Defines `static void NAME_batch(const law_params *, law_batch *)` computing
+ * every lane with FORCE, a function with the signature of law.force.
+ * Everything FORCE calls is inlined into the loop (flatten), so a law's
+ * helpers cost no calls. */
+#define LAW_BATCH(NAME, FORCE)                                                               \
+	DEM_VECTOR_CLONES                                                                    \
+	__attribute__((flatten)) static void NAME##_batch(const law_params *p, law_batch *B) \
+	{                                                                                    \
+		for (int q = 0; q < B->n; q++)                                               \
+			LAW_LANE(FORCE, p, B, q);                                            \
 	}
 
 /* The smaller and the larger of two numbers, inline: the compiler calls the

@@ -201,18 +201,23 @@ static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 	advance(e, i, vn, wn, ext, s);
 }
 
+DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
+{
+	size_t n = e->p.n;
+	particle_sums *s = &e->scratch.pblock[k];
+	memset(s, 0, sizeof *s);
+	s->bad = (double)n;
+	size_t hi = block_end(k, n);
+	for (size_t i = k * BLOCK; i < hi; i++)
+		integrate_one(e, (int32_t)i, measure, s);
+}
+
 static void particles_integrate(engine *e, int measure)
 {
-	size_t n = e->p.n, nb = nblocks(n);
+	size_t nb = nblocks(e->p.n);
 #pragma omp for schedule(static) nowait
-	for (size_t k = 0; k < nb; k++) {
-		particle_sums *s = &e->scratch.pblock[k];
-		memset(s, 0, sizeof *s);
-		s->bad = (double)n;
-		size_t hi = block_end(k, n);
-		for (size_t i = k * BLOCK; i < hi; i++)
-			integrate_one(e, (int32_t)i, measure, s);
-	}
+	for (size_t k = 0; k < nb; k++)
+		integrate_block(e, k, measure);
 }
 
 /* Block sums in block order (serial, after the parallel step). */

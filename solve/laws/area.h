@@ -35,11 +35,17 @@ static inline double area_range(const area_keys *a) { return 1 + a->beta; }
 /* The contact radius r_c = min(r_i, r_j) (Eq. 21). */
 static inline double area_rc(const law_pair *pair) { return law_min(pair->ri, pair->rj); }
 
-/* A-bar = alpha pi r_c^2 (Eq. 21). */
+/* A-bar = alpha pi r_c^2 (Eq. 21) of spheres of radii ri, rj. */
+static inline double area_of_radii(double alpha, double ri, double rj)
+{
+	double rc = law_min(ri, rj);
+	return alpha * DEM_PI * rc * rc;
+}
+
+/* A-bar of a pair. */
 static inline double area_of(double alpha, const law_pair *pair)
 {
-	double rc = area_rc(pair);
-	return alpha * DEM_PI * rc * rc;
+	return area_of_radii(alpha, pair->ri, pair->rj);
 }
 
 #endif

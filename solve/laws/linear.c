@@ -159,7 +159,47 @@ static void linear_force(const law_params *p, const law_pair *q, bond *b, const 
 	linear_force_one(p, q, b, k, out);
 }
 
-LAW_BATCH(linear, linear_force_one)
+/* force_batch: the lanes of intact bonds that stay intact all together,
+ * with linear_force_one's expressions (so the same to the bit) and no
+ * branches, which the compiler turns into vector instructions; then every
+ * other lane (failing or broken) by linear_force_one itself. */
+DEM_VECTOR_CLONES __attribute__((flatten)) static void linear_batch(const law_params *p,
+                                                                    law_batch *B)
+{
+	int32_t elastic[LAW_LANES];
+	int n = B->n;
+	for (int q = 0; q < n; q++) {
+		double kn = B->h[1][q], ks = B->h[2][q], cn = B->h[3][q], un = B->un[q];
+		double t0 = B->t[0][q] + B->dus[0][q], t1 = B->t[1][q] + B->dus[1][q],
+		       t2 = B->t[2][q] + B->dus[2][q];
+		double area = area_of_radii(p->area.alpha, B->ri[q], B->rj[q]);
+		double fe = kn * un;
+		double fs0 = ks * t0, fs1 = ks * t1, fs2 = ks * t2;
+		double ff = fs0 * fs0 + fs1 * fs1 + fs2 * fs2;
+		double shear_limit = p->tau * area + p->mu1 * (fe < 0 ? -fe : 0);
+		int32_t ok = (B->state[q] < BOND_BROKEN_TENSION) & !(fe > p->sigma_t * area) &
+		             !(ff > shear_limit * shear_limit);
+		elastic[q] = ok;
+		double fv = cn * B->vn[q];
+		B->fn_viscous[q] = fv;
+		B->fn[q] = fe + fv;
+		B->fs[0][q] = fs0;
+		B->fs[1][q] = fs1;
+		B->fs[2][q] = fs2;
+		B->t[0][q] = ok ? t0 : B->t[0][q];
+		B->t[1][q] = ok ? t1 : B->t[1][q];
+		B->t[2][q] = ok ? t2 : B->t[2][q];
+		B->h[0][q] = ok ? un : B->h[0][q];
+	}
+	for (int q = 0; q < n; q++) {
+		B->e_damage[q] = 0;
+		B->e_friction[q] = 0;
+		B->failed[q] = 0;
+	}
+	for (int q = 0; q < n; q++)
+		if (!elastic[q])
+			LAW_LANE(linear_force_one, p, B, q);
+}
 
 static double linear_energy(const law_params *p, const law_pair *q, const bond *b)
 {

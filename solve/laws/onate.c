@@ -172,7 +172,8 @@ static inline void onate_force(const law_params *lp, const law_pair *pair, bond 
 			strength = p->tau * A * (1 - law_min(1, open / p->q.eps_t));
 		double us = v3_norm(b->t), d = b->h[1];
 		if (ks * us > strength) { /* beyond the elastic limit */
-			double dnew = law_min(1, law_max(d, dh_damage_at(us, strength / ks, p->delta_s)));
+			double dnew =
+			    law_min(1, law_max(d, dh_damage_at(us, strength / ks, p->delta_s)));
 			/* Work of the shear softening: 1/2 F_s u_s^f per unit of damage. */
 			out->e_damage +=
 			    0.5 * strength * strength / ks * (1 + p->delta_s) * (dnew - d);

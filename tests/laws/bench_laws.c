@@ -17,8 +17,7 @@ int main(void)
 {
 	static law_pair pair[NB];
 	static bond b[NB];
-	static law_kin kin[NB];
-	static law_out out[NB];
+	static law_batch B[NB / LAW_LANES];
 	for (size_t m = 0; m < sizeof materials / sizeof materials[0]; m++) {
 		cfg *c = cfg_load(materials[m]);
 		material mat;
@@ -39,23 +38,38 @@ int main(void)
 			pair[q].mi = rho * 4.2 * pair[q].ri * pair[q].ri * pair[q].ri;
 			pair[q].mj = rho * 4.2 * pair[q].rj * pair[q].rj * pair[q].rj;
 			b[q] = drive_bond(L, p, &pair[q]);
-			kin[q].un = 0;
+			law_batch *l = &B[q / LAW_LANES];
+			int k = q % LAW_LANES;
+			l->n = LAW_LANES;
+			l->ri[k] = pair[q].ri;
+			l->rj[k] = pair[q].rj;
+			l->mi[k] = pair[q].mi;
+			l->mj[k] = pair[q].mj;
+			l->d0[k] = pair[q].d0;
+			for (int c = 0; c < 3; c++)
+				l->t[c][k] = b[q].t[c];
+			for (int c = 0; c < LAW_NHIST; c++)
+				l->h[c][k] = b[q].h[c];
+			l->state[k] = b[q].state;
 		}
 		double t0 = timer_now(), work = 0;
 		for (int s = 0; s < NSTEP; s++) {
 			for (int q = 0; q < NB; q++) {
-				kin[q].un = pair[q].d0 * 2e-5 * (q % 97 - 60) * s / NSTEP;
-				kin[q].vn = 1e-4;
-				kin[q].dus[0] = pair[q].d0 * 1e-6 * (q % 13 - 6);
-				kin[q].dus[1] = kin[q].dus[2] = 0;
+				law_batch *l = &B[q / LAW_LANES];
+				int k = q % LAW_LANES;
+				l->un[k] = pair[q].d0 * 2e-5 * (q % 97 - 60) * s / NSTEP;
+				l->vn[k] = 1e-4;
+				l->dus[0][k] = pair[q].d0 * 1e-6 * (q % 13 - 6);
+				l->dus[1][k] = l->dus[2][k] = 0;
 			}
 			double t1 = timer_now();
-			L->force_batch(p, NB, pair, b, kin, out);
+			for (int k = 0; k < NB / LAW_LANES; k++)
+				L->force_batch(p, &B[k]);
 			work += timer_now() - t1;
 		}
 		int st[4] = {0};
 		for (int q = 0; q < NB; q++)
-			st[b[q].state]++;
+			st[B[q / LAW_LANES].state[q % LAW_LANES]]++;
 		printf("{\"bench\": \"laws\", \"figure\": \"ns_per_bond\", \"law\": \"%s\", "
 		       "\"value\": %.1f, \"intact\": %d, \"damaged\": %d, \"broken_tension\": %d, "
 		       "\"broken_shear\": %d, \"wall\": %.2f}\n",

@@ -44,6 +44,41 @@ static int same_bond(const bond *a, const bond *b)
 	       a->state == b->state;
 }
 
+/* One bond into lane q of a batch, and back (every field of the lane). */
+static void to_lane(law_batch *B, int q, const law_pair *pr, const bond *b, const law_kin *k)
+{
+	B->ri[q] = pr->ri;
+	B->rj[q] = pr->rj;
+	B->mi[q] = pr->mi;
+	B->mj[q] = pr->mj;
+	B->d0[q] = pr->d0;
+	B->un[q] = k->un;
+	B->vn[q] = k->vn;
+	for (int c = 0; c < 3; c++) {
+		B->dus[c][q] = k->dus[c];
+		B->t[c][q] = b->t[c];
+	}
+	for (int c = 0; c < LAW_NHIST; c++)
+		B->h[c][q] = b->h[c];
+	B->state[q] = b->state;
+}
+
+static void from_lane(const law_batch *B, int q, bond *b, law_out *o)
+{
+	for (int c = 0; c < 3; c++) {
+		b->t[c] = B->t[c][q];
+		o->fs[c] = B->fs[c][q];
+	}
+	for (int c = 0; c < LAW_NHIST; c++)
+		b->h[c] = B->h[c][q];
+	b->state = B->state[q];
+	o->fn = B->fn[q];
+	o->fn_viscous = B->fn_viscous[q];
+	o->e_damage = B->e_damage[q];
+	o->e_friction = B->e_friction[q];
+	o->failed = B->failed[q];
+}
+
 static void run(const char *name, const char *json)
 {
 	const law *L = law_find(name);
@@ -79,13 +114,19 @@ static void run(const char *name, const char *json)
 			for (int k = 0; k < 3; k++)
 				kin[q].dus[k] = scale[q] * rng_range(&g, -0.5, 0.5);
 		}
-		for (int q = 0; q < NB; q++) { /* as the engine does */
+		for (int q = 0; q < NB; q++) /* as the engine does */
 			o1[q].fn_viscous = o1[q].e_damage = o1[q].e_friction = 0;
-			on[q].fn_viscous = on[q].e_damage = on[q].e_friction = 0;
-		}
 		for (int q = 0; q < NB; q++)
 			L->force(p, &pair[q], &one[q], &kin[q], &o1[q]);
-		L->force_batch(p, NB, pair, many, kin, on);
+		for (int q0 = 0; q0 < NB; q0 += LAW_LANES) {
+			law_batch B;
+			B.n = NB - q0 < LAW_LANES ? NB - q0 : LAW_LANES;
+			for (int q = 0; q < B.n; q++)
+				to_lane(&B, q, &pair[q0 + q], &many[q0 + q], &kin[q0 + q]);
+			L->force_batch(p, &B);
+			for (int q = 0; q < B.n; q++)
+				from_lane(&B, q, &many[q0 + q], &on[q0 + q]);
+		}
 		int same = 1;
 		for (int q = 0; q < NB; q++)
 			same &= same_out(&o1[q], &on[q]) && same_bond(&one[q], &many[q]);

@@ -1,0 +1,22 @@
+/* Multiversioning of the hot loops (the bond, contact and particle blocks
+ * and the laws' batch loops): see DEM_VECTOR_CLONES. */
+#ifndef DEM_CLONES_H
+#define DEM_CLONES_H
+
+/* The functions that compute a block (bonds, contacts, particles) and the
+ * laws' batch loops are compiled three times, for x86-64 with AVX-512
+ * (x86-64-v4), with AVX2 (v3) and for any x86-64, and the CPU picks one at
+ * start; so the default build, which must run on any x86-64, uses the
+ * vector units of the CPU it runs on. Results are the same to the bit on
+ * every CPU: C17 does not let the compiler fuse a multiply and an add, and
+ * no sum is reordered. Builds for this machine only (-march=native,
+ * DEM_NATIVE) need one version. */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(DEM_NATIVE_BUILD) && \
+    !defined(__SANITIZE_ADDRESS__)
+#define DEM_VECTOR_CLONES \
+	__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define DEM_VECTOR_CLONES
+#endif
+
+#endif
