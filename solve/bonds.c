@@ -147,50 +147,183 @@ static void record_crack(engine *e, crack_buf *cb, size_t b, int mode, const bat
 	}
 }
 
-/* One block of bonds [lo, hi). */
-DEM_VECTOR_CLONES static void bond_block(engine *e, size_t lo, size_t hi, int measure, pair_sums *s,
-                                         crack_buf *cb)
+/* The nq bonds idx[0..nq) computed (kinematics, law, failures): what each
+ * adds, into part[0..nq). */
+DEM_VECTOR_CLONES static void bonds_compute(engine *e, const int32_t *idx, int nq, int measure,
+                                            crack_buf *cb, bond_part *part)
 {
 	const particles *P = &e->p;
-	pairlist *L = &e->pairs.bonds;
+	bond *rec = e->pairs.bonds.rec;
 	law_batch B;
 	batch_geom g;
-	memset(s, 0, sizeof *s);
-	for (size_t b0 = lo; b0 < hi; b0 += BATCH) {
-		int nq = (int)(hi - b0 < BATCH ? hi - b0 : BATCH);
-		bond *rec = &L->rec[b0];
-		batch_kinematics(P->x, P->v, P->w, P->r, P->m, rec, nq, e->clock.dt, &B, &g);
-		batch_history_load(rec, &B);
-		e->law->force_batch(e->lp, &B);
-		batch_history_store(rec, &B);
-		for (int q = 0; q < nq; q++) {
-			size_t b = b0 + q;
-			if (B.failed[q])
-				record_crack(e, cb, b, B.failed[q], &g, q);
-			double *f = L->f + 6 * b;
-			batch_force(&B, &g, q, f);
-			s->e_damage += B.e_damage[q];
-			s->e_friction += B.e_friction[q];
-			s->e_viscous += B.fn_viscous[q] * B.vn[q] * e->clock.dt;
-			if (measure) {
-				law_pair pair = law_lane_pair(&B, q);
-				s->e_elastic += e->law->energy(e->lp, &pair, &rec[q]);
-				love_add(s->love, &g, q, f);
-				s->count[rec[q].state]++;
+	batch_kinematics(P->x, P->v, P->w, P->r, P->m, rec, idx, nq, e->clock.dt, &B, &g);
+	batch_history_load(rec, idx, &B);
+	e->law->force_batch(e->lp, &B);
+	batch_history_store(rec, idx, &B);
+	for (int q = 0; q < nq; q++) {
+		bond_part *o = &part[q];
+		if (B.failed[q])
+			record_crack(e, cb, (size_t)idx[q], B.failed[q], &g, q);
+		batch_force(&B, &g, q, o->f);
+		o->e_damage = B.e_damage[q];
+		o->e_friction = B.e_friction[q];
+		o->e_viscous = B.fn_viscous[q] * B.vn[q] * e->clock.dt;
+		if (measure) {
+			law_pair pair = law_lane_pair(&B, q);
+			o->e_elastic = e->law->energy(e->lp, &pair, &rec[idx[q]]);
+			memset(o->love, 0, sizeof o->love);
+			love_add(o->love, &g, q, o->f);
+			o->state = rec[idx[q]].state;
+		}
+	}
+}
+
+/* Bond b's part added to its block's sums s, its force kept (L->f), and
+ * its force and torque added to particle i and, when both, to j. */
+static inline void bond_add(engine *e, size_t b, const bond_part *o, int measure, pair_sums *s,
+                            int both)
+{
+	pairlist *L = &e->pairs.bonds;
+	const bond *bd = &L->rec[b];
+	s->e_damage += o->e_damage;
+	s->e_friction += o->e_friction;
+	s->e_viscous += o->e_viscous;
+	if (measure) {
+		s->e_elastic += o->e_elastic;
+		for (int c = 0; c < 9; c++)
+			s->love[c] += o->love[c];
+		s->count[o->state]++;
+	}
+	memcpy(L->f + 6 * b, o->f, sizeof o->f);
+	double *ai = e->scratch.acc + 6 * bd->i, ri = e->p.r[bd->i];
+	for (int c = 0; c < 3; c++) {
+		ai[c] += o->f[c];
+		ai[3 + c] += ri * o->f[3 + c];
+	}
+	if (both) {
+		double *aj = e->scratch.acc + 6 * bd->j, rj = e->p.r[bd->j];
+		for (int c = 0; c < 3; c++) {
+			aj[c] += -o->f[c];
+			aj[3 + c] += rj * o->f[3 + c];
+		}
+	}
+}
+
+void bonds_cross(engine *e, int k, int measure)
+{
+	bond_split *S = &e->pairs.split;
+	crack_buf *cb = &e->out.thread_cracks[omp_get_thread_num()];
+	for (size_t c0 = S->cfirst[k]; c0 < S->cfirst[k + 1]; c0 += BATCH) {
+		size_t left = S->cfirst[k + 1] - c0;
+		bonds_compute(e, &S->cross[c0], (int)(left < BATCH ? left : BATCH), measure, cb,
+		              &S->part[c0]);
+	}
+}
+
+void bonds_share(engine *e, int k, int measure)
+{
+	bond_split *S = &e->pairs.split;
+	const bond *rec = e->pairs.bonds.rec;
+	crack_buf *cb = &e->out.thread_cracks[omp_get_thread_num()];
+	size_t p0 = S->pfirst[k], p1 = S->pfirst[k + 1];
+	if (p0 == p1)
+		return;
+	memset(e->scratch.acc + 6 * p0, 0, 6 * (p1 - p0) * sizeof *e->scratch.acc);
+	/* The crossing bonds of earlier shares that reach this one come first
+	 * in bond order: they add to their particle j here. */
+	for (int u = 0; u < k; u++)
+		for (size_t c = S->cfirst[u]; c < S->cfirst[u + 1]; c++) {
+			const bond_part *o = &S->part[c];
+			int32_t j = rec[S->cross[c]].j;
+			if ((size_t)j < p0 || (size_t)j >= p1)
+				continue;
+			double *aj = e->scratch.acc + 6 * j, rj = e->p.r[j];
+			for (int d = 0; d < 3; d++) {
+				aj[d] += -o->f[d];
+				aj[3 + d] += rj * o->f[3 + d];
+			}
+		}
+	size_t slot = S->cfirst[k];
+	for (size_t blk = p0 / BLOCK; blk * BLOCK < p1; blk++) {
+		pair_sums *s = &e->scratch.bblock[blk];
+		memset(s, 0, sizeof *s);
+		size_t hi = S->bfirst[blk + 1];
+		for (size_t b0 = S->bfirst[blk]; b0 < hi; b0 += BATCH) {
+			size_t b1 = hi - b0 < BATCH ? hi : b0 + BATCH;
+			int32_t idx[BATCH];
+			bond_part part[BATCH];
+			int nq = 0;
+			for (size_t b = b0; b < b1; b++)
+				if ((size_t)rec[b].j < p1)
+					idx[nq++] = (int32_t)b;
+			bonds_compute(e, idx, nq, measure, cb, part);
+			int q = 0;
+			for (size_t b = b0; b < b1; b++) {
+				int own = (size_t)rec[b].j < p1;
+				bond_add(e, b, own ? &part[q++] : &S->part[slot++], measure, s,
+				         own);
 			}
 		}
 	}
 }
 
-void bonds_forces(engine *e, int measure)
+void bonds_split(engine *e, int shares)
 {
-	size_t nb = nblocks(e->pairs.bonds.n);
-	crack_buf *cb = &e->out.thread_cracks[omp_get_thread_num()];
-#pragma omp for schedule(static) nowait
-	for (size_t k = 0; k < nb; k++) {
-		bond_block(e, k * BLOCK, block_end(k, e->pairs.bonds.n), measure,
-		           &e->scratch.bblock[k], cb);
+	bond_split *S = &e->pairs.split;
+	const pairlist *L = &e->pairs.bonds;
+	size_t n = e->p.n, nblk = nblocks(n);
+	bonds_split_free(S);
+	S->bfirst = xmalloc((nblk + 1) * sizeof *S->bfirst);
+	for (size_t blk = 0, b = 0; blk <= nblk; blk++) {
+		while (b < L->n && (size_t)L->rec[b].i < blk * BLOCK)
+			b++;
+		S->bfirst[blk] = b;
 	}
+	/* Shares of about equal work (a bond costs about a particle), in whole
+	 * particle blocks. */
+	shares = shares < 1 ? 1 : (size_t)shares > nblk ? (int)nblk : shares;
+	shares = shares < 1 ? 1 : shares;
+	S->n = shares;
+	S->pfirst = xmalloc(((size_t)shares + 1) * sizeof *S->pfirst);
+	S->cfirst = xmalloc(((size_t)shares + 1) * sizeof *S->cfirst);
+	double total = (double)(n + L->n);
+	S->pfirst[0] = 0;
+	for (int k = 1, blk = 0; k < shares; k++) {
+		while ((size_t)blk < nblk &&
+		       (double)(S->bfirst[blk] + (size_t)blk * BLOCK) < total * k / shares)
+			blk++;
+		size_t first = (size_t)blk * BLOCK < n ? (size_t)blk * BLOCK : n;
+		S->pfirst[k] = first > S->pfirst[k - 1] ? first : S->pfirst[k - 1];
+	}
+	S->pfirst[shares] = n;
+	size_t ncross = 0;
+	for (int pass = 0; pass < 2; pass++) {
+		ncross = 0;
+		for (int k = 0; k < shares; k++) {
+			S->cfirst[k] = ncross;
+			size_t p1 = S->pfirst[k + 1];
+			if (S->pfirst[k] == p1)
+				continue;
+			for (size_t b = S->bfirst[S->pfirst[k] / BLOCK];
+			     b < L->n && (size_t)L->rec[b].i < p1; b++)
+				if ((size_t)L->rec[b].j >= p1) {
+					if (pass)
+						S->cross[ncross] = (int32_t)b;
+					ncross++;
+				}
+		}
+		S->cfirst[shares] = ncross;
+		if (!pass) {
+			S->cross = xmalloc((ncross + 1) * sizeof *S->cross);
+			S->part = xmalloc((ncross + 1) * sizeof *S->part);
+		}
+	}
+}
+
+void bonds_split_free(bond_split *s)
+{
+	free(s->pfirst), free(s->cfirst), free(s->cross), free(s->part), free(s->bfirst);
+	memset(s, 0, sizeof *s);
 }
 
 /* Move this step's failures from the thread buffers to e->out.cracks, in bond

@@ -18,11 +18,44 @@ typedef struct {
 	int32_t *bond; /* the failed bond of each, for sorting */
 } crack_buf;
 
+/* What a bond computed in this step adds to its block's sums and to its two
+ * particles, kept until it is added in bond order. */
+typedef struct {
+	double f[6]; /* force on i, torque per unit radius (pairlist.h) */
+	double e_damage, e_friction, e_viscous, e_elastic;
+	double love[9];
+	int state;
+} bond_part;
+
+/* The particles split into shares, one per thread of a step: contiguous
+ * ranges of whole particle blocks, each with the bonds whose first particle
+ * (i < j) lies in it. Every particle's force is the sum of its bonds' forces
+ * in bond order, whatever the shares: a share computes its bonds in order
+ * and adds each force to both ends; the bonds that reach into a later share
+ * ("crossing") are computed first, before any share adds, and kept, so the
+ * later share adds them before its own, where bond order puts them. */
+typedef struct {
+	int n;           /* shares */
+	size_t *pfirst;  /* [n + 1] first particle of each share */
+	size_t *cfirst;  /* [n + 1] first crossing bond of each share in cross */
+	int32_t *cross;  /* the crossing bonds, in bond order */
+	bond_part *part; /* what each adds, this step */
+	size_t *bfirst;  /* [particle blocks + 1] first bond of each particle block */
+} bond_split;
+
 /* Bonds between the particles within the law's range (Eq. 16). */
 int bonds_form(engine *e);
 void bonds_init_history(engine *e);
-/* This step's bond forces, inside the step's parallel region. */
-void bonds_forces(engine *e, int measure);
+/* Split the particles into shares for the step's threads (after the bonds
+ * have formed). */
+void bonds_split(engine *e, int shares);
+void bonds_split_free(bond_split *s);
+/* This step's forces of the crossing bonds of share k, inside the step's
+ * parallel region (before a barrier). */
+void bonds_cross(engine *e, int k, int measure);
+/* This step's forces of share k's other bonds, and every bond force on
+ * share k's particles summed into e->scratch.acc (after the barrier). */
+void bonds_share(engine *e, int k, int measure);
 /* Move this step's failures to e->out.cracks, in bond order. */
 void bonds_collect_cracks(engine *e);
 /* Bond b's ends in the assembly's numbering (ends[0] < ends[1]) and, when c

@@ -120,7 +120,7 @@ DEM_VECTOR_CLONES static void contact_block(engine *e, size_t lo, size_t hi, int
 	for (size_t c0 = lo; c0 < hi; c0 += BATCH) {
 		int nq = (int)(hi - c0 < BATCH ? hi - c0 : BATCH);
 		bond *rec = &L->rec[c0];
-		batch_kinematics(P->x, P->v, P->w, P->r, P->m, rec, nq, e->clock.dt, &B, &g);
+		batch_kinematics(P->x, P->v, P->w, P->r, P->m, rec, NULL, nq, e->clock.dt, &B, &g);
 		for (int q = 0; q < nq; q++) {
 			size_t c = c0 + q;
 			const double *k = L->k + 3 * c;

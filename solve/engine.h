@@ -56,6 +56,7 @@ typedef struct {
 /* Bonds and contacts, and the neighbour search that finds contacts. */
 typedef struct {
 	pairlist bonds, contacts, contacts_old;
+	bond_split split; /* the shares of the particles and bonds among threads */
 	cells grid;
 	double skin;      /* m, Verlet skin of the contact list */
 	int rebuild;      /* neighbour lists are due */
@@ -128,7 +129,8 @@ typedef struct {
 	pair_sums *bblock, *cblock;
 	size_t ncblock;
 	particle_sums *pblock;
-	double *z; /* [n] */
+	double *z;   /* [n] */
+	double *acc; /* [n][6] sum of the bond forces and torques per unit radius */
 } engine_scratch;
 
 typedef struct engine engine;

@@ -36,32 +36,35 @@ typedef struct {
 
 _Static_assert((int)BATCH == (int)LAW_LANES, "a batch of pairs is a batch of the laws' lanes");
 
-/* Kinematics of the nq pairs rec[0..nq) into the pair and kinematics lanes
- * of B (B->n = nq), with their tangential histories rotated into B->t.
+/* Kinematics of the nq pairs rec[idx[0..nq)] (rec[0..nq) when idx is NULL)
+ * into the pair and kinematics lanes of B (B->n = nq), with their
+ * tangential histories rotated into B->t.
  * Staged: the records are read into arrays, one loop does all the
  * arithmetic on them (so the square roots and divisions of independent
  * pairs overlap, and the compiler can use the vector units). */
 static inline void batch_kinematics(const double *restrict x, const double *restrict v,
                                     const double *restrict w, const double *restrict r,
-                                    const double *restrict m, const bond *restrict rec, int nq,
-                                    double dt, law_batch *restrict B, batch_geom *restrict g)
+                                    const double *restrict m, const bond *restrict rec,
+                                    const int32_t *restrict idx, int nq, double dt,
+                                    law_batch *restrict B, batch_geom *restrict g)
 {
 	double dx[3][BATCH], dv[3][BATCH], wi[3][BATCH], wj[3][BATCH];
 	B->n = nq;
 	for (int q = 0; q < nq; q++) {
-		int32_t i = rec[q].i, j = rec[q].j;
+		const bond *b = &rec[idx ? idx[q] : q];
+		int32_t i = b->i, j = b->j;
 		for (int c = 0; c < 3; c++) {
 			dx[c][q] = x[3 * j + c] - x[3 * i + c];
 			dv[c][q] = v[3 * j + c] - v[3 * i + c];
 			wi[c][q] = w[3 * i + c];
 			wj[c][q] = w[3 * j + c];
-			B->t[c][q] = rec[q].t[c];
+			B->t[c][q] = b->t[c];
 		}
 		B->ri[q] = r[i];
 		B->rj[q] = r[j];
 		B->mi[q] = m[i];
 		B->mj[q] = m[j];
-		B->d0[q] = rec[q].d0;
+		B->d0[q] = b->d0;
 	}
 	for (int q = 0; q < nq; q++) {
 		double d = sqrt(dx[0][q] * dx[0][q] + dx[1][q] * dx[1][q] + dx[2][q] * dx[2][q]);
@@ -96,23 +99,27 @@ static inline void batch_kinematics(const double *restrict x, const double *rest
 	}
 }
 
-/* The law's history of the bonds rec[0..B->n) into B, and back. */
-static inline void batch_history_load(const bond *restrict rec, law_batch *restrict B)
+/* The law's history of the bonds rec[idx[0..B->n)] into B, and back. */
+static inline void batch_history_load(const bond *restrict rec, const int32_t *restrict idx,
+                                      law_batch *restrict B)
 {
 	for (int q = 0; q < B->n; q++) {
+		const bond *b = &rec[idx[q]];
 		for (int c = 0; c < LAW_NHIST; c++)
-			B->h[c][q] = rec[q].h[c];
-		B->state[q] = rec[q].state;
+			B->h[c][q] = b->h[c];
+		B->state[q] = b->state;
 	}
 }
-static inline void batch_history_store(bond *restrict rec, const law_batch *restrict B)
+static inline void batch_history_store(bond *restrict rec, const int32_t *restrict idx,
+                                       const law_batch *restrict B)
 {
 	for (int q = 0; q < B->n; q++) {
+		bond *b = &rec[idx[q]];
 		for (int c = 0; c < 3; c++)
-			rec[q].t[c] = B->t[c][q];
+			b->t[c] = B->t[c][q];
 		for (int c = 0; c < LAW_NHIST; c++)
-			rec[q].h[c] = B->h[c][q];
-		rec[q].state = B->state[q];
+			b->h[c] = B->h[c][q];
+		b->state = (uint8_t)B->state[q];
 	}
 }
 

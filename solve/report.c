@@ -14,8 +14,12 @@ static const char *const phase_names[] = {"neighbour", "bonds", "contacts", "int
 size_t engine_bytes(const engine *e)
 {
 	size_t n = e->p.n;
-	/* x v w x_ref (3 each), r m inv_m inv_i omega2, orig surf pslot[2], flag */
-	size_t bytes = n * (12 * sizeof(double) + 5 * sizeof(double) + 4 * sizeof(int32_t) + 1);
+	/* x v w x_ref (3 each), r m inv_m inv_i omega2, orig surf pslot[2], flag,
+	 * and the sum of the bond forces on each (6) */
+	size_t bytes = n * (12 * sizeof(double) + 5 * sizeof(double) + 4 * sizeof(int32_t) + 1 +
+	                    6 * sizeof(double));
+	const bond_split *S = &e->pairs.split;
+	bytes += S->cfirst ? S->cfirst[S->n] * (sizeof(int32_t) + sizeof(bond_part)) : 0;
 	const pairlist *l[2] = {&e->pairs.bonds, &e->pairs.contacts};
 	for (int k = 0; k < 2; k++)
 		bytes += l[k]->cap * (sizeof(bond) + 6 * sizeof(double) + 2 * sizeof(int32_t) +

@@ -208,7 +208,8 @@ static void scratch_alloc(engine *e, int threads)
 	e->team = (int)(n / 1000) < e->nthreads ? (int)(n / 1000) : e->nthreads;
 	e->team = e->team > 0 ? e->team : 1;
 	e->scratch.pblock = xcalloc(nblocks(n) + 1, sizeof *e->scratch.pblock);
-	e->scratch.bblock = xcalloc(nblocks(e->pairs.bonds.n) + 1, sizeof *e->scratch.bblock);
+	e->scratch.bblock = xcalloc(nblocks(n) + 1, sizeof *e->scratch.bblock);
+	e->scratch.acc = xmalloc((6 * n + 1) * sizeof *e->scratch.acc);
 	e->out.thread_cracks = xcalloc((size_t)e->nthreads, sizeof *e->out.thread_cracks);
 	e->scratch.z = xmalloc((n + 1) * sizeof *e->scratch.z);
 }
@@ -243,6 +244,7 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 	gauge_init(e);
 	geometry_sizes(e, a);
 	scratch_alloc(e, o->threads);
+	bonds_split(e, e->team);
 	e->prog.peak = e->prog.stage_peak = -INFINITY;
 	boundary_begin_stage(e);
 	contacts_rebuild(e);
@@ -299,7 +301,8 @@ void engine_free(engine *e)
 	surface_free(&e->bc.surf);
 	gauge_free(&e->bc.gauge);
 	free(e->scratch.pblock), free(e->scratch.bblock), free(e->scratch.cblock),
-	    free(e->scratch.z);
+	    free(e->scratch.z), free(e->scratch.acc);
+	bonds_split_free(&e->pairs.split);
 	for (int t = 0; t < e->nthreads; t++)
 		free(e->out.thread_cracks[t].c), free(e->out.thread_cracks[t].bond);
 	free(e->out.thread_cracks);

@@ -178,8 +178,8 @@ static inline void advance(engine *e, int32_t i, const double vn[3], const doubl
 static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 {
 	particles *P = &e->p;
-	double F[3] = {0, 0, 0}, T[3] = {0, 0, 0};
-	gather(&e->pairs.bonds, i, P->r[i], F, T);
+	const double *acc = e->scratch.acc + 6 * i;
+	double F[3] = {acc[0], acc[1], acc[2]}, T[3] = {acc[3], acc[4], acc[5]};
 	gather(&e->pairs.contacts, i, P->r[i], F, T);
 	for (int k = 0; k < 2; k++)
 		if (P->pslot[k][i] >= 0)
@@ -212,12 +212,12 @@ DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
 		integrate_one(e, (int32_t)i, measure, s);
 }
 
-static void particles_integrate(engine *e, int measure)
+/* The particles of share k (bonds.h). */
+static void particles_integrate(engine *e, int k, int measure)
 {
-	size_t nb = nblocks(e->p.n);
-#pragma omp for schedule(static) nowait
-	for (size_t k = 0; k < nb; k++)
-		integrate_block(e, k, measure);
+	const bond_split *S = &e->pairs.split;
+	for (size_t blk = S->pfirst[k] / BLOCK; blk * BLOCK < S->pfirst[k + 1]; blk++)
+		integrate_block(e, blk, measure);
 }
 
 /* Block sums in block order (serial, after the parallel step). */
@@ -269,9 +269,15 @@ void engine_step(engine *e, int measure)
 		                             .volume = e->bc.surf.volume};
 	phase_stop(&e->tm, TM_NEIGHBOUR);
 	phase_start(&e->tm, TM_BONDS);
+	/* Each thread takes shares tid, tid + team, ... (bonds.h): the crossing
+	 * bonds, then, after the contacts' barrier, the other bonds and the
+	 * particles, which read and move only the share's own particles. */
 #pragma omp parallel num_threads(e->team)
 	{
-		bonds_forces(e, measure);
+		int tid = omp_get_thread_num(), nth = omp_get_num_threads(),
+		    shares = e->pairs.split.n;
+		for (int k = tid; k < shares; k += nth)
+			bonds_cross(e, k, measure);
 #pragma omp master
 		{
 			phase_stop(&e->tm, TM_BONDS);
@@ -281,11 +287,19 @@ void engine_step(engine *e, int measure)
 #pragma omp master
 		{
 			phase_stop(&e->tm, TM_CONTACTS);
+			phase_start(&e->tm, TM_BONDS);
+		}
+		for (int k = tid; k < shares; k += nth)
+			bonds_share(e, k, measure);
+#pragma omp master
+		{
+			phase_stop(&e->tm, TM_BONDS);
 			phase_start(&e->tm, TM_INTEGRATE);
 		}
-		particles_integrate(e, measure);
+		for (int k = tid; k < shares; k += nth)
+			particles_integrate(e, k, measure);
 	}
-	pair_sums_total(e->scratch.bblock, nblocks(e->pairs.bonds.n), &e->sums.bonds);
+	pair_sums_total(e->scratch.bblock, nblocks(e->p.n), &e->sums.bonds);
 	pair_sums_total(e->scratch.cblock, nblocks(e->pairs.contacts.n), &e->sums.contacts);
 	particles_sum(e);
 	phase_stop(&e->tm, TM_INTEGRATE);
