@@ -81,9 +81,6 @@ int bonds_form(engine *e)
 	cells_free(&g);
 	L->cap = L->n;
 	L->f = xcalloc(6 * L->n + 1, sizeof *L->f);
-	L->off = xmalloc((P->n + 1) * sizeof *L->off);
-	L->ref = xmalloc((2 * L->n + 1) * sizeof *L->ref);
-	pairlist_csr(L, P->n);
 	return 0;
 }
 

@@ -19,15 +19,20 @@
 #include "solve/pairlist.h"
 #include "solve/platens.h"
 
+/* Whether i < j are bonded: a binary search of the bonds, sorted by (i, j). */
 static int bonded(const engine *e, int32_t i, int32_t j)
 {
 	const pairlist *B = &e->pairs.bonds;
-	for (int32_t q = B->off[i]; q < B->off[i + 1]; q++) {
-		const bond *b = &B->rec[B->ref[q] >> 1];
-		if ((B->ref[q] & 1 ? b->i : b->j) == j)
-			return 1;
+	size_t lo = 0, hi = B->n;
+	while (lo < hi) {
+		size_t mid = lo + (hi - lo) / 2;
+		const bond *b = &B->rec[mid];
+		if (b->i < i || (b->i == i && b->j < j))
+			lo = mid + 1;
+		else
+			hi = mid;
 	}
-	return 0;
+	return lo < B->n && B->rec[lo].i == i && B->rec[lo].j == j;
 }
 
 static void reserve(pairlist *l, size_t n, size_t np)

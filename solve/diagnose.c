@@ -29,9 +29,10 @@ static int64_t worst_pair(const engine *e, const pairlist *L, size_t *who, int *
 	free(n);
 	if (!*count)
 		return -1;
-	for (int32_t q = L->off[best]; q < L->off[best + 1]; q++)
-		if (!finite6(L->f + 6 * (L->ref[q] >> 1)))
-			return L->ref[q] >> 1;
+	for (size_t b = 0; b < L->n; b++)
+		if (((size_t)L->rec[b].i == best || (size_t)L->rec[b].j == best) &&
+		    !finite6(L->f + 6 * b))
+			return (int64_t)b;
 	return -1;
 }
 
@@ -143,7 +144,6 @@ int diagnose_timestep(const engine *e, char *msg, size_t n)
 	         "stopped: time step %g s above the stable limit %g s at step %" PRId64
 	         ": particle %d has %d bonds and %d contacts (lower time_step.safety)",
 	         e->clock.dt, crit, e->clock.step, P->orig[worst],
-	         e->pairs.bonds.off[worst + 1] - e->pairs.bonds.off[worst],
-	         e->pairs.contacts.off[worst + 1] - e->pairs.contacts.off[worst]);
+	         pairlist_count(&e->pairs.bonds, worst), pairlist_count(&e->pairs.contacts, worst));
 	return 1;
 }

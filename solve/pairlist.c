@@ -52,3 +52,11 @@ void love_add(double love[9], const batch_geom *g, int q, const double f[6])
 		for (int c = 0; c < 3; c++)
 			love[3 * a + c] += g->d[q] * g->n[a][q] * f[c];
 }
+
+int pairlist_count(const pairlist *l, size_t i)
+{
+	int n = 0;
+	for (size_t b = 0; b < l->n; b++)
+		n += (size_t)l->rec[b].i == i || (size_t)l->rec[b].j == i;
+	return n;
+}

@@ -18,7 +18,8 @@ typedef struct {
 	double *f;    /* [n][6]: force on i (N), then torque per unit radius (N): the
 	                 torque on i is r_i times it, on j r_j times it */
 	double *k;    /* [n][3] kn, ks, cn of a contact (contacts only) */
-	int32_t *off; /* [np + 1] */
+	int32_t *off; /* [np + 1] (contacts only: bonds add their forces as
+	                 they are computed, bonds.h) */
 	int32_t *ref; /* [2n] pair index * 2 + 1 if the particle is its j */
 } pairlist;
 
@@ -34,6 +35,8 @@ void pairlist_free(pairlist *l);
 /* Build the gather index of the l->n pairs, sorted by (i, j), over np
  * particles (l->off and l->ref allocated by the caller). */
 void pairlist_csr(pairlist *l, size_t np);
+/* The number of pairs particle i belongs to (a scan: for messages). */
+int pairlist_count(const pairlist *l, size_t i);
 /* The sums of nb blocks, added in block order. */
 void pair_sums_total(const pair_sums *blk, size_t nb, pair_sums *out);
 /* Love–Weber sums Σ (x_j - x_i) ⊗ F_i of pair q of a batch. */

@@ -20,11 +20,11 @@ size_t engine_bytes(const engine *e)
 	                    6 * sizeof(double));
 	const bond_split *S = &e->pairs.split;
 	bytes += S->cfirst ? S->cfirst[S->n] * (sizeof(int32_t) + sizeof(bond_part)) : 0;
-	const pairlist *l[2] = {&e->pairs.bonds, &e->pairs.contacts};
-	for (int k = 0; k < 2; k++)
-		bytes += l[k]->cap * (sizeof(bond) + 6 * sizeof(double) + 2 * sizeof(int32_t) +
-		                      (l[k]->k ? 3 * sizeof(double) : 0)) +
-		         (n + 1) * sizeof(int32_t);
+	/* bonds: record, force; contacts: record, force, gather index, constants */
+	bytes += e->pairs.bonds.cap * (sizeof(bond) + 6 * sizeof(double));
+	bytes += e->pairs.contacts.cap * (sizeof(bond) + 6 * sizeof(double) + 2 * sizeof(int32_t) +
+	                                  3 * sizeof(double)) +
+	         (n + 1) * sizeof(int32_t);
 	for (int k = 0; k < 2; k++)
 		bytes += e->bc.pl.cap[k] * (2 * sizeof(platen_contact) + sizeof(int32_t));
 	return bytes;

@@ -254,7 +254,7 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 		return err_set("time step %g s above the stable limit %g s, set by particle %d "
 		               "(radius %g m, %d bonds): lower time_step.dt or leave it out",
 		               cs->dt, e->clock.dt_crit, e->p.orig[worst], e->p.r[worst],
-		               e->pairs.bonds.off[worst + 1] - e->pairs.bonds.off[worst]);
+		               pairlist_count(&e->pairs.bonds, worst));
 	if (!isfinite(e->clock.dt_crit))
 		return err_set("no bond or contact: the critical time step is undefined "
 		               "(give time_step.dt)");

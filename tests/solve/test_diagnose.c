@@ -152,7 +152,7 @@ int main(void)
 	size_t k = 17;
 	e.p.v[3 * k] = NAN;
 	int32_t bad = e.p.orig[k];
-	int nb = e.pairs.bonds.off[k + 1] - e.pairs.bonds.off[k];
+	int nb = pairlist_count(&e.pairs.bonds, k);
 	int code;
 	char *status = run_to_end(&e, "nan.h5", &code);
 	CHECK(code == RUN_FAILED);
