@@ -5,5 +5,9 @@
 
 /* Seconds since an arbitrary origin, monotonic. */
 double timer_now(void);
+/* Seconds of CPU time used by the calling thread: unlike the wall clock it
+ * does not count the time the thread waits for a core, so it measures a
+ * one-thread run on a machine shared with other work. */
+double timer_thread_cpu(void);
 
 #endif

@@ -47,6 +47,7 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	double n = (double)e->p.n, nb = (double)e->pairs.bonds.n;
 	double rate = wall > 0 ? steps * n / wall : 0;
 	double ns_bond = steps > 0 && nb > 0 ? 1e9 * e->tm.total[TM_BONDS] / (steps * nb) : 0;
+	double ns_bond_cpu = steps > 0 && nb > 0 ? 1e9 * e->tm.cpu[TM_BONDS] / (steps * nb) : 0;
 	size_t state = engine_bytes(e);
 	long rss = peak_rss();
 	if (!o->quiet) {
@@ -73,6 +74,7 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	json_num(j, "wall", wall);
 	json_num(j, "particle_steps_per_second", rate);
 	json_num(j, "ns_per_bond", ns_bond);
+	json_num(j, "ns_per_bond_cpu", ns_bond_cpu);
 	json_num(j, "state_bytes", (double)state);
 	json_num(j, "peak_rss_bytes", (double)rss);
 	json_num(j, "start_rss_bytes", (double)rss_start);
@@ -82,6 +84,12 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	cJSON *ph = cJSON_AddObjectToObject(j, "phases");
 	for (int k = 0; k < TM_TOTAL; k++)
 		json_num(ph, phase_names[k], e->tm.total[k]);
+	/* The same in CPU time of the first thread (the whole run's on one
+	 * thread): what a shared machine disturbs least. */
+	json_num(j, "cpu", e->tm.cpu[TM_TOTAL]);
+	cJSON *pc = cJSON_AddObjectToObject(j, "phases_cpu");
+	for (int k = 0; k < TM_TOTAL; k++)
+		json_num(pc, phase_names[k], e->tm.cpu[k]);
 	if (json_write(o->report, j))
 		fatal(NULL);
 }

@@ -13,10 +13,20 @@ enum { TM_NEIGHBOUR, TM_BONDS, TM_CONTACTS, TM_INTEGRATE, TM_OUTPUT, TM_TOTAL, T
 typedef struct {
 	double total[TM_N]; /* s, accumulated */
 	double start[TM_N]; /* s, of the phase running */
+	double cpu[TM_N];   /* s, CPU time of the timing thread, accumulated */
+	double cpu_start[TM_N];
 } phase_timers;
 
-static inline void phase_start(phase_timers *t, int k) { t->start[k] = timer_now(); }
+static inline void phase_start(phase_timers *t, int k)
+{
+	t->start[k] = timer_now();
+	t->cpu_start[k] = timer_thread_cpu();
+}
 
-static inline void phase_stop(phase_timers *t, int k) { t->total[k] += timer_now() - t->start[k]; }
+static inline void phase_stop(phase_timers *t, int k)
+{
+	t->total[k] += timer_now() - t->start[k];
+	t->cpu[k] += timer_thread_cpu() - t->cpu_start[k];
+}
 
 #endif
