@@ -1,8 +1,9 @@
 /* Bonds: formed once at start between spheres within the law's interaction
  * range (d <= range (r_i + r_j), Eq. 16), kept in one flat array sorted by
  * (i, j), each computed once per step in batches handed to the law's
- * force_batch. Forces reach the particles through the CSR gather of step.c.
- * Bond failures are collected per thread and merged in bond order. */
+ * force_batch, each force added to both its particles in bond order (the
+ * shares of bond_split, bonds.h). Bond failures are collected per thread
+ * and merged in bond order. */
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>

@@ -2,9 +2,10 @@
  *
  * Data layout (DESIGN.md §4): particles as separate arrays in Morton order
  * (orig[] maps back to the assembly's indices); bonds in one flat array of
- * `bond` records, each computed once per step into a per-bond force, then
- * gathered per particle through a CSR index (pairlist.h); non-bonded
- * contacts the same way from a Verlet list. Everything a particle needs from
+ * `bond` records, each computed once per step and its force added to both
+ * particles in bond order (bonds.h); non-bonded contacts from a Verlet
+ * list, their forces gathered per particle through a CSR index
+ * (pairlist.h). Everything a particle needs from
  * another one is read by index from these arrays, so a halo of ghost
  * particles could later provide it under an MPI domain decomposition.
  * Reductions are summed in fixed blocks (blocks.h), so results do not

@@ -1,8 +1,10 @@
 /* Pair lists: the bonds and the non-bonded contacts are both a flat array of
- * pair records with one force per pair, computed once per step, and a CSR
- * index through which every particle gathers the forces of its pairs in a
- * fixed order (so sums do not depend on the number of threads). Also the
- * per-block sums over pairs (blocks.h) and the Love–Weber sum of a pair. */
+ * pair records with one force per pair, computed once per step; the
+ * contacts also have a CSR index through which every particle gathers the
+ * forces of its contacts in a fixed order (so sums do not depend on the
+ * number of threads; the bonds add theirs as they are computed, bonds.h).
+ * Also the per-block sums over pairs (blocks.h) and the Love–Weber sum of a
+ * pair. */
 #ifndef DEM_PAIRLIST_H
 #define DEM_PAIRLIST_H
 

@@ -1,5 +1,6 @@
-/* One time step: forces at x(t) from the bonds and contacts, gathered per
- * particle with the platen contacts and the confinement, then central
+/* One time step: forces at x(t) from the bonds (summed per particle as they
+ * are computed, bonds.h) and the contacts (gathered per particle), with the
+ * platen contacts and the confinement, then central
  * differences with rotations (Oñate et al. 2015 Eq. 5-10):
  *
  *   v(t + Δt/2) = v(t - Δt/2) + Δt (F + F_damp) / m          (Eq. 5-6)
