@@ -19,7 +19,11 @@ static int write_geometry(hid_t file, const dem_geometry *g)
 	         h5_attr_f64v(h, "bbox_max", g->bbox_max, 3) ||
 	         h5_attr_f64(h, "volume", g->volume) || h5_attr_f64(h, "area", g->area) ||
 	         h5_write(h, "vertices", H5T_NATIVE_DOUBLE, g->vert, g->nvert, 3, "m") ||
-	         h5_write(h, "triangles", H5T_NATIVE_INT32, g->tri, g->ntri, 3, NULL);
+	         h5_write(h, "triangles", H5T_NATIVE_INT32, g->tri, g->ntri, 3, NULL) ||
+	         h5_index(h, "vertex", g->nvert, 0) || h5_index(h, "triangle", g->ntri, 0) ||
+	         h5_index(h, "xyz", 3, 0) || h5_index(h, "corner", 3, 0) ||
+	         h5_attach(h, "vertices", (const char *[]){"vertex", "xyz"}, 2) ||
+	         h5_attach(h, "triangles", (const char *[]){"triangle", "corner"}, 2);
 	H5Gclose(h);
 	return rc ? -1 : 0;
 }
@@ -107,6 +111,13 @@ static int write_report(hid_t file, const dem_report *r)
 	              NULL) ||
 	     h5_write(h, "psd_number", H5T_NATIVE_DOUBLE, r->psd_number, r->npsd, 0, NULL) ||
 	     h5_write(h, "psd_volume", H5T_NATIVE_DOUBLE, r->psd_volume, r->npsd, 0, NULL);
+	/* Each table's first column is the coordinate of its rows. */
+	rc = rc || h5_scale(h, "profile_w") || h5_scale(h, "psd_size");
+	static const char *const over_size[] = {"psd_target_number", "psd_target_volume",
+	                                        "psd_number", "psd_volume"};
+	rc = rc || h5_attach(h, "profile_phi", (const char *[]){"profile_w"}, 1);
+	for (int k = 0; !rc && k < 4; k++)
+		rc = h5_attach(h, over_size[k], (const char *[]){"psd_size"}, 1);
 	H5Gclose(h);
 	return rc ? -1 : 0;
 }
@@ -150,7 +161,11 @@ int assembly_write_groups(hid_t file, const dem_assembly *a)
 	int rc = prov_write(p, NULL, &a->prov) ||
 	         h5_write(p, "x", H5T_NATIVE_DOUBLE, a->x, a->n, 3, "m") ||
 	         h5_write(p, "r", H5T_NATIVE_DOUBLE, a->r, a->n, 0, "m") ||
-	         h5_write(p, "material", H5T_NATIVE_INT32, a->material, a->n, 0, NULL);
+	         h5_write(p, "material", H5T_NATIVE_INT32, a->material, a->n, 0, NULL) ||
+	         h5_index(p, "particle", a->n, 0) || h5_index(p, "xyz", 3, 0) ||
+	         h5_attach(p, "x", (const char *[]){"particle", "xyz"}, 2) ||
+	         h5_attach(p, "r", (const char *[]){"particle"}, 1) ||
+	         h5_attach(p, "material", (const char *[]){"particle"}, 1);
 	H5Gclose(p);
 	if (rc || write_geometry(file, &a->geom) || write_report(file, &a->report))
 		return -1;

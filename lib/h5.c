@@ -4,13 +4,16 @@
 #include <string.h>
 #include <sys/statvfs.h>
 
+#include <hdf5_hl.h>
+
 #include "lib/afile.h"
 #include "lib/err.h"
 #include "lib/h5.h"
 
-/* The format version this build writes, and the oldest it reads: 2 stores
- * strings with a fixed length, 1 with a variable length. */
-#define FORMAT_VERSION 2
+/* The format version this build writes, and the oldest it reads: 3 names
+ * units `units` (CF) and attaches dimension scales, 2 names them `unit`
+ * and stores strings with a fixed length, 1 with a variable length. */
+#define FORMAT_VERSION 3
 #define FORMAT_OLDEST 1
 
 /* HDF5 closes the files still open when the process exits. After a write
@@ -374,7 +377,7 @@ int h5_rows_open(h5_rows *r, hid_t loc, const char *name, hid_t type, size_t row
 	hid_t space = H5Screate_simple(cols ? 2 : 1, dims, NULL);
 	hid_t dcpl = rows * (cols ? cols : 1) >= 4096 ? chunked_plist(rows, cols, 0) : H5P_DEFAULT;
 	r->d = H5Dcreate2(loc, name, type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
-	if (r->d >= 0 && unit && unit[0] && h5_attr_str(r->d, "unit", unit))
+	if (r->d >= 0 && unit && unit[0] && h5_attr_str(r->d, "units", unit))
 		r->failed = 1;
 	if (dcpl != H5P_DEFAULT)
 		H5Pclose(dcpl);
@@ -521,7 +524,7 @@ int h5_create_ext(hid_t loc, const char *name, hid_t type, size_t cols, const ch
 	hid_t d = H5Dcreate2(loc, name, type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
 	int rc = d < 0 ? -1 : 0;
 	if (rc == 0 && unit && unit[0])
-		rc = h5_attr_str(d, "unit", unit);
+		rc = h5_attr_str(d, "units", unit);
 	if (d >= 0)
 		H5Dclose(d);
 	H5Pclose(dcpl);
@@ -572,5 +575,146 @@ int h5_truncate(hid_t loc, const char *name, size_t rows)
 	if (rc < 0)
 		return err_set("%s: dataset '%s': cannot keep %zu rows (it has %llu)", h5_name(loc),
 		               name, rows, (unsigned long long)dims[0]);
+	return 0;
+}
+
+long long h5_rows_of(hid_t loc, const char *name)
+{
+	hid_t d = h5_exists(loc, name) ? H5Dopen2(loc, name, H5P_DEFAULT) : -1;
+	if (d < 0)
+		return -1;
+	hid_t s = H5Dget_space(d);
+	hsize_t dims[3] = {0, 0, 0};
+	int rank = H5Sget_simple_extent_ndims(s);
+	if (rank >= 1 && rank <= 3)
+		H5Sget_simple_extent_dims(s, dims, NULL);
+	H5Sclose(s);
+	H5Dclose(d);
+	return rank >= 1 && rank <= 3 ? (long long)dims[0] : -1;
+}
+
+char *h5_read_units(hid_t loc, const char *name)
+{
+	hid_t d = H5Dopen2(loc, name, H5P_DEFAULT);
+	if (d < 0) {
+		err_set("%s: dataset '%s': cannot open", h5_name(loc), name);
+		return NULL;
+	}
+	char *out = H5Aexists(d, "units") > 0  ? h5_read_attr_str(d, "units")
+	            : H5Aexists(d, "unit") > 0 ? h5_read_attr_str(d, "unit")
+	                                       : xstrdup("");
+	H5Dclose(d);
+	return out;
+}
+
+int h5_scale(hid_t loc, const char *name)
+{
+	hid_t d = H5Dopen2(loc, name, H5P_DEFAULT);
+	herr_t rc = d < 0 ? -1 : H5DSset_scale(d, name);
+	if (d >= 0)
+		H5Dclose(d);
+	if (rc < 0)
+		return err_set("%s: cannot make dataset '%s' a dimension scale", h5_name(loc),
+		               name);
+	return 0;
+}
+
+/* Rows [at, at + n) of the index dataset d: the values at, at + 1, ... */
+static int put_index(hid_t d, size_t at, size_t n)
+{
+	int rc = 0;
+	int64_t *v = xmalloc(H5_PIECE_ELEMENTS * sizeof *v);
+	for (size_t done = 0; !rc && done < n;) {
+		size_t m = n - done < H5_PIECE_ELEMENTS ? n - done : H5_PIECE_ELEMENTS;
+		for (size_t k = 0; k < m; k++)
+			v[k] = (int64_t)(at + done + k);
+		rc = h5_slab(d, H5T_NATIVE_INT64, at + done, m, 0, v, 1);
+		done += m;
+	}
+	free(v);
+	return rc;
+}
+
+int h5_index(hid_t loc, const char *name, size_t rows, int ext)
+{
+	if (ext) {
+		if (h5_create_ext(loc, name, H5T_NATIVE_INT64, 0, NULL))
+			return -1;
+	} else {
+		h5_rows r;
+		int rc = h5_rows_open(&r, loc, name, H5T_NATIVE_INT64, rows, 0, NULL);
+		int rp = rc || put_index(r.d, 0, rows);
+		r.at = rp ? 0 : rows;
+		if (h5_rows_close(&r) || rp)
+			return rc ? -1 : h5_write_dataset_error(loc, name);
+	}
+	return h5_scale(loc, name) || (ext && h5_index_append(loc, name, rows)) ? -1 : 0;
+}
+
+int h5_index_append(hid_t loc, const char *name, size_t rows)
+{
+	if (rows == 0)
+		return 0;
+	long long at = h5_rows_of(loc, name);
+	hid_t d = at < 0 ? -1 : H5Dopen2(loc, name, H5P_DEFAULT);
+	hsize_t dims[1] = {(hsize_t)at + rows};
+	int rc = d < 0 || H5Dset_extent(d, dims) < 0 || put_index(d, (size_t)at, rows);
+	if (d >= 0)
+		H5Dclose(d);
+	return rc ? h5_write_dataset_error(loc, name) : 0;
+}
+
+int h5_attach(hid_t loc, const char *name, const char *const *dims, int naxes)
+{
+	hid_t d = H5Dopen2(loc, name, H5P_DEFAULT);
+	int rc = d < 0;
+	for (int k = 0; !rc && k < naxes; k++) {
+		if (!dims[k])
+			continue;
+		hid_t s = H5Dopen2(loc, dims[k], H5P_DEFAULT);
+		rc = s < 0 || H5DSattach_scale(d, s, (unsigned)k) < 0;
+		if (s >= 0)
+			H5Dclose(s);
+		if (rc)
+			err_set("%s: cannot attach dimension scale '%s' to dataset '%s'",
+			        h5_name(loc), dims[k], name);
+	}
+	if (d >= 0)
+		H5Dclose(d);
+	else
+		err_set("%s: dataset '%s': cannot open", h5_name(loc), name);
+	return rc ? -1 : 0;
+}
+
+/* H5DSiterate_scales visitor: remember the scale attached to an axis. */
+static herr_t scale_of(hid_t d, unsigned axis, hid_t scale, void *out)
+{
+	(void)d, (void)axis;
+	*(hid_t *)out = H5Dopen2(scale, ".", H5P_DEFAULT);
+	return 1;
+}
+
+int h5_delete(hid_t loc, const char *name)
+{
+	if (!h5_exists(loc, name))
+		return 0;
+	hid_t d = H5Dopen2(loc, name, H5P_DEFAULT);
+	if (d >= 0) {
+		hid_t s = H5Dget_space(d);
+		int rank = H5Sget_simple_extent_ndims(s);
+		H5Sclose(s);
+		for (int k = 0; k < rank; k++) {
+			hid_t scale = -1;
+			if (H5DSget_num_scales(d, (unsigned)k) > 0 &&
+			    H5DSiterate_scales(d, (unsigned)k, NULL, scale_of, &scale) >= 0 &&
+			    scale >= 0)
+				H5DSdetach_scale(d, scale, (unsigned)k);
+			if (scale >= 0)
+				H5Dclose(scale);
+		}
+		H5Dclose(d);
+	}
+	if (H5Ldelete(loc, name, H5P_DEFAULT) < 0)
+		return err_set("%s: cannot delete dataset '%s'", h5_name(loc), name);
 	return 0;
 }

@@ -50,9 +50,9 @@ int h5_read_attr_i64(hid_t obj, const char *name, int64_t *value);
 int h5_read_attr_f64v(hid_t obj, const char *name, double *v, size_t n);
 
 /* Whole datasets of rank 1 (cols == 0) or rank 2 ([rows, cols]) with an
- * optional `unit` attribute. type is H5T_NATIVE_DOUBLE, H5T_NATIVE_INT32,
- * H5T_NATIVE_INT64 or H5T_NATIVE_UINT8. Large datasets are chunked and
- * compressed. */
+ * optional `units` attribute (CF's name; format 2 and older wrote `unit`). type is
+ * H5T_NATIVE_DOUBLE, H5T_NATIVE_INT32, H5T_NATIVE_INT64 or H5T_NATIVE_UINT8. Large datasets are
+ * chunked and compressed. */
 int h5_write(hid_t loc, const char *name, hid_t type, const void *data, size_t rows, size_t cols,
              const char *unit);
 /* The same dataset written a piece at a time, in row order, so that the
@@ -86,5 +86,27 @@ int h5_create_ext(hid_t loc, const char *name, hid_t type, size_t cols, const ch
 int h5_append(hid_t loc, const char *name, hid_t type, const void *data, size_t rows, size_t cols);
 /* Keep the first rows rows of an extendible dataset (error if it has fewer). */
 int h5_truncate(hid_t loc, const char *name, size_t rows);
+/* The row count of dataset name under loc (-1 if it cannot be opened). */
+long long h5_rows_of(hid_t loc, const char *name);
+
+/* The `units` attribute of dataset name under loc, or the `unit` of files
+ * of format 2 and older; "" when it has neither. Caller frees; NULL on
+ * error. */
+char *h5_read_units(hid_t loc, const char *name);
+
+/* Dimension scales (HDF5's high-level H5DS API, as netCDF-4 and so xarray
+ * read them). h5_index writes dataset name under loc holding 0, 1, ...,
+ * rows - 1 (int64; extendible when ext) and makes it the scale of a
+ * dimension of that name; h5_index_append extends such an extendible index
+ * by rows rows. h5_scale makes an existing rank-1 dataset a scale.
+ * h5_attach attaches to each axis k of dataset name the scale dims[k] (a
+ * path from loc; NULL leaves the axis alone); naxes is the dataset's rank. */
+int h5_index(hid_t loc, const char *name, size_t rows, int ext);
+int h5_index_append(hid_t loc, const char *name, size_t rows);
+int h5_scale(hid_t loc, const char *name);
+int h5_attach(hid_t loc, const char *name, const char *const *dims, int naxes);
+/* Delete dataset name under loc, detaching it first from the scales of its
+ * axes (so their back references stay valid); nothing if it is absent. */
+int h5_delete(hid_t loc, const char *name);
 
 #endif

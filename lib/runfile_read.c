@@ -63,13 +63,8 @@ static int read_history(hid_t f, dem_run *r)
 			                     r->nrows, 0);
 			if (c == 0)
 				r->nrows = rows;
-			if (!rc) {
-				hid_t d = H5Dopen2(h, tok, H5P_DEFAULT);
-				r->col_unit[c] = H5Aexists(d, "unit") > 0
-				                     ? h5_read_attr_str(d, "unit")
-				                     : xstrdup("");
-				H5Dclose(d);
-			}
+			if (!rc)
+				rc = !(r->col_unit[c] = h5_read_units(h, tok));
 		}
 	}
 	free(order);

@@ -2,6 +2,7 @@
  * append history rows, snapshots and cracks, and commit it under its final
  * name. The layout is share/doc/format.md; the reader is runfile_read.c. */
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,17 +21,93 @@ struct run_writer {
 	char path[4096], tmp[4096];
 	int ncols;
 	char **names;
+	hid_t *types; /* [ncols] the type of each column in the file */
 	size_t buffered;
 	double *buffer; /* [ncols][HISTORY_BUFFER_ROWS], column-major */
 };
 
 hid_t run_hid(run_writer *w) { return w->file; }
 
+/* The history columns that hold integers, and their type in the file; the
+ * others are float64. (Format 2 and older stored them all as float64.) */
+static hid_t column_type(const char *name)
+{
+	if (strcmp(name, "step") == 0)
+		return H5T_NATIVE_INT64;
+	if (strcmp(name, "stage") == 0)
+		return H5T_NATIVE_INT32;
+	return H5T_NATIVE_DOUBLE;
+}
+
+/* The history's dimension scale: its time column (which netCDF readers
+ * such as xarray then show as the table's coordinate). */
+#define HISTORY_SCALE "t"
+
+/* Make the history's t column the scale of its rows and attach the other
+ * columns to it (nothing when the table has no t column). */
+static int history_scales(hid_t h, char *const *names, int ncols)
+{
+	if (!h5_exists(h, HISTORY_SCALE))
+		return 0;
+	int rc = h5_scale(h, HISTORY_SCALE);
+	const char *dims[1] = {HISTORY_SCALE};
+	for (int c = 0; !rc && c < ncols; c++)
+		if (strcmp(names[c], HISTORY_SCALE) != 0)
+			rc = h5_attach(h, names[c], dims, 1);
+	return rc;
+}
+
+/* The crack log's columns, their type and units; the rows are the
+ * dimension `crack` (an index) and the three components of x and normal
+ * the dimension `xyz`. */
+enum { F64, I64, I32, U8 };
+static hid_t native(int type)
+{
+	return type == F64   ? H5T_NATIVE_DOUBLE
+	       : type == I64 ? H5T_NATIVE_INT64
+	       : type == I32 ? H5T_NATIVE_INT32
+	                     : H5T_NATIVE_UINT8;
+}
+static const struct {
+	const char *name;
+	int type;
+	size_t cols;
+	const char *unit;
+} crack_fields[] = {
+    {"t", F64, 0, "s"},      {"strain_axial", F64, 0, ""},
+    {"step", I64, 0, ""},    {"i", I32, 0, ""},
+    {"j", I32, 0, ""},       {"mode", I32, 0, ""},
+    {"x", F64, 3, "m"},      {"normal", F64, 3, ""},
+    {"radius", F64, 0, "m"}, {"fn", F64, 0, "N"},
+    {"fs", F64, 0, "N"},
+};
+enum { NCRACK_FIELDS = sizeof crack_fields / sizeof crack_fields[0] };
+
+static int create_cracks(hid_t k)
+{
+	int rc = h5_index(k, "crack", 0, 1) || h5_index(k, "xyz", 3, 0);
+	const char *dims[2] = {"crack", "xyz"};
+	for (int c = 0; !rc && c < NCRACK_FIELDS; c++) {
+		rc = h5_create_ext(k, crack_fields[c].name, native(crack_fields[c].type),
+		                   crack_fields[c].cols, crack_fields[c].unit) ||
+		     h5_attach(k, crack_fields[c].name, dims, crack_fields[c].cols ? 2 : 1);
+		/* CF: each crack's time is a coordinate of its row. */
+		if (!rc && c > 0) {
+			hid_t d = H5Dopen2(k, crack_fields[c].name, H5P_DEFAULT);
+			rc = d < 0 || h5_attr_str(d, "coordinates", "t");
+			if (d >= 0)
+				H5Dclose(d);
+		}
+	}
+	return rc;
+}
+
 static void writer_free(run_writer *w)
 {
 	for (int c = 0; c < w->ncols; c++)
 		free(w->names[c]);
 	free(w->names);
+	free(w->types);
 	free(w->buffer);
 	free(w);
 }
@@ -47,6 +124,7 @@ run_writer *run_create(const char *path, const dem_provenance *prov, const dem_a
 	}
 	w->ncols = ncols;
 	w->names = xcalloc((size_t)ncols, sizeof *w->names);
+	w->types = xcalloc((size_t)ncols, sizeof *w->types);
 	w->buffer = xmalloc((size_t)ncols * HISTORY_BUFFER_ROWS * sizeof *w->buffer);
 	int rc = prov_write(w->file, RUN_FORMAT, prov) ||
 	         h5_attr_str(w->file, "status", "running") || assembly_write_groups(w->file, a);
@@ -54,8 +132,10 @@ run_writer *run_create(const char *path, const dem_provenance *prov, const dem_a
 	rc = rc || h < 0;
 	for (int c = 0; !rc && c < ncols; c++) {
 		w->names[c] = xstrdup(cols[c].name);
-		rc = h5_create_ext(h, cols[c].name, H5T_NATIVE_DOUBLE, 0, cols[c].unit);
+		w->types[c] = column_type(cols[c].name);
+		rc = h5_create_ext(h, cols[c].name, w->types[c], 0, cols[c].unit);
 	}
+	rc = rc || history_scales(h, w->names, ncols);
 	if (h >= 0) {
 		/* Column order, so readers list them as the writer meant. */
 		size_t len = 1;
@@ -78,17 +158,7 @@ run_writer *run_create(const char *path, const dem_provenance *prov, const dem_a
 	hid_t k = rc ? -1 : h5_group(w->file, "cracks");
 	rc = rc || k < 0;
 	if (!rc) {
-		rc = h5_create_ext(k, "t", H5T_NATIVE_DOUBLE, 0, "s") ||
-		     h5_create_ext(k, "strain_axial", H5T_NATIVE_DOUBLE, 0, "") ||
-		     h5_create_ext(k, "step", H5T_NATIVE_INT64, 0, "") ||
-		     h5_create_ext(k, "i", H5T_NATIVE_INT32, 0, "") ||
-		     h5_create_ext(k, "j", H5T_NATIVE_INT32, 0, "") ||
-		     h5_create_ext(k, "mode", H5T_NATIVE_INT32, 0, "") ||
-		     h5_create_ext(k, "x", H5T_NATIVE_DOUBLE, 3, "m") ||
-		     h5_create_ext(k, "normal", H5T_NATIVE_DOUBLE, 3, "") ||
-		     h5_create_ext(k, "radius", H5T_NATIVE_DOUBLE, 0, "m") ||
-		     h5_create_ext(k, "fn", H5T_NATIVE_DOUBLE, 0, "N") ||
-		     h5_create_ext(k, "fs", H5T_NATIVE_DOUBLE, 0, "N");
+		rc = create_cracks(k);
 		H5Gclose(k);
 	}
 	if (rc) {
@@ -97,9 +167,6 @@ run_writer *run_create(const char *path, const dem_provenance *prov, const dem_a
 	}
 	return w;
 }
-
-static const char *const crack_columns[] = {"t", "strain_axial", "step",   "i",  "j", "mode",
-                                            "x", "normal",       "radius", "fn", "fs"};
 
 static int copy_file(const char *from, const char *to)
 {
@@ -125,6 +192,8 @@ static int copy_file(const char *from, const char *to)
 
 void run_recovery_name(const char *path, char *out, size_t n) { snprintf(out, n, "%s.ckpt", path); }
 
+static int write_series(hid_t file);
+
 int run_save_recovery(run_writer *w)
 {
 	char final[4200], tmp[4300];
@@ -136,7 +205,7 @@ int run_save_recovery(run_writer *w)
 	if (afile_begin(final, tmp, sizeof tmp))
 		return -1;
 	hid_t f = copy_file(w->tmp, tmp) ? -1 : h5_open(tmp, RUN_FORMAT, 1);
-	if (f < 0 || h5_attr_str(f, "status", "interrupted")) {
+	if (f < 0 || write_series(f) || h5_attr_str(f, "status", "interrupted")) {
 		if (f >= 0)
 			H5Fclose(f);
 		afile_discard(tmp);
@@ -172,10 +241,12 @@ run_writer *run_reopen(const char *from, const char *path, size_t history_rows, 
 		int n = run_column_count(order);
 		w->ncols = n;
 		w->names = xcalloc((size_t)n, sizeof *w->names);
+		w->types = xcalloc((size_t)n, sizeof *w->types);
 		w->buffer = xmalloc((size_t)n * HISTORY_BUFFER_ROWS * sizeof *w->buffer);
 		char *save = NULL, *tok = strtok_r(order, ",", &save);
 		for (int c = 0; tok; c++, tok = strtok_r(NULL, ",", &save)) {
 			w->names[c] = xstrdup(tok);
+			w->types[c] = column_type(tok);
 			rc = rc || h5_truncate(h, tok, history_rows);
 		}
 	}
@@ -183,8 +254,11 @@ run_writer *run_reopen(const char *from, const char *path, size_t history_rows, 
 	if (h >= 0)
 		H5Gclose(h);
 	hid_t k = rc ? -1 : h5_open_group(w->file, "cracks");
-	for (size_t c = 0; k >= 0 && !rc && c < sizeof crack_columns / sizeof *crack_columns; c++)
-		rc = h5_truncate(k, crack_columns[c], crack_rows);
+	for (int c = 0; k >= 0 && !rc && c < NCRACK_FIELDS; c++)
+		rc = h5_truncate(k, crack_fields[c].name, crack_rows);
+	/* The row index (absent from files of format 2 and older). */
+	if (k >= 0 && !rc && h5_exists(k, "crack"))
+		rc = h5_truncate(k, "crack", crack_rows);
 	if (k >= 0)
 		H5Gclose(k);
 	rc = rc || k < 0 || h5_attr_str(w->file, "status", "running");
@@ -197,7 +271,6 @@ run_writer *run_reopen(const char *from, const char *path, size_t history_rows, 
 
 /* The datasets of the bond table and of a snapshot, in file order (the
  * field numbers of runfile.h). per_bond: rows are bonds, else particles. */
-enum { F64, I32, U8 };
 typedef struct {
 	const char *name;
 	int type, per_bond;
@@ -227,22 +300,24 @@ static size_t row_bytes(const rec_field *f)
 
 /* Each field a piece at a time: memory is one piece, not the whole arrays. */
 static int write_fields(hid_t g, const rec_field *fs, int nf, size_t np, size_t nb, run_fill fill,
-                        void *ctx)
+                        void *ctx, const char *dim_particle, const char *dim_bond,
+                        const char *dim_xyz)
 {
 	unsigned char *buf = xmalloc(H5_PIECE_ELEMENTS * sizeof(double));
 	int rc = 0;
 	for (int f = 0; !rc && f < nf; f++) {
-		hid_t type = fs[f].type == F64   ? H5T_NATIVE_DOUBLE
-		             : fs[f].type == I32 ? H5T_NATIVE_INT32
-		                                 : H5T_NATIVE_UINT8;
 		h5_rows r;
-		rc = h5_rows_open(&r, g, fs[f].name, type, fs[f].per_bond ? nb : np, fs[f].cols,
-		                  fs[f].unit);
+		rc = h5_rows_open(&r, g, fs[f].name, native(fs[f].type), fs[f].per_bond ? nb : np,
+		                  fs[f].cols, fs[f].unit);
 		for (size_t m; !rc && (m = h5_rows_piece(&r)) > 0;) {
 			fill(ctx, f, r.at, m, buf);
 			rc = h5_rows_put(&r, buf, m);
 		}
 		rc = h5_rows_close(&r) || rc;
+		/* The rows' and the components' dimension scales, of the group
+		 * or of its parent (a snapshot's are those of /snapshots). */
+		const char *dims[2] = {fs[f].per_bond ? dim_bond : dim_particle, dim_xyz};
+		rc = rc || h5_attach(g, fs[f].name, dims, fs[f].cols ? 2 : 1);
 	}
 	free(buf);
 	return rc ? -1 : 0;
@@ -266,7 +341,8 @@ int run_write_bonds_fill(run_writer *w, size_t n, run_fill fill, void *ctx)
 	hid_t g = h5_group(w->file, "bonds");
 	if (g < 0)
 		return -1;
-	int rc = write_fields(g, bond_fields, BTAB_NFIELDS, 0, n, fill, ctx);
+	int rc = h5_index(g, "bond", n, 0) ||
+	         write_fields(g, bond_fields, BTAB_NFIELDS, 0, n, fill, ctx, NULL, "bond", "xyz");
 	H5Gclose(g);
 	return rc;
 }
@@ -283,9 +359,21 @@ int run_flush(run_writer *w)
 	if (w->buffered) {
 		hid_t h = H5Gopen2(w->file, "history", H5P_DEFAULT);
 		int rc = 0;
-		for (int c = 0; !rc && c < w->ncols; c++)
-			rc = h5_append(h, w->names[c], H5T_NATIVE_DOUBLE,
-			               w->buffer + (size_t)c * HISTORY_BUFFER_ROWS, w->buffered, 0);
+		int64_t *iv = xmalloc(HISTORY_BUFFER_ROWS * sizeof *iv);
+		for (int c = 0; !rc && c < w->ncols; c++) {
+			const double *v = w->buffer + (size_t)c * HISTORY_BUFFER_ROWS;
+			if (w->types[c] == H5T_NATIVE_DOUBLE) {
+				rc =
+				    h5_append(h, w->names[c], H5T_NATIVE_DOUBLE, v, w->buffered, 0);
+				continue;
+			}
+			/* An integer column: its values are whole numbers. */
+			for (size_t k = 0; k < w->buffered; k++)
+				iv[k] = isfinite(v[k]) && fabs(v[k]) < 9e18 ? (int64_t)llround(v[k])
+				                                            : 0;
+			rc = h5_append(h, w->names[c], H5T_NATIVE_INT64, iv, w->buffered, 0);
+		}
+		free(iv);
 		H5Gclose(h);
 		if (rc)
 			return -1;
@@ -308,14 +396,23 @@ int run_history(run_writer *w, const double *row)
 int run_snapshot_fill(run_writer *w, const dem_snapshot *s, run_fill fill, void *ctx)
 {
 	char name[64];
+	/* The snapshots' dimensions, shared by all, made with the first. */
+	hid_t sg = H5Gopen2(w->file, "snapshots", H5P_DEFAULT);
+	if (sg < 0)
+		return err_set("%s: group 'snapshots': missing", w->tmp);
+	int rc = (!h5_exists(sg, "particle") && h5_index(sg, "particle", s->n, 0)) ||
+	         (!h5_exists(sg, "bond") && h5_index(sg, "bond", s->nbonds, 0)) ||
+	         (!h5_exists(sg, "xyz") && h5_index(sg, "xyz", 3, 0));
+	H5Gclose(sg);
 	snprintf(name, sizeof name, "snapshots/" RUN_SNAPSHOT, s->step);
-	hid_t g = h5_group(w->file, name);
+	hid_t g = rc ? -1 : h5_group(w->file, name);
 	if (g < 0)
 		return -1;
-	int rc = h5_attr_i64(g, "step", s->step) || h5_attr_f64(g, "t", s->t) ||
-	         h5_attr_f64(g, "strain_axial", s->strain_axial) ||
-	         h5_attr_f64(g, "stress_axial", s->stress_axial) ||
-	         write_fields(g, snap_fields, SNAP_NFIELDS, s->n, s->nbonds, fill, ctx);
+	rc = h5_attr_i64(g, "step", s->step) || h5_attr_f64(g, "t", s->t) ||
+	     h5_attr_f64(g, "strain_axial", s->strain_axial) ||
+	     h5_attr_f64(g, "stress_axial", s->stress_axial) ||
+	     write_fields(g, snap_fields, SNAP_NFIELDS, s->n, s->nbonds, fill, ctx,
+	                  "/snapshots/particle", "/snapshots/bond", "/snapshots/xyz");
 	H5Gclose(g);
 	return rc ? -1 : 0;
 }
@@ -326,6 +423,145 @@ int run_snapshot(run_writer *w, const dem_snapshot *s)
 	                                 s->damage_n, s->damage_s, s->fn, s->fs};
 	arrays a = {snap_fields, src};
 	return run_snapshot_fill(w, s, from_arrays, &a);
+}
+
+/* The snapshots' steps, ascending (the names of /snapshots' groups). */
+typedef struct {
+	size_t n, cap;
+	int64_t *step;
+} step_list;
+
+static herr_t collect_step(hid_t g, const char *name, const H5L_info_t *info, void *data)
+{
+	(void)g, (void)info;
+	step_list *l = data;
+	char *end;
+	long long step = strtoll(name, &end, 10);
+	if (*end || end == name)
+		return 0;
+	if (l->n == l->cap)
+		l->step = xrealloc(l->step, (l->cap = l->cap ? 2 * l->cap : 16) * sizeof *l->step);
+	l->step[l->n++] = step;
+	return 0;
+}
+
+static int cmp_i64(const void *a, const void *b)
+{
+	int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
+	return (x > y) - (x < y);
+}
+
+/* Field f of every snapshot as one virtual dataset /snapshots/<name> of
+ * shape [S, rows(, cols)]: slab k is the dataset of snapshot k (read in
+ * place, nothing copied). rows is that of the last snapshot; a snapshot of
+ * another row count is left out (its slab reads as the fill value: NaN, or
+ * 255 for bond_state). */
+static int write_virtual(hid_t g, const rec_field *f, const int64_t *steps, size_t ns)
+{
+	char src[96];
+	snprintf(src, sizeof src, RUN_SNAPSHOT "/%s", steps[ns - 1], f->name);
+	long long rows = h5_rows_of(g, src);
+	if (rows < 0)
+		return err_set("%s: dataset 'snapshots/%s': missing", h5_name(g), src);
+	int rank = f->cols ? 3 : 2;
+	hsize_t dims[3] = {ns, (hsize_t)rows, f->cols};
+	hid_t vspace = H5Screate_simple(rank, dims, NULL);
+	hid_t sspace = H5Screate_simple(rank - 1, dims + 1, NULL);
+	hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+	double nan = NAN;
+	uint8_t none = 255;
+	herr_t rc = f->type == F64  ? H5Pset_fill_value(dcpl, H5T_NATIVE_DOUBLE, &nan)
+	            : f->type == U8 ? H5Pset_fill_value(dcpl, H5T_NATIVE_UINT8, &none)
+	                            : 0;
+	for (size_t k = 0; rc >= 0 && rows > 0 && k < ns; k++) {
+		snprintf(src, sizeof src, RUN_SNAPSHOT "/%s", steps[k], f->name);
+		if (h5_rows_of(g, src) != rows)
+			continue;
+		char path[128];
+		snprintf(path, sizeof path, "/snapshots/%s", src);
+		hsize_t start[3] = {k, 0, 0}, count[3] = {1, (hsize_t)rows, f->cols};
+		rc = H5Sselect_hyperslab(vspace, H5S_SELECT_SET, start, NULL, count, NULL);
+		if (rc >= 0)
+			rc = H5Pset_virtual(dcpl, vspace, ".", path, sspace);
+	}
+	H5Sselect_all(vspace);
+	hid_t d = rc < 0 ? -1
+	                 : H5Dcreate2(g, f->name, native(f->type), vspace, H5P_DEFAULT, dcpl,
+	                              H5P_DEFAULT);
+	int bad = d < 0 || (f->unit && h5_attr_str(d, "units", f->unit));
+	if (d >= 0)
+		H5Dclose(d);
+	H5Pclose(dcpl);
+	H5Sclose(sspace);
+	H5Sclose(vspace);
+	if (bad)
+		return h5_write_dataset_error(g, f->name);
+	const char *dn[3] = {"t", f->per_bond ? "bond" : "particle", "xyz"};
+	return h5_attach(g, f->name, dn, rank);
+}
+
+/* The snapshots as time series, in /snapshots: `t` (the scale of their
+ * dimension), `step`, `strain_axial` and `stress_axial` of each, and every
+ * field as a virtual dataset over them (write_virtual). Written when the
+ * file is complete or copied for recovery; replaces an older series (a
+ * continued run's). */
+static int write_series(hid_t file)
+{
+	hid_t g = h5_open_group(file, "snapshots");
+	if (g < 0)
+		return -1;
+	static const char *const heads[] = {"step", "strain_axial", "stress_axial", "t"};
+	int rc = 0;
+	for (int f = 0; !rc && f < SNAP_NFIELDS; f++)
+		rc = h5_delete(g, snap_fields[f].name);
+	for (int h = 0; !rc && h < 4; h++)
+		rc = h5_delete(g, heads[h]);
+	step_list l = {0};
+	if (!rc)
+		H5Literate(g, H5_INDEX_NAME, H5_ITER_NATIVE, NULL, collect_step, &l);
+	if (!rc && l.n) {
+		qsort(l.step, l.n, sizeof *l.step, cmp_i64);
+		double *t = xmalloc(l.n * sizeof *t), *e = xmalloc(l.n * sizeof *e);
+		double *sa = xmalloc(l.n * sizeof *sa);
+		for (size_t k = 0; !rc && k < l.n; k++) {
+			char name[64];
+			snprintf(name, sizeof name, RUN_SNAPSHOT, l.step[k]);
+			hid_t s = H5Gopen2(g, name, H5P_DEFAULT);
+			rc = s < 0 || h5_read_attr_f64(s, "t", &t[k]) ||
+			     h5_read_attr_f64(s, "strain_axial", &e[k]) ||
+			     h5_read_attr_f64(s, "stress_axial", &sa[k]);
+			if (s >= 0)
+				H5Gclose(s);
+		}
+		const char *dims[1] = {"t"};
+		rc = rc || h5_write(g, "t", H5T_NATIVE_DOUBLE, t, l.n, 0, "s") ||
+		     h5_scale(g, "t") ||
+		     h5_write(g, "step", H5T_NATIVE_INT64, l.step, l.n, 0, NULL) ||
+		     h5_write(g, "strain_axial", H5T_NATIVE_DOUBLE, e, l.n, 0, NULL) ||
+		     h5_write(g, "stress_axial", H5T_NATIVE_DOUBLE, sa, l.n, 0, "Pa") ||
+		     h5_attach(g, "step", dims, 1) || h5_attach(g, "strain_axial", dims, 1) ||
+		     h5_attach(g, "stress_axial", dims, 1);
+		/* The dimensions (missing from a run of format 2 continued). */
+		char last[64];
+		snprintf(last, sizeof last, RUN_SNAPSHOT, l.step[l.n - 1]);
+		hid_t s = rc ? -1 : H5Gopen2(g, last, H5P_DEFAULT);
+		long long np = s < 0 ? -1 : h5_rows_of(s, "x");
+		long long nb = s < 0 ? -1 : h5_rows_of(s, "bond_state");
+		if (s >= 0)
+			H5Gclose(s);
+		if (!rc && (np < 0 || nb < 0))
+			rc = err_set("%s: snapshot %s: dataset 'x' or 'bond_state' missing",
+			             h5_name(g), last);
+		rc = rc || (!h5_exists(g, "particle") && h5_index(g, "particle", (size_t)np, 0)) ||
+		     (!h5_exists(g, "bond") && h5_index(g, "bond", (size_t)nb, 0)) ||
+		     (!h5_exists(g, "xyz") && h5_index(g, "xyz", 3, 0));
+		for (int f = 0; !rc && f < SNAP_NFIELDS; f++)
+			rc = write_virtual(g, &snap_fields[f], l.step, l.n);
+		free(t), free(e), free(sa);
+	}
+	free(l.step);
+	H5Gclose(g);
+	return rc ? -1 : 0;
 }
 
 int run_cracks(run_writer *w, const dem_crack *c, size_t n)
@@ -353,7 +589,8 @@ int run_cracks(run_writer *w, const dem_crack *c, size_t n)
 		memcpy(nn + 3 * k, c[k].normal, sizeof c[k].normal);
 	}
 	hid_t g = H5Gopen2(w->file, "cracks", H5P_DEFAULT);
-	int rc = h5_append(g, "t", H5T_NATIVE_DOUBLE, t, n, 0) ||
+	int rc = (h5_exists(g, "crack") && h5_index_append(g, "crack", n)) ||
+	         h5_append(g, "t", H5T_NATIVE_DOUBLE, t, n, 0) ||
 	         h5_append(g, "strain_axial", H5T_NATIVE_DOUBLE, e, n, 0) ||
 	         h5_append(g, "step", H5T_NATIVE_INT64, step, n, 0) ||
 	         h5_append(g, "i", H5T_NATIVE_INT32, i, n, 0) ||
@@ -372,7 +609,7 @@ int run_cracks(run_writer *w, const dem_crack *c, size_t n)
 
 int run_finish(run_writer *w, const char *status)
 {
-	int rc = run_flush(w) || h5_attr_str(w->file, "status", status);
+	int rc = run_flush(w) || write_series(w->file) || h5_attr_str(w->file, "status", status);
 	if (rc) {
 		run_abort(w);
 		return -1;

@@ -5,6 +5,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <hdf5_hl.h>
+
 #include "lib/assembly.h"
 #include "lib/err.h"
 #include "lib/h5.h"
@@ -284,10 +286,107 @@ static void test_run_roundtrip(const char *path)
 	for (size_t k = 0; k < 3 && r.ncracks == 3; k++)
 		CHECK(memcmp(&r.cracks[k], &c[k], sizeof c[k]) == 0);
 	run_free(&r);
+
+	/* Format 3: CF's `units`, dimension scales, and the snapshots over
+	 * time (virtual datasets over each snapshot's), in step order. */
+	hid_t f = h5_open(path, RUN_FORMAT, 0);
+	CHECK(f >= 0);
+	hid_t h = H5Dopen2(f, "history/stress_axial", H5P_DEFAULT);
+	CHECK(H5Aexists(h, "units") > 0 && H5Aexists(h, "unit") == 0);
+	hid_t ht = H5Dopen2(f, "history/t", H5P_DEFAULT);
+	CHECK(H5DSis_attached(h, ht, 0) > 0);
+	H5Dclose(ht);
+	H5Dclose(h);
+	CHECK(h5_rows_of(f, "cracks/crack") == 3 && h5_rows_of(f, "snapshots/t") == 2);
+	hid_t d = H5Dopen2(f, "snapshots/x", H5P_DEFAULT);
+	hid_t sp = H5Dget_space(d);
+	hsize_t dims[3] = {0, 0, 0};
+	CHECK(H5Sget_simple_extent_ndims(sp) == 3);
+	H5Sget_simple_extent_dims(sp, dims, NULL);
+	CHECK(dims[0] == 2 && dims[1] == a.n && dims[2] == 3);
+	double *series = malloc(2 * 3 * a.n * sizeof *series);
+	CHECK(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, series) >= 0);
+	SAME_ARRAY(series, s2.x, 3 * a.n);
+	SAME_ARRAY(series + 3 * a.n, s1.x, 3 * a.n);
+	free(series);
+	H5Sclose(sp);
+	H5Dclose(d);
+	int64_t *steps = NULL;
+	size_t ns = 0;
+	CHECK(h5_read(f, "snapshots/step", H5T_NATIVE_INT64, (void **)&steps, &ns, 0) == 0);
+	CHECK(ns == 2 && steps[0] == 20 && steps[1] == 100);
+	free(steps);
+	H5Fclose(f);
 	snapshot_free(&s1);
 	snapshot_free(&s2);
 	bonds_free(&b);
 	prov_free(&prov);
+	assembly_free(&a);
+}
+
+/* The history's integer columns are stored as integers (format 3) and read
+ * back as numbers like the others. */
+static void test_integer_columns(const char *path)
+{
+	static const run_column cols[] = {{"t", "s"}, {"step", ""}, {"stage", ""}};
+	dem_assembly a;
+	make_assembly(&a, 10);
+	dem_provenance prov;
+	prov_init(&prov, "solve", "{}", 1);
+	run_writer *w = run_create(path, &prov, &a, cols, 3);
+	CHECK(w != NULL);
+	for (int k = 0; w && k < 300; k++) {
+		double row[3] = {1e-6 * k, 100.0 * k, 1 + k / 200};
+		CHECK(run_history(w, row) == 0);
+	}
+	CHECK(w && run_finish(w, "complete") == 0);
+	hid_t f = h5_open(path, RUN_FORMAT, 0);
+	hid_t d = H5Dopen2(f, "history/step", H5P_DEFAULT), t = H5Dget_type(d);
+	CHECK(H5Tget_class(t) == H5T_INTEGER && H5Tget_size(t) == 8);
+	H5Tclose(t), H5Dclose(d);
+	d = H5Dopen2(f, "history/stage", H5P_DEFAULT), t = H5Dget_type(d);
+	CHECK(H5Tget_class(t) == H5T_INTEGER && H5Tget_size(t) == 4);
+	H5Tclose(t), H5Dclose(d);
+	H5Fclose(f);
+	dem_run r;
+	CHECK(run_read(path, &r) == 0);
+	const double *step = run_column_data(&r, "step"), *stage = run_column_data(&r, "stage");
+	CHECK(r.nrows == 300 && step && stage);
+	CHECK(step && step[299] == 29900 && stage && stage[199] == 1 && stage[200] == 2);
+	run_free(&r);
+	prov_free(&prov);
+	assembly_free(&a);
+	unlink(path);
+}
+
+/* Files of format 2 (units named `unit`, float64 history, no dimension
+ * scales nor series) still read, as written. */
+static void test_format_2(void)
+{
+	const char *path = "tests/fuzz/corpus/run/ucs-complete.h5";
+	hid_t f = h5_open(path, RUN_FORMAT, 0);
+	int64_t version = 0;
+	CHECK(f >= 0 && h5_read_attr_i64(f, "format_version", &version) == 0 && version == 2);
+	if (f >= 0)
+		H5Fclose(f);
+	dem_run r;
+	CHECK(run_read(path, &r) == 0);
+	int pa = 0;
+	for (int c = 0; c < r.ncols; c++)
+		if (strcmp(r.col_name[c], "stress_axial") == 0)
+			pa = strcmp(r.col_unit[c], "Pa") == 0;
+	CHECK(pa);
+	const double *step = run_column_data(&r, "step");
+	CHECK(step && r.nrows > 1 && step[0] == 0 && step[r.nrows - 1] > 0);
+	CHECK(r.nsnap >= 1);
+	dem_snapshot s;
+	CHECK(r.nsnap >= 1 && run_read_snapshot(path, &r, r.nsnap - 1, &s) == 0);
+	CHECK(s.n == r.assembly.n && s.nbonds == r.bonds.n);
+	snapshot_free(&s);
+	run_free(&r);
+	dem_assembly a;
+	CHECK(assembly_read("tests/fuzz/corpus/assembly/lattice-12.h5", &a) == 0);
+	CHECK(a.n == 12);
 	assembly_free(&a);
 }
 
@@ -486,6 +585,8 @@ int main(void)
 	const char *rp = check_tmp("formats-run.h5");
 	test_assembly_roundtrip(ap);
 	test_run_roundtrip(rp);
+	test_integer_columns(check_tmp("formats-integers.h5"));
+	test_format_2();
 	test_images(ap, rp);
 	test_rows(check_tmp("formats-rows.h5"));
 	test_claimed_rows(check_tmp("formats-claimed.h5"));
