@@ -227,7 +227,7 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void onate_batch(const law_par
 		fnq[q] = A * sigma;
 		area[q] = A;
 		open[q] = e;
-		B->h[2][q] = elastic[q] & loading ? c : h2;
+		B->h[2][q] = (elastic[q] & loading) ? c : h2;
 	}
 	for (int q = 0; q < n; q++) { /* shear, viscous force */
 		law_pair pair = law_lane_pair(B, q);
@@ -237,7 +237,7 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void onate_batch(const law_par
 		       t2 = B->t[2][q] + B->dus[2][q];
 		double strength = p->tau * A + p->mu1 * fnc;
 		double coupled = p->tau * A * (1 - law_min(1, e / p->q.eps_t));
-		strength = (p->coupled != 0) & (e > 0) ? coupled : strength;
+		strength = ((p->coupled != 0) & (e > 0)) ? coupled : strength;
 		double us = sqrt(t0 * t0 + t1 * t1 + t2 * t2);
 		double h1 = B->h[1][q];
 		int32_t ok =
