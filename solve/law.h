@@ -182,6 +182,21 @@ static inline void law_lane_put(law_batch *B, int q, const bond *b, const law_ou
 		law_lane_put(B, q, &lane_bond_, &lane_out_);                \
 	} while (0)
 
+/* The end of a force_batch whose vector loop computed the lanes with
+ * elastic[q] != 0: those dissipate nothing and do not fail, and every other
+ * lane is computed by FORCE, as force() would. */
+#define LAW_BATCH_REST(FORCE, p, B, elastic)               \
+	do {                                               \
+		for (int q_ = 0; q_ < (B)->n; q_++) {      \
+			(B)->e_damage[q_] = 0;             \
+			(B)->e_friction[q_] = 0;           \
+			(B)->failed[q_] = 0;               \
+		}                                          \
+		for (int q_ = 0; q_ < (B)->n; q_++)        \
+			if (!(elastic)[q_])                \
+				LAW_LANE(FORCE, p, B, q_); \
+	} while (0)
+
 /* Defines `static void NAME_batch(const law_params *, law_batch *)` computing
  * every lane with FORCE, a function with the signature of law.force.
  * Everything FORCE calls is inlined into the loop (flatten), so a law's

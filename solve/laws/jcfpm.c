@@ -167,6 +167,7 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void jcfpm_batch(const law_par
 		    (B->state[q] == BOND_INTACT) & !(u > p->sigma_t * A / kn) & (f <= limit);
 		elastic[q] = ok;
 		B->fn[q] = fn;
+		B->fn_viscous[q] = 0;
 		B->fs[0][q] = t0 * ks;
 		B->fs[1][q] = t1 * ks;
 		B->fs[2][q] = t2 * ks;
@@ -175,15 +176,7 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void jcfpm_batch(const law_par
 		B->t[2][q] = ok ? t2 : B->t[2][q];
 		B->h[1][q] = ok ? B->un[q] : B->h[1][q];
 	}
-	for (int q = 0; q < n; q++) {
-		B->fn_viscous[q] = 0;
-		B->e_damage[q] = 0;
-		B->e_friction[q] = 0;
-		B->failed[q] = 0;
-	}
-	for (int q = 0; q < n; q++)
-		if (!elastic[q])
-			LAW_LANE(jcfpm_force, lp, B, q);
+	LAW_BATCH_REST(jcfpm_force, lp, B, elastic);
 }
 
 static double jcfpm_energy(const law_params *lp, const law_pair *pair, const bond *b)

@@ -191,14 +191,7 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void linear_batch(const law_pa
 		B->t[2][q] = ok ? t2 : B->t[2][q];
 		B->h[0][q] = ok ? un : B->h[0][q];
 	}
-	for (int q = 0; q < n; q++) {
-		B->e_damage[q] = 0;
-		B->e_friction[q] = 0;
-		B->failed[q] = 0;
-	}
-	for (int q = 0; q < n; q++)
-		if (!elastic[q])
-			LAW_LANE(linear_force_one, p, B, q);
+	LAW_BATCH_REST(linear_force_one, p, B, elastic);
 }
 
 static double linear_energy(const law_params *p, const law_pair *q, const bond *b)

@@ -255,16 +255,10 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void onate_batch(const law_par
 		B->t[2][q] = ok ? t2 : B->t[2][q];
 		B->h[3][q] = ok ? B->un[q] : B->h[3][q];
 	}
-	for (int q = 0; q < n; q++) {
+	for (int q = 0; q < n; q++)
 		if (elastic[q])
 			B->state[q] = B->h[0][q] > 0 || B->h[1][q] > 0 ? BOND_DAMAGED : BOND_INTACT;
-		B->e_damage[q] = 0;
-		B->e_friction[q] = 0;
-		B->failed[q] = 0;
-	}
-	for (int q = 0; q < n; q++)
-		if (!elastic[q])
-			LAW_LANE(onate_force, lp, B, q);
+	LAW_BATCH_REST(onate_force, lp, B, elastic);
 }
 
 static double onate_energy(const law_params *lp, const law_pair *pair, const bond *b)
