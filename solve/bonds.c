@@ -176,6 +176,17 @@ DEM_VECTOR_CLONES static void bonds_compute(engine *e, const int32_t *idx, int n
 	}
 }
 
+/* The force of a bond (i, j) on j (-f) and its torque per unit radius added
+ * to j's sums. */
+static inline void add_to_j(engine *e, int32_t j, const double f[6])
+{
+	double *aj = e->scratch.acc + 6 * j, rj = e->p.r[j];
+	for (int c = 0; c < 3; c++) {
+		aj[c] += -f[c];
+		aj[3 + c] += rj * f[3 + c];
+	}
+}
+
 /* Bond b's part added to its block's sums s, its force kept (L->f), and
  * its force and torque added to particle i and, when both, to j. */
 static inline void bond_add(engine *e, size_t b, const bond_part *o, int measure, pair_sums *s,
@@ -198,13 +209,8 @@ static inline void bond_add(engine *e, size_t b, const bond_part *o, int measure
 		ai[c] += o->f[c];
 		ai[3 + c] += ri * o->f[3 + c];
 	}
-	if (both) {
-		double *aj = e->scratch.acc + 6 * bd->j, rj = e->p.r[bd->j];
-		for (int c = 0; c < 3; c++) {
-			aj[c] += -o->f[c];
-			aj[3 + c] += rj * o->f[3 + c];
-		}
-	}
+	if (both)
+		add_to_j(e, bd->j, o->f);
 }
 
 void bonds_cross(engine *e, int k, int measure)
@@ -231,15 +237,9 @@ void bonds_share(engine *e, int k, int measure)
 	 * in bond order: they add to their particle j here. */
 	for (int u = 0; u < k; u++)
 		for (size_t c = S->cfirst[u]; c < S->cfirst[u + 1]; c++) {
-			const bond_part *o = &S->part[c];
 			int32_t j = rec[S->cross[c]].j;
-			if ((size_t)j < p0 || (size_t)j >= p1)
-				continue;
-			double *aj = e->scratch.acc + 6 * j, rj = e->p.r[j];
-			for (int d = 0; d < 3; d++) {
-				aj[d] += -o->f[d];
-				aj[3 + d] += rj * o->f[3 + d];
-			}
+			if ((size_t)j >= p0 && (size_t)j < p1)
+				add_to_j(e, j, S->part[c].f);
 		}
 	size_t slot = S->cfirst[k];
 	for (size_t blk = p0 / BLOCK; blk * BLOCK < p1; blk++) {
@@ -279,8 +279,10 @@ void bonds_split(engine *e, int shares)
 	}
 	/* Shares of about equal work (a bond costs about a particle), in whole
 	 * particle blocks. */
-	shares = shares < 1 ? 1 : (size_t)shares > nblk ? (int)nblk : shares;
-	shares = shares < 1 ? 1 : shares;
+	if ((size_t)shares > nblk)
+		shares = (int)nblk;
+	if (shares < 1)
+		shares = 1;
 	S->n = shares;
 	S->pfirst = xmalloc(((size_t)shares + 1) * sizeof *S->pfirst);
 	S->cfirst = xmalloc(((size_t)shares + 1) * sizeof *S->cfirst);
