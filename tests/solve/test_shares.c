@@ -1,0 +1,77 @@
+/* The bond forces reach the particles the same, bit for bit, however the
+ * particles are split into shares (bonds.h): one share, seven shares on the
+ * threads of the run (crossing bonds, several shares a thread), and more
+ * shares than particle blocks (cut down to one a block). The runs load a
+ * cylinder until bonds break, so failures, crossing bonds and the bonds'
+ * block sums are all compared. */
+#include <string.h>
+
+#include "solve/engine.h"
+#include "tests/check.h"
+#include "tests/solve/fixture.h"
+#include "tests/solve/harness.h"
+
+static const char *case_text =
+    "{\"assembly\": \"-\", \"material\": {\"name\": \"m\", \"law\": \"linear\", "
+    "\"density\": 2500, \"E\": 1e10, \"nu\": 0.2, \"tensile_strength\": 2e6, "
+    "\"shear_strength\": 4e6}, \"loading\": [{\"axial\": {\"mode\": \"strain_rate\", "
+    "\"rate\": 40}}], \"stop\": {\"steps\": 400}}";
+
+enum { STEPS = 400 };
+
+/* Run STEPS steps of e with its particles in the given number of shares. */
+static void run(engine *e, const dem_case *c, const dem_assembly *a, int shares)
+{
+	harness_engine(e, c, a);
+	bonds_split(e, shares);
+	for (int s = 0; s < STEPS; s++)
+		engine_step(e, s % 50 == 0);
+}
+
+static int same(const void *x, const void *y, size_t n) { return memcmp(x, y, n) == 0; }
+
+int main(void)
+{
+	dem_assembly a;
+	fixture_cylinder(&a, 3);
+	dem_case c;
+	harness_case(&c, case_text);
+	engine one, many, most;
+	run(&one, &c, &a, 1);
+	run(&many, &c, &a, 7);
+	run(&most, &c, &a, 100000);
+	CHECK(one.pairs.split.n == 1 && many.pairs.split.n == 7);
+	CHECK(most.pairs.split.n == (int)nblocks(most.p.n));
+	/* Bonds reached into later shares, and some broke. */
+	CHECK(many.pairs.split.cfirst[7] > 0);
+	size_t broken = 0;
+	for (size_t b = 0; b < one.pairs.bonds.n; b++)
+		broken += one.pairs.bonds.rec[b].state >= BOND_BROKEN_TENSION;
+	CHECK(broken > 0);
+	const engine *other[2] = {&many, &most};
+	size_t n = one.p.n, nb = one.pairs.bonds.n;
+	for (int k = 0; k < 2; k++) {
+		const engine *e = other[k];
+		CHECK(same(one.p.x, e->p.x, 3 * n * sizeof *one.p.x));
+		CHECK(same(one.p.v, e->p.v, 3 * n * sizeof *one.p.v));
+		CHECK(same(one.p.w, e->p.w, 3 * n * sizeof *one.p.w));
+		CHECK(
+		    same(one.pairs.bonds.f, e->pairs.bonds.f, 6 * nb * sizeof *one.pairs.bonds.f));
+		int records = 1;
+		for (size_t b = 0; b < nb; b++) {
+			const bond *p = &one.pairs.bonds.rec[b], *q = &e->pairs.bonds.rec[b];
+			records &= same(p->t, q->t, sizeof p->t) && same(p->h, q->h, sizeof p->h) &&
+			           p->state == q->state;
+		}
+		CHECK(records);
+		CHECK(same(&one.sums.bonds, &e->sums.bonds, sizeof one.sums.bonds));
+		CHECK(same(&one.energy, &e->energy, sizeof one.energy));
+		CHECK(one.out.cracks.n == e->out.cracks.n &&
+		      same(one.out.cracks.bond, e->out.cracks.bond,
+		           one.out.cracks.n * sizeof *one.out.cracks.bond));
+	}
+	engine_free(&one), engine_free(&many), engine_free(&most);
+	case_free(&c);
+	assembly_free(&a);
+	return check_done();
+}
