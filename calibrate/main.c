@@ -130,7 +130,7 @@ int main(int argc, char **argv)
 {
 	const char *out = NULL, *bin = NULL;
 	long jobs = 0, runs = 0;
-	int keep = 0, no_png = 0, no_confirm = 0, quiet = 0;
+	int keep = 0, no_png = 0, no_confirm = 0, no_sens = 0, quiet = 0;
 	const cli_opt opts[] = {
 	    {"out", CLI_STR, &out, "DIR", "",
 	     "output directory: material.json, report, log.csv, runs/ (default: "
@@ -144,6 +144,8 @@ int main(int argc, char **argv)
 	     "directory of pack, solve and post (default: that of calibrate)", 0, 0},
 	    {"keep-runs", CLI_FLAG, &keep, NULL, "",
 	     "keep each run's run.h5 (by default only its case, log and summary.json)", 0, 0},
+	    {"no-sensitivity", CLI_FLAG, &no_sens, NULL, "",
+	     "skip the sensitivities at the optimum (and the report's identifiability)", 0, 0},
 	    {"no-confirm", CLI_FLAG, &no_confirm, NULL, "",
 	     "skip the confirming runs on the full specimens", 0, 0},
 	    {"no-png", CLI_FLAG, &no_png, NULL, "", "no figures (they need gnuplot)", 0, 0},
@@ -215,10 +217,13 @@ int main(int argc, char **argv)
 	}
 	const path_point *best = &r.path[r.best];
 	if (!quiet)
-		fprintf(stderr, "calibrate: search %s; sensitivities at the best point\n",
-		        search_status_text[r.status]);
+		fprintf(stderr, "calibrate: search %s%s\n", search_status_text[r.status],
+		        no_sens ? "" : "; sensitivities at the best point");
 	sensitivity sens;
-	if (sensitivity_run(&e, best->v, &sens)) {
+	memset(&sens, 0, sizeof sens);
+	if (no_sens)
+		snprintf(sens.message, sizeof sens.message, "skipped (--no-sensitivity)");
+	else if (sensitivity_run(&e, best->v, &sens)) {
 		if (runner_stopped())
 			interrupted(outdir);
 		fatal(NULL);
