@@ -79,6 +79,13 @@ static void identifiability(report *rp)
 			     isfinite(s->sigma[k]) ? "more than 25 %"
 			                           : "any amount (a direction they "
 			                             "do not see)");
+		else if (s->sigma[k] > SENS_LOOSE)
+			note(rp,
+			     "%s is loosely identified: the targets' tolerances leave it uncertain "
+			     "by "
+			     "±%.3g %% (tighter tolerances on the targets it moves would fix it "
+			     "better)",
+			     sp->key[k].name, 100 * s->sigma[k]);
 	for (int k = 0; k < sp->nfree; k++)
 		for (int l = k + 1; l < sp->nfree; l++)
 			if (fabs(s->key_cos[k][l]) > SENS_PARALLEL)

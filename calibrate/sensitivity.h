@@ -32,7 +32,9 @@ int sensitivity_run(evaluator *e, const double *v, sensitivity *s);
 
 /* Above this |cosine| two keys trade off, or two targets move together. */
 #define SENS_PARALLEL 0.95
-/* Above this relative uncertainty a key is not identified by the targets. */
+/* Above this relative uncertainty a key is not identified by the targets;
+ * above SENS_LOOSE, loosely. */
 #define SENS_UNIDENTIFIED 0.25
+#define SENS_LOOSE 0.05
 
 #endif
