@@ -216,6 +216,7 @@ int main(int argc, char **argv)
 		fatal("%s: %s", pos[0], err_msg());
 	}
 	const path_point *best = &r.path[r.best];
+	double search_wall = timer_now() - t0;
 	if (!quiet)
 		fprintf(stderr, "calibrate: search %s%s\n", search_status_text[r.status],
 		        no_sens ? "" : "; sensitivities at the best point");
@@ -249,6 +250,7 @@ int main(int argc, char **argv)
 	             .sens = &sens,
 	             .confirm = confirm ? &conf : NULL,
 	             .wall = timer_now() - t0,
+	             .search_wall = search_wall,
 	             .met = best->fit.met,
 	             .truth = sp.truth ? truth : NULL};
 	report_diagnose(&rp);

@@ -164,9 +164,10 @@ static char *report_text(const report *rp, const char *dir)
 	        sp->scaling ? ", with the exact scaling" : "");
 	fprintf(f,
 	        "Runs: %ld for the search, %ld for the sensitivities, %ld to confirm; %ld of them "
-	        "run now (%.0f s of solver time), %ld taken from the log. Wall time %.0f s.\n\n",
+	        "run now (%.0f s of solver time), %ld taken from the log. Wall time %.0f s, "
+	        "%.0f s of it to the end of the search.\n\n",
 	        e->runs[PHASE_SEARCH], e->runs[PHASE_SENSITIVITY], e->runs[PHASE_CONFIRM],
-	        e->new_runs, e->run_wall, e->logged_runs, rp->wall);
+	        e->new_runs, e->run_wall, e->logged_runs, rp->wall, rp->search_wall);
 	targets_md(f, rp);
 	params_md(f, rp);
 	sensitivities_md(f, rp);
@@ -214,6 +215,7 @@ static int report_json(const report *rp, const char *path)
 	json_num(runs, "from_log", (double)e->logged_runs);
 	json_num(runs, "solver_time", e->run_wall);
 	json_num(j, "wall_time", rp->wall);
+	json_num(j, "search_wall_time", rp->search_wall);
 	fit cf;
 	int conf = rp->confirm && rp->confirm->ok;
 	if (conf)

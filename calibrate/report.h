@@ -20,7 +20,8 @@ typedef struct {
 	const search_result *r;
 	const sensitivity *sens;
 	const outcome *confirm;        /* NULL when not run */
-	double wall;                   /* s */
+	double wall;                   /* s, the whole calibration */
+	double search_wall;            /* s, to the end of the search */
 	int met;                       /* every target met on the search specimens */
 	const double *truth;           /* a blind recovery's true key values, or NULL */
 	char *notes[REPORT_MAX_NOTES]; /* warnings and diagnosis */
