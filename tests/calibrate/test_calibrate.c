@@ -110,8 +110,8 @@ static void test_runlog(const cal_spec *sp, const char *dir)
 	CHECK(runlog_open(&l, path, sp) == 0 && l.n == 2);
 	const runrec *a = runlog_find(&l, "0123456789abcdef");
 	CHECK(a && a->v[0] == 0.1 + 0.2 && a->q[0] == 1.0 / 3 && isnan(a->q[1]));
-	CHECK(a && strcmp(a->status, "failed: solve: case.json: key \"x\", a \"quoted\" value") ==
-	           0);
+	CHECK(a &&
+	      strcmp(a->status, "failed: solve: case.json: key \"x\", a \"quoted\" value") == 0);
 	CHECK(l.r[0].seq == 3); /* rows in the order they were asked for */
 	CHECK(!runlog_find(&l, "0000000000000000"));
 	runlog_free(&l);
