@@ -98,6 +98,25 @@ static void identifiability(report *rp)
 				     sp->key[k].name, sp->key[l].name, s->key_cos[k][l]);
 }
 
+/* Targets whose tolerance is within the noise of the search specimen. */
+static void noise(report *rp)
+{
+	const cal_spec *sp = rp->sp;
+	for (int i = 0; i < sp->ntarget; i++)
+		if (rp->sens->noise[i] > sp->target[i].tol / 2) {
+			char a[128];
+			note(
+			    rp,
+			    "%s varies by about ±%.2g %% between neighbouring points (the noise of "
+			    "the search specimen, from the sensitivity runs): its tolerance of "
+			    "%.3g %% "
+			    "is within it; a larger search specimen, or a looser tolerance, would "
+			    "make the match mean more",
+			    target_name(sp, i, a, sizeof a), 100 * rp->sens->noise[i],
+			    100 * sp->target[i].tol);
+		}
+}
+
 static void at_bounds(report *rp, const double *v)
 {
 	const cal_spec *sp = rp->sp;
@@ -142,6 +161,7 @@ void report_diagnose(report *rp)
 		if (!rp->met)
 			conflicts(rp, &best->fit);
 		identifiability(rp);
+		noise(rp);
 	} else {
 		note(rp, "no sensitivities: %s", rp->sens->message);
 	}

@@ -224,7 +224,7 @@ int main(int argc, char **argv)
 	memset(&sens, 0, sizeof sens);
 	if (no_sens)
 		snprintf(sens.message, sizeof sens.message, "skipped (--no-sensitivity)");
-	else if (sensitivity_run(&e, best->v, &sens)) {
+	else if (sensitivity_run(&e, best->v, &r.best_out, &sens)) {
 		if (runner_stopped())
 			interrupted(outdir);
 		fatal(NULL);

@@ -123,12 +123,13 @@ static void sensitivities_md(FILE *f, const report *rp)
 	fprintf(f,
 	        "## Sensitivities at the optimum\n\nElasticities: the change of each quantity, "
 	        "as a fraction of its target, per relative change of each key (central "
-	        "differences, steps of %.3g %%).\n\n| target |",
+	        "differences, steps of %.3g %%); noise: what the three runs of each key leave "
+	        "beyond a straight line, as a fraction of the target.\n\n| target |",
 	        100 * sp->sens_step);
 	for (int k = 0; k < sp->nfree; k++)
 		fprintf(f, " %s |", sp->key[k].name);
-	fprintf(f, "\n|---|");
-	for (int k = 0; k < sp->nfree; k++)
+	fprintf(f, " noise |\n|---|");
+	for (int k = 0; k <= sp->nfree; k++)
 		fprintf(f, "---|");
 	fputc('\n', f);
 	for (int i = 0; i < sp->ntarget; i++) {
@@ -136,7 +137,7 @@ static void sensitivities_md(FILE *f, const report *rp)
 		fprintf(f, "| %s %s |", sp->test[t->test].name, quantities[t->quantity].name);
 		for (int k = 0; k < sp->nfree; k++)
 			fprintf(f, " %+.3f |", rp->sens->J[i][k]);
-		fputc('\n', f);
+		fprintf(f, " ±%.2g %% |\n", 100 * rp->sens->noise[i]);
 	}
 	fputc('\n', f);
 }
@@ -235,6 +236,7 @@ static int report_json(const report *rp, const char *path)
 		int has = conf && sp->test[t->test].has_confirm;
 		json_num(o, "confirm", has ? rp->confirm->q[t->test][t->quantity] : NAN);
 		json_num(o, "confirm_error", has ? cf.err[i] : NAN);
+		json_num(o, "noise", rp->sens->ran ? rp->sens->noise[i] : NAN);
 		cJSON_AddItemToArray(ts, o);
 	}
 	cJSON *ps = cJSON_AddArrayToObject(j, "parameters");

@@ -13,7 +13,7 @@ const char *const search_status_text[] = {"met", "budget", "converged", "stopped
 
 /* Rounds at most, and the rounds without a gain of 2 % of the objective
  * after which the search has converged. */
-enum { MAX_ROUNDS = 12, STALL_ROUNDS = 2 };
+enum { MAX_ROUNDS = 12, STALL_ROUNDS = 4 };
 
 typedef enum { STOP_NONE, STOP_MET, STOP_PREDICTED, STOP_BUDGET, STOP_SIGNAL, STOP_ERROR } stop;
 

@@ -98,7 +98,7 @@ static void analyse(const cal_spec *sp, sensitivity *s)
 			s->target_cos[i][j] = cosine(n, jw[i], 1, jw[j], 1);
 }
 
-int sensitivity_run(evaluator *e, const double *v, sensitivity *s)
+int sensitivity_run(evaluator *e, const double *v, const outcome *at, sensitivity *s)
 {
 	const cal_spec *sp = e->sp;
 	memset(s, 0, sizeof *s);
@@ -131,10 +131,17 @@ int sensitivity_run(evaluator *e, const double *v, sensitivity *s)
 		}
 	for (int i = 0; i < sp->ntarget; i++) {
 		const cal_target *t = &sp->target[i];
-		for (int k = 0; k < n; k++)
-			s->J[i][k] = (out[2 * k].q[t->test][t->quantity] -
-			              out[2 * k + 1].q[t->test][t->quantity]) /
-			             fabs(t->value) / s->h[k];
+		double q0 = at->q[t->test][t->quantity], sum = 0;
+		for (int k = 0; k < n; k++) {
+			double up = out[2 * k].q[t->test][t->quantity],
+			       down = out[2 * k + 1].q[t->test][t->quantity];
+			s->J[i][k] = (up - down) / fabs(t->value) / s->h[k];
+			/* Unequal steps (at a bound): the line through the ends. */
+			double w = dv[k][0] / (dv[k][0] - dv[k][1]);
+			double d = (q0 - (w * down + (1 - w) * up)) / fabs(t->value);
+			sum += d * d / (w * w + (1 - w) * (1 - w) + 1);
+		}
+		s->noise[i] = sqrt(sum / n);
 	}
 	s->ran = 1;
 	analyse(sp, s);

@@ -23,12 +23,17 @@ typedef struct {
 	double sigma[CAL_MAX_FREE]; /* relative uncertainty; INFINITY: not identifiable */
 	double key_cos[CAL_MAX_FREE][CAL_MAX_FREE];
 	double target_cos[CAL_MAX_TARGETS][CAL_MAX_TARGETS];
+	/* The noise of each target, relative to its value: what the three
+	 * runs of a key (down, at, up) leave beyond a straight line,
+	 * (q+ + q- - 2 q0) / sqrt(6) for independent noise of deviation s,
+	 * root-mean-square over the keys (curvature counts as noise). */
+	double noise[CAL_MAX_TARGETS];
 	char message[700]; /* why they did not run */
 } sensitivity;
 
-/* The sensitivities at the key values v. 0; -1 when a signal stopped it or
- * with err_set() on an error of the calibration. */
-int sensitivity_run(evaluator *e, const double *v, sensitivity *s);
+/* The sensitivities at the key values v, whose outcome is at. 0; -1 when
+ * a signal stopped it or with err_set() on an error of the calibration. */
+int sensitivity_run(evaluator *e, const double *v, const outcome *at, sensitivity *s);
 
 /* Above this |cosine| two keys trade off, or two targets move together. */
 #define SENS_PARALLEL 0.95

@@ -366,6 +366,14 @@ static int parse_targets(cfg *c, cal_spec *s)
 	return 0;
 }
 
+/* The search's defaults (share/doc/calibrate.md): a first step large
+ * enough that its effect stands out of the noise of a few thousand spheres
+ * (a percent or two on a peak), rounds that end before the steps sink into
+ * it, and a global stage for a start more than 10 % off once scaled. */
+#define STEP 0.5
+#define XTOL 0.02
+#define GLOBAL_ABOVE 0.1
+
 static int parse_search(cfg *c, cal_spec *s)
 {
 	static const char *const local[] = {"bobyqa", "cobyla", "sbplx", NULL};
@@ -385,11 +393,11 @@ static int parse_search(cfg *c, cal_spec *s)
 		if (cfg_choice_or(o, "method", &s->local, local, LOCAL_BOBYQA) ||
 		    cfg_choice_or(o, "global", &s->global, global, GLOBAL_AUTO) ||
 		    cfg_integer_or(o, "global_points", &s->global_points, 0, 0, 100000) ||
-		    cfg_number_or(o, "global_above", &s->global_above, 0.2, "relative", CFG_POS,
-		                  INFINITY) ||
+		    cfg_number_or(o, "global_above", &s->global_above, GLOBAL_ABOVE, "relative",
+		                  CFG_POS, INFINITY) ||
 		    cfg_bool_or(o, "scaling", &s->scaling, scale_default) ||
-		    cfg_number_or(o, "step", &s->step, 0.2, "relative", CFG_POS, 1) ||
-		    cfg_number_or(o, "xtol", &s->xtol, 0.005, "relative", CFG_POS, 0.5) ||
+		    cfg_number_or(o, "step", &s->step, STEP, "relative", CFG_POS, 1) ||
+		    cfg_number_or(o, "xtol", &s->xtol, XTOL, "relative", CFG_POS, 0.5) ||
 		    cfg_integer_or(o, "seed", &s->seed, 1, 0, 2147483647))
 			return -1;
 		if (s->scaling && !scale_default)
@@ -399,8 +407,8 @@ static int parse_search(cfg *c, cal_spec *s)
 			                 s->law);
 	} else {
 		s->local = LOCAL_BOBYQA, s->global = GLOBAL_AUTO, s->global_points = 0;
-		s->global_above = 0.2;
-		s->scaling = scale_default, s->step = 0.2, s->xtol = 0.005, s->seed = 1;
+		s->global_above = GLOBAL_ABOVE;
+		s->scaling = scale_default, s->step = STEP, s->xtol = XTOL, s->seed = 1;
 	}
 	cfg *sn = cfg_object_opt(c, "sensitivity");
 	if (!sn && err_msg()[0])
