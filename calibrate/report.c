@@ -163,11 +163,13 @@ static char *report_text(const report *rp, const char *dir)
 	fprintf(f, "Result: **%s** after %d points in %d rounds%s%s.\n\n", status_line(rp),
 	        rp->r->npath, rp->r->rounds, rp->r->global_used ? " (a global stage first)" : "",
 	        sp->scaling ? ", with the exact scaling" : "");
+	fprintf(f, "Runs: %ld for the search, %ld for the sensitivities, %ld to confirm",
+	        e->runs[PHASE_SEARCH], e->runs[PHASE_SENSITIVITY], e->runs[PHASE_CONFIRM]);
+	if (rp->truth)
+		fprintf(f, ", %ld for the truth", e->runs[PHASE_TRUTH]);
 	fprintf(f,
-	        "Runs: %ld for the search, %ld for the sensitivities, %ld to confirm; %ld of them "
-	        "run now (%.0f s of solver time), %ld taken from the log. Wall time %.0f s, "
-	        "%.0f s of it to the end of the search.\n\n",
-	        e->runs[PHASE_SEARCH], e->runs[PHASE_SENSITIVITY], e->runs[PHASE_CONFIRM],
+	        "; %ld of them run now (%.0f s of solver time), %ld taken from the log. Wall time "
+	        "%.0f s, %.0f s of it to the end of the search.\n\n",
 	        e->new_runs, e->run_wall, e->logged_runs, rp->wall, rp->search_wall);
 	targets_md(f, rp);
 	params_md(f, rp);
@@ -212,6 +214,7 @@ static int report_json(const report *rp, const char *path)
 	json_num(runs, "search", (double)e->runs[PHASE_SEARCH]);
 	json_num(runs, "sensitivity", (double)e->runs[PHASE_SENSITIVITY]);
 	json_num(runs, "confirm", (double)e->runs[PHASE_CONFIRM]);
+	json_num(runs, "truth", (double)e->runs[PHASE_TRUTH]);
 	json_num(runs, "new", (double)e->new_runs);
 	json_num(runs, "from_log", (double)e->logged_runs);
 	json_num(runs, "solver_time", e->run_wall);

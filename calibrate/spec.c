@@ -488,11 +488,15 @@ int spec_load(const char *path, cal_spec *s)
 	const char *name;
 	int rc = cfg_string_or(c, "name", &name, NULL);
 	if (rc == 0) {
-		if (!name) {
+		if (name) {
+			s->name = xstrdup(name);
+		} else { /* the file's name without .json */
 			const char *base = strrchr(path, '/');
-			name = base ? base + 1 : path;
+			s->name = xstrdup(base ? base + 1 : path);
+			size_t n = strlen(s->name);
+			if (n > 5 && strcmp(s->name + n - 5, ".json") == 0)
+				s->name[n - 5] = '\0';
 		}
-		s->name = xstrdup(name);
 	}
 	rc = rc || load_material(c, s) || parse_free(c, s) || parse_tests(c, s) ||
 	     parse_search(c, s) || assign_classes(c, s) || load_truth(c, s) ||
