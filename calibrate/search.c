@@ -11,9 +11,9 @@
 
 const char *const search_status_text[] = {"met", "budget", "converged", "stopped"};
 
-/* Rounds at most, and the rounds without a gain of 2 % of the objective
- * after which the search has converged. */
-enum { MAX_ROUNDS = 12, STALL_ROUNDS = 4 };
+/* Rounds at most (the rounds without a gain of 2 % of the objective after
+ * which the search has converged: search.patience). */
+enum { MAX_ROUNDS = 12 };
 
 typedef enum { STOP_NONE, STOP_MET, STOP_PREDICTED, STOP_BUDGET, STOP_SIGNAL, STOP_ERROR } stop;
 
@@ -251,7 +251,7 @@ int search_run(evaluator *e, const space *s, int quiet, search_result *r)
 		double best_now = r->best >= 0 ? r->path[r->best].fit.f : INFINITY;
 		stalls = best_now > 0.98 * best_before ? stalls + 1 : 0;
 		best_before = fmin(best_before, best_now);
-		if (stalls >= STALL_ROUNDS || c.round + 1 >= MAX_ROUNDS) {
+		if (stalls >= sp->patience || c.round + 1 >= MAX_ROUNDS) {
 			r->status = SEARCH_CONVERGED;
 			break;
 		}

@@ -369,10 +369,12 @@ static int parse_targets(cfg *c, cal_spec *s)
 /* The search's defaults (share/doc/calibrate.md): a first step large
  * enough that its effect stands out of the noise of a few thousand spheres
  * (a percent or two on a peak), rounds that end before the steps sink into
- * it, and a global stage for a start more than 10 % off once scaled. */
+ * it, a global stage for a start more than 10 % off once scaled, and four
+ * tries of a scaled copy before the search gives up. */
 #define STEP 0.5
 #define XTOL 0.02
 #define GLOBAL_ABOVE 0.1
+#define PATIENCE 4
 
 static int parse_search(cfg *c, cal_spec *s)
 {
@@ -398,6 +400,7 @@ static int parse_search(cfg *c, cal_spec *s)
 		    cfg_bool_or(o, "scaling", &s->scaling, scale_default) ||
 		    cfg_number_or(o, "step", &s->step, STEP, "relative", CFG_POS, 1) ||
 		    cfg_number_or(o, "xtol", &s->xtol, XTOL, "relative", CFG_POS, 0.5) ||
+		    cfg_integer_or(o, "patience", &s->patience, PATIENCE, 1, 12) ||
 		    cfg_integer_or(o, "seed", &s->seed, 1, 0, 2147483647))
 			return -1;
 		if (s->scaling && !scale_default)
@@ -408,6 +411,7 @@ static int parse_search(cfg *c, cal_spec *s)
 	} else {
 		s->local = LOCAL_BOBYQA, s->global = GLOBAL_AUTO, s->global_points = 0;
 		s->global_above = GLOBAL_ABOVE;
+		s->patience = PATIENCE;
 		s->scaling = scale_default, s->step = STEP, s->xtol = XTOL, s->seed = 1;
 	}
 	cfg *sn = cfg_object_opt(c, "sensitivity");

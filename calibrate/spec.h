@@ -68,6 +68,7 @@ typedef struct {
 	double global_above; /* a start worse than this (relative error) is poor */
 	int scaling;
 	double step, xtol, sens_step;
+	long patience; /* rounds without a gain of 2 % before the search stops */
 	long seed;
 } cal_spec;
 

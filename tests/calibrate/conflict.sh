@@ -16,6 +16,7 @@ sed -e 's/"truth": "truth.json",//' \
 	-e 's/{"test": "bts", "quantity": "bts_strength"}/{"test": "bts", "quantity": "bts_strength", "value": 3.0e6}/' \
 	-e "s|\"truth.json\"|\"$data/truth.json\"|; s|\"ucs.json\"|\"$data/ucs.json\"|; s|\"bts.json\"|\"$data/bts.json\"|" \
 	-e "s|\"cylinder.json\"|\"$data/cylinder.json\"|; s|\"disc.json\"|\"$data/disc.json\"|" \
+	-e 's/"budget": {"runs": 20}/"budget": {"runs": 20}, "search": {"patience": 1}/' \
 	"$data/recovery.json" > "$tmp/conflict.json"
 status=0
 "$bin/calibrate" --quiet --no-png --out "$tmp/out" "$tmp/conflict.json" > "$tmp/report.txt" ||
