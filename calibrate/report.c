@@ -160,8 +160,9 @@ static char *report_text(const report *rp, const char *dir)
 	fprintf(f, "# Calibration: %s\n\n", sp->name);
 	fprintf(f, "Material template: %s (law `%s`); calibrated material: %s/material.json.\n\n",
 	        sp->material_name, sp->law, dir);
-	fprintf(f, "Result: **%s** after %d points in %d rounds%s%s.\n\n", status_line(rp),
-	        rp->r->npath, rp->r->rounds, rp->r->global_used ? " (a global stage first)" : "",
+	fprintf(f, "Result: **%s** after %d point%s in %d round%s%s%s.\n\n", status_line(rp),
+	        rp->r->npath, rp->r->npath == 1 ? "" : "s", rp->r->rounds,
+	        rp->r->rounds == 1 ? "" : "s", rp->r->global_used ? " (a global stage first)" : "",
 	        sp->scaling ? ", with the exact scaling" : "");
 	fprintf(f, "Runs: %ld for the search, %ld for the sensitivities, %ld to confirm",
 	        e->runs[PHASE_SEARCH], e->runs[PHASE_SENSITIVITY], e->runs[PHASE_CONFIRM]);
