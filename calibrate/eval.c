@@ -294,75 +294,126 @@ static int write_case(const char *dir, const cJSON *cs)
 	return rc;
 }
 
+/* The run of test t on a point's material m: its key, its place in the
+ * order asked for, its directory; pending when the log lacks it (its case
+ * is then written). 0, or -1 with err_set(). */
+static int plan_run(evaluator *e, pending_run *runs, int k, const cJSON *m, int kind,
+                    eval_phase phase)
+{
+	pending_run *r = &runs[k];
+	cJSON *cs = cJSON_Duplicate(e->cases[r->test], 1);
+	cJSON_AddItemToObject(cs, "material", cJSON_Duplicate(m, 1));
+	char *text = cJSON_PrintUnformatted(cs);
+	unsigned long long h = hash_bytes(HASH_START, text, strlen(text));
+	h = hash_bytes(h, e->asm_hash[r->test][kind], 16);
+	free(text);
+	hex(r->key, h);
+	int fresh;
+	r->seq = asked_seq(e, r->key, &fresh);
+	if (fresh)
+		e->runs[phase]++;
+	char name[64];
+	snprintf(name, sizeof name, "runs/%s", r->key);
+	r->dir = join(e->out, name);
+	int dup = 0, rc = 0;
+	for (int j = 0; j < k; j++)
+		dup |= runs[j].pending && strcmp(runs[j].key, r->key) == 0;
+	if (dup || runlog_find(&e->log, r->key)) {
+		e->logged_runs += fresh && !dup;
+	} else {
+		r->pending = 1;
+		rc = make_dir(r->dir) || write_case(r->dir, cs) ? -1 : 0;
+	}
+	cJSON_Delete(cs);
+	return rc;
+}
+
+/* solve, then post summary, in the run's directory. */
+static void solve_job(const evaluator *e, const pending_run *r, int kind, int threads, job *j)
+{
+	char prog[4200];
+	snprintf(prog, sizeof prog, "%s/solve", e->bin);
+	job_cmd(j, prog);
+	job_arg(j, "--quiet");
+	job_arg(j, "--threads");
+	job_arg(j, "%d", threads);
+	job_arg(j, "--assembly");
+	job_arg(j, "%s", e->assembly[r->test][kind]);
+	job_arg(j, "--output");
+	job_arg(j, "%s/run.h5", r->dir);
+	job_arg(j, "%s/case.json", r->dir);
+	snprintf(prog, sizeof prog, "%s/post", e->bin);
+	job_cmd(j, prog);
+	job_arg(j, "summary");
+	job_arg(j, "--out");
+	job_arg(j, "%s", r->dir);
+	job_arg(j, "%s/run.h5", r->dir);
+	j->log = join(r->dir, "log.txt");
+}
+
+/* A point's quantities from the log, and whether they meet every target's
+ * needs. 0, or -1 when a run is missing (stopped before it ran). */
+static int collect(const evaluator *e, const pending_run *runs, int kind, outcome *o)
+{
+	const cal_spec *sp = e->sp;
+	o->ok = 1;
+	o->message[0] = '\0';
+	for (int t = 0; t < sp->ntest; t++)
+		for (int q = 0; q < QTY_MAX; q++)
+			o->q[t][q] = NAN;
+	for (int t = 0; t < sp->ntest; t++) {
+		if (kind == SPECIMEN_CONFIRM && !sp->test[t].has_confirm)
+			continue;
+		const runrec *rec = runlog_find(&e->log, runs[t].key);
+		if (!rec)
+			return -1;
+		memcpy(o->q[t], rec->q, sizeof o->q[t]);
+		if (o->ok && strcmp(rec->status, "ok") != 0) {
+			o->ok = 0;
+			snprintf(o->message, sizeof o->message, "test '%s' (run %s): %s",
+			         sp->test[t].name, runs[t].dir, rec->status);
+		}
+	}
+	for (int k = 0; k < sp->ntarget && o->ok; k++) {
+		const cal_target *tg = &sp->target[k];
+		const quantity *q = &quantities[tg->quantity];
+		if (kind == SPECIMEN_CONFIRM && !sp->test[tg->test].has_confirm)
+			continue;
+		double x = o->q[tg->test][tg->quantity];
+		if (!isfinite(x) || (quantity_positive(q) && x <= 0)) {
+			o->ok = 0;
+			snprintf(o->message, sizeof o->message,
+			         "test '%s' (run %s/summary.json): %s is %s",
+			         sp->test[tg->test].name, runs[tg->test].dir, q->name,
+			         isfinite(x) ? "not positive" : "null (not measured)");
+		}
+	}
+	return 0;
+}
+
 int eval_points(evaluator *e, const double (*v)[CAL_MAX_KEYS], int np, int kind, eval_phase phase,
                 outcome *out)
 {
 	const cal_spec *sp = e->sp;
 	int nrun = np * sp->ntest, npending = 0, rc = 0;
 	pending_run *runs = xcalloc((size_t)nrun, sizeof *runs);
-	job *jobs = xcalloc((size_t)nrun, sizeof *jobs);
 	for (int p = 0; p < np; p++) {
 		cJSON *m = eval_material(sp, v[p]);
 		for (int t = 0; t < sp->ntest; t++) {
-			pending_run *r = &runs[p * sp->ntest + t];
-			r->point = p, r->test = t;
+			int k = p * sp->ntest + t;
+			runs[k].point = p, runs[k].test = t;
 			if (kind == SPECIMEN_CONFIRM && !sp->test[t].has_confirm)
 				continue;
-			cJSON *cs = cJSON_Duplicate(e->cases[t], 1);
-			cJSON_AddItemToObject(cs, "material", cJSON_Duplicate(m, 1));
-			char *text = cJSON_PrintUnformatted(cs);
-			unsigned long long h = hash_bytes(HASH_START, text, strlen(text));
-			h = hash_bytes(h, e->asm_hash[t][kind], 16);
-			free(text);
-			hex(r->key, h);
-			int fresh;
-			r->seq = asked_seq(e, r->key, &fresh);
-			if (fresh)
-				e->runs[phase]++;
-			char name[64];
-			snprintf(name, sizeof name, "runs/%s", r->key);
-			r->dir = join(e->out, name);
-			int dup = 0;
-			for (int k = 0; k < p * sp->ntest + t; k++)
-				dup |= runs[k].pending && strcmp(runs[k].key, r->key) == 0;
-			if (dup || runlog_find(&e->log, r->key)) {
-				if (fresh && !dup)
-					e->logged_runs++;
-				cJSON_Delete(cs);
-				continue;
-			}
-			r->pending = 1;
-			if (make_dir(r->dir) || write_case(r->dir, cs))
+			if (plan_run(e, runs, k, m, kind, phase))
 				rc = -1;
-			cJSON_Delete(cs);
-			job *j = &jobs[npending++];
-			char prog[4200];
-			snprintf(prog, sizeof prog, "%s/solve", e->bin);
-			job_cmd(j, prog);
-			job_arg(j, "--quiet");
-			job_arg(j, "--threads");
-			job_arg(j, "%d", 0); /* set below, from the batch's size */
-			job_arg(j, "--assembly");
-			job_arg(j, "%s", e->assembly[t][kind]);
-			job_arg(j, "--output");
-			job_arg(j, "%s/run.h5", r->dir);
-			job_arg(j, "%s/case.json", r->dir);
-			snprintf(prog, sizeof prog, "%s/post", e->bin);
-			job_cmd(j, prog);
-			job_arg(j, "summary");
-			job_arg(j, "--out");
-			job_arg(j, "%s", r->dir);
-			job_arg(j, "%s/run.h5", r->dir);
-			j->log = join(r->dir, "log.txt");
+			npending += runs[k].pending;
 		}
 		cJSON_Delete(m);
 	}
-	for (int k = 0; k < npending; k++) {
-		free(jobs[k].arg_text[0][3]);
-		jobs[k].arg_text[0][3] = xmalloc(16);
-		snprintf(jobs[k].arg_text[0][3], 16, "%d", threads_per_run(e, npending));
-		jobs[k].argv[0][3] = jobs[k].arg_text[0][3];
-	}
+	job *jobs = xcalloc((size_t)nrun, sizeof *jobs);
+	for (int k = 0, j = 0; k < nrun; k++)
+		if (runs[k].pending)
+			solve_job(e, &runs[k], kind, threads_per_run(e, npending), &jobs[j++]);
 	batch b = {e, runs, v, kind, phase, 0};
 	if (!rc && npending && runner_run(jobs, npending, e->parallel, run_done, &b))
 		rc = -1;
@@ -371,46 +422,9 @@ int eval_points(evaluator *e, const double (*v)[CAL_MAX_KEYS], int np, int kind,
 	for (int k = 0; k < npending; k++)
 		job_free(&jobs[k]);
 	free(jobs);
-	/* Every point's quantities from the log. */
-	for (int p = 0; p < np && !rc; p++) {
-		outcome *o = &out[p];
-		o->ok = 1;
-		o->message[0] = '\0';
-		for (int t = 0; t < sp->ntest; t++)
-			for (int q = 0; q < QTY_MAX; q++)
-				o->q[t][q] = NAN;
-		for (int t = 0; t < sp->ntest; t++) {
-			pending_run *r = &runs[p * sp->ntest + t];
-			if (kind == SPECIMEN_CONFIRM && !sp->test[t].has_confirm)
-				continue;
-			const runrec *rec = runlog_find(&e->log, r->key);
-			if (!rec) {
-				rc = -1; /* stopped before it ran */
-				break;
-			}
-			memcpy(o->q[t], rec->q, sizeof o->q[t]);
-			if (o->ok && strcmp(rec->status, "ok") != 0) {
-				o->ok = 0;
-				snprintf(o->message, sizeof o->message, "test '%s' (run %s): %s",
-				         sp->test[t].name, r->dir, rec->status);
-			}
-		}
-		for (int k = 0; k < sp->ntarget && o->ok; k++) {
-			const cal_target *tg = &sp->target[k];
-			const quantity *q = &quantities[tg->quantity];
-			if (kind == SPECIMEN_CONFIRM && !sp->test[tg->test].has_confirm)
-				continue;
-			double x = o->q[tg->test][tg->quantity];
-			if (!isfinite(x) || (quantity_positive(q) && x <= 0)) {
-				o->ok = 0;
-				snprintf(o->message, sizeof o->message,
-				         "test '%s' (run %s/summary.json): %s is %s",
-				         sp->test[tg->test].name,
-				         runs[p * sp->ntest + tg->test].dir, q->name,
-				         isfinite(x) ? "not positive" : "null (not measured)");
-			}
-		}
-	}
+	for (int p = 0; p < np && !rc; p++)
+		if (collect(e, runs + p * sp->ntest, kind, &out[p]))
+			rc = -1; /* a run stopped before it ran */
 	for (int k = 0; k < nrun; k++)
 		free(runs[k].dir);
 	free(runs);

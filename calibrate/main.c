@@ -95,9 +95,8 @@ static void describe(const cal_spec *sp, const space *s)
 
 /* A blind recovery: the targets without a value take what the truth gives
  * on the search specimens. */
-static void set_truth(evaluator *e, double *v, int quiet, const char *out)
+static void set_truth(evaluator *e, cal_spec *sp, double *v, int quiet, const char *out)
 {
-	cal_spec *sp = (cal_spec *)e->sp;
 	for (int k = 0; k < sp->nkey; k++)
 		v[k] = spec_material_number(sp->truth, sp->key[k].name)->valuedouble;
 	outcome o;
@@ -208,7 +207,7 @@ int main(int argc, char **argv)
 	}
 	double truth[CAL_MAX_KEYS];
 	if (sp.truth)
-		set_truth(&e, truth, quiet, outdir);
+		set_truth(&e, &sp, truth, quiet, outdir);
 	search_result r;
 	if (search_run(&e, &s, quiet, &r)) {
 		if (runner_stopped())
