@@ -45,3 +45,12 @@ find_package(VTK 9 QUIET COMPONENTS CommonCore CommonDataModel IOXML IOImage)
 dem_require(VTK_FOUND "VTK 9" "libvtk9-dev")
 
 find_library(MATH_LIBRARY m)
+
+# NLopt (calibrate's search), found through its pkg-config file.
+find_package(PkgConfig QUIET)
+if(PkgConfig_FOUND)
+  pkg_check_modules(NLOPT QUIET IMPORTED_TARGET nlopt)
+endif()
+dem_require(NLOPT_FOUND "NLopt" "libnlopt-dev")
+add_library(dem_nlopt INTERFACE)
+target_link_libraries(dem_nlopt INTERFACE PkgConfig::NLOPT)

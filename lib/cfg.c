@@ -358,6 +358,12 @@ int cfg_numbers(cfg *c, const char *key, double **out, size_t *count, size_t n, 
 	return 0;
 }
 
+char *cfg_member_text(cfg *c, const char *key)
+{
+	cJSON *v = member(c, key, NULL);
+	return v ? cJSON_PrintUnformatted(v) : NULL;
+}
+
 static cfg *child_view(cfg *c, const char *key, int required)
 {
 	int k;

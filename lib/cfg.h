@@ -52,6 +52,11 @@ int cfg_choice_or(cfg *c, const char *key, int *out, const char *const *words, i
 int cfg_numbers(cfg *c, const char *key, double **out, size_t *count, size_t n, const char *unit,
                 double lo, double hi);
 
+/* The JSON text of a member, whatever its type, marked as read (for a
+ * value passed on whole, e.g. a material inside another file); NULL when
+ * absent. Caller frees. */
+char *cfg_member_text(cfg *c, const char *key);
+
 /* Nested object: required / optional (NULL and no error when absent). */
 cfg *cfg_object(cfg *c, const char *key);
 cfg *cfg_object_opt(cfg *c, const char *key);

@@ -1,0 +1,84 @@
+#!/bin/sh
+# Bad calibration files and a case that fails: exit status 1 and one message
+# naming the file, the key, the value and what was expected; nothing is run
+# (no output directory) when the file itself is at fault.
+# Usage: errors.sh BIN_DIR DATA_DIR TMP_DIR
+set -eu
+bin=$1 data=$2 tmp=$3
+rm -rf "$tmp"
+mkdir -p "$tmp"
+cp "$data"/*.json "$tmp"/
+
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+# write FREE TESTS TARGETS [EXTRA]: a calibration file cal.json
+write() {
+	cat > "$tmp/cal.json" <<JSON
+{"material": "truth.json",
+ "free": [$1],
+ "tests": [$2],
+ "targets": [$3]${4:+, $4}}
+JSON
+}
+free='{"key": "nu", "min": 0.1, "max": 0.4}'
+tests='{"name": "ucs", "case": "ucs.json", "search": {"specimen": "cylinder.json"}}'
+target='{"test": "ucs", "quantity": "poisson_ratio", "value": 0.2}'
+
+# expect STATUS MESSAGE: run calibrate on cal.json
+expect() {
+	rm -rf "$tmp/out"
+	set +e
+	"$bin/calibrate" --quiet --no-png --out "$tmp/out" "$tmp/cal.json" > "$tmp/stdout" \
+		2> "$tmp/stderr"
+	status=$?
+	set -e
+	[ "$status" -eq "$1" ] || { cat "$tmp/stderr" >&2; fail "status $status, expected $1: $2"; }
+	grep -qF -- "$2" "$tmp/stderr" || { cat "$tmp/stderr" >&2; fail "no message '$2'"; }
+	[ "$(wc -l < "$tmp/stderr")" -eq 1 ] || { cat "$tmp/stderr" >&2; fail "more than one line"; }
+}
+expect_nothing_run() {
+	expect 1 "$1"
+	[ ! -e "$tmp/out" ] || fail "an output directory for a bad file: $1"
+}
+
+write "$free" "$tests" "$target" '"budgett": {"runs": 3}'
+expect_nothing_run "cal.json: key 'budgett': unknown key"
+write "$free" "$tests" '{"test": "ucs", "quantity": "peak_strength", "value": 1e6}'
+expect_nothing_run "cal.json: key 'targets[0].quantity': value \"peak_strength\": expected one of peak_stress, peak_deviator,"
+write '{"key": "nu", "min": 0.25, "max": 0.45}' "$tests" "$target"
+expect_nothing_run "cal.json: key 'free[0].min': the bounds [0.25, 0.45] exclude the start, the template's nu = 0.2"
+write '{"key": "nu", "min": 0.1, "max": 0.4, "start": 0.45}' "$tests" "$target"
+expect_nothing_run "cal.json: key 'free[0].start': value 0.45: the bounds [0.1, 0.4] exclude it"
+write '{"key": "E", "min": 1e9, "max": 1e11}' "$tests" "$target"
+expect_nothing_run "cal.json: key 'free[0].key': value \"E\": not a number of the material template (law onate): expected one of density, E0, nu,"
+write '{"key": "nu", "min": 0.4, "max": 0.1}' "$tests" "$target"
+expect_nothing_run "cal.json: key 'free[0].max': value 0.1: expected a number greater than min = 0.4"
+write '{"key": "nu", "min": 0, "max": 0.4, "log": true}' "$tests" "$target"
+expect_nothing_run "cal.json: key 'free[0].min': value 0: expected a positive number (log scale)"
+write '{"key": "nu", "min": 0.1, "max": 0.6}' "$tests" "$target"
+expect_nothing_run "cal.json: key 'free[0].max': value 0.6: the material: key 'nu': value 0.6: expected a number in [0, 0.5]"
+write "$free" "$tests" '{"test": "uniaxial", "quantity": "peak_stress", "value": 1e6}'
+expect_nothing_run "cal.json: key 'targets[0].test': value \"uniaxial\": no such test: expected one of 'ucs'"
+write "$free" "$tests" '{"test": "ucs", "quantity": "bts_strength", "value": 1e6}'
+expect_nothing_run "cal.json: key 'targets[0].quantity': value \"bts_strength\": not measured by a \"ucs\" test"
+write "$free" "$tests" '{"test": "ucs", "quantity": "peak_stress", "value": -1e6}'
+expect_nothing_run "cal.json: key 'targets[0].value': value -1000000: expected a positive number (Pa)"
+write "$free" '{"name": "ucs", "case": "ucs.json", "search": {"specimen": "none.json"}}' "$target"
+expect_nothing_run "cal.json: key 'tests[0].search.specimen': value \"none.json\": no readable file"
+write "$free" "$tests" "$target" '"search": {"method": "newton"}'
+expect_nothing_run "cal.json: key 'search.method': value \"newton\": expected one of 'bobyqa', 'cobyla', 'sbplx'"
+sed 's/"law": "onate"/"law": "exponential"/' "$data/truth.json" > /dev/null
+printf '%s\n' '{"name": "e", "law": "exponential", "density": 2500, "E0": 28e9, "nu": 0.2,' \
+	'"tensile_strength": 5e6, "delta_n": 0.2, "cohesion": 8e6, "friction_angle_deg": 30,' \
+	'"contact_friction_angle_deg": 30, "interaction_range": 1.2}' > "$tmp/exponential.json"
+write '{"key": "E0", "min": 1e9, "max": 1e11}' "$tests" "$target" '"search": {"scaling": true}'
+sed -i 's/"truth.json"/"exponential.json"/' "$tmp/cal.json"
+expect_nothing_run "cal.json: key 'search.scaling': value true: the law 'exponential' has no exact scaling"
+
+# A case that solve refuses: the start fails, with solve's message.
+sed 's/"test": "ucs"/"no_such_key": 1, "test": "ucs"/' "$data/ucs.json" > "$tmp/ucs.json"
+write "$free" "$tests" "$target"
+expect 1 "cal.json: the start fails: test 'ucs' (run $tmp/out/runs/"
+grep -q "no_such_key" "$tmp/stderr" || fail "the message does not quote solve's"
+rm -rf "$tmp"
+echo "calibrate: bad calibration files and a failing case refused as expected"

@@ -1,0 +1,56 @@
+#!/bin/sh
+# An interrupted calibration continues where it stopped: the runs done are
+# taken from the log, none is repeated, and the result is the one an
+# uninterrupted calibration gives, to the bit.
+# Usage: resume.sh BIN_DIR DATA_DIR TMP_DIR
+set -eu
+bin=$1 data=$2 tmp=$3
+rm -rf "$tmp"
+mkdir -p "$tmp"
+fail() { echo "FAIL: $*" >&2; exit 1; }
+opts="--quiet --no-png --no-sensitivity --jobs 1"
+# shellcheck disable=SC2086
+run() { "$bin/calibrate" $opts --out "$1" "$data/recovery.json"; }
+field() { sed -n "s/.*\"$2\":[[:space:]]*\([0-9]*\).*/\1/p" "$1" | head -n 1; }
+
+run "$tmp/whole" > /dev/null || fail "the uninterrupted calibration failed"
+whole=$(field "$tmp/whole/report.json" new)
+
+# Stopped by SIGTERM once its log holds three runs.
+# shellcheck disable=SC2086
+"$bin/calibrate" $opts --out "$tmp/cut" "$data/recovery.json" > /dev/null 2> "$tmp/cut.err" &
+pid=$!
+i=0
+while [ "$(cat "$tmp/cut/log.csv" 2> /dev/null | wc -l)" -lt 4 ]; do
+	sleep 0.2
+	i=$((i + 1))
+	[ $i -lt 600 ] || { kill $pid; fail "no run logged in 120 s"; }
+done
+kill -TERM $pid
+status=0
+wait $pid || status=$?
+[ $status -eq 3 ] || { cat "$tmp/cut.err" >&2; fail "interrupted calibration: status $status, expected 3"; }
+grep -q "interrupted: the runs done are kept in" "$tmp/cut.err" || fail "no message"
+logged=$(($(wc -l < "$tmp/cut/log.csv") - 1))
+[ ! -e "$tmp/cut/material.json" ] || fail "a material written by an interrupted calibration"
+
+run "$tmp/cut" > /dev/null || fail "the continued calibration failed"
+new=$(field "$tmp/cut/report.json" new)
+from_log=$(field "$tmp/cut/report.json" from_log)
+[ "$from_log" -eq "$logged" ] || fail "$from_log runs from the log, $logged were in it"
+[ $((new + logged)) -eq "$whole" ] ||
+	fail "$logged runs before the stop and $new after it; $whole without a stop"
+cmp -s "$tmp/whole/material.json" "$tmp/cut/material.json" || fail "another material"
+cmp -s "$tmp/whole/path.csv" "$tmp/cut/path.csv" || fail "another path"
+# The logs hold the same runs in the same order: all but the run keys (a
+# hash of the case and the assembly, which each directory packs anew) and
+# the wall times.
+cut -d, -f2- "$tmp/whole/log.csv" | sed 's/,[^,]*$//' > "$tmp/a"
+cut -d, -f2- "$tmp/cut/log.csv" | sed 's/,[^,]*$//' > "$tmp/b"
+cmp -s "$tmp/a" "$tmp/b" || { diff "$tmp/a" "$tmp/b" >&2; fail "the logs differ"; }
+
+# Nothing left to run: a third call takes every run from the log.
+run "$tmp/cut" > /dev/null || fail "the third call failed"
+[ "$(field "$tmp/cut/report.json" new)" -eq 0 ] || fail "the third call ran again"
+rm -rf "$tmp"
+echo "calibrate: $logged runs before the stop, $new after it, $whole without a stop"

@@ -1,0 +1,143 @@
+/* calibrate's pieces without a run: the projection on the scales, the search
+ * space (values and coordinates, the keys that follow the scales), the run
+ * log read back as written, and the calibration file's checks. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "calibrate/quantity.h"
+#include "calibrate/runlog.h"
+#include "calibrate/scaling.h"
+#include "calibrate/space.h"
+#include "calibrate/spec.h"
+#include "lib/err.h"
+#include "tests/check.h"
+
+/* Residuals of quantities at scales off by s0, k0 come back to zero. */
+static void test_project(void)
+{
+	const char *names[] = {"peak_stress", "young_modulus", "strain_at_peak", "poisson_ratio"};
+	double c[4], a[4], b[4], sigma, kappa;
+	const double s0 = log(1.3), k0 = log(0.8);
+	for (int i = 0; i < 4; i++) {
+		const quantity *q = &quantities[quantity_find(names[i])];
+		a[i] = q->a, b[i] = q->b;
+		c[i] = -(a[i] * s0 + b[i] * k0);
+	}
+	c[3] = 0.5; /* Poisson's ratio: no scale moves it */
+	const double open[4] = {-5, 5, -5, 5};
+	double f = scaling_project(4, c, a, b, open, &sigma, &kappa);
+	CHECK_NEAR(sigma, s0, 1e-5);
+	CHECK_NEAR(kappa, k0, 1e-5);
+	CHECK_NEAR(f, 0.25, 1e-9);
+	/* The stress scale held within 0.1: the best stiffness scale for it. */
+	const double box[4] = {-0.1, 0.1, -5, 5};
+	scaling_project(4, c, a, b, box, &sigma, &kappa);
+	CHECK_NEAR(sigma, 0.1, 1e-12);
+	/* Young's modulus asks for k0, the strain for k = s - (s0 - k0). */
+	CHECK_NEAR(kappa, (k0 + (0.1 - (s0 - k0))) / 2, 1e-9);
+	/* A class without a free key stays at 1. */
+	const double held[4] = {-5, 5, 0, 0};
+	scaling_project(4, c, a, b, held, &sigma, &kappa);
+	CHECK(kappa == 0);
+	/* Strains alone fix s/k only: the smallest change along the rest. */
+	double cs[1] = {-(s0 - k0)}, as[1] = {1}, bs[1] = {-1};
+	scaling_project(1, cs, as, bs, open, &sigma, &kappa);
+	CHECK_NEAR(sigma - kappa, s0 - k0, 1e-5);
+	CHECK_NEAR(sigma, -kappa, 1e-5);
+}
+
+static void test_space(const cal_spec *sp)
+{
+	space s;
+	space_init(&s, sp);
+	/* E0 and tensile_strength are the anchors: no search variable. */
+	CHECK(s.nz == 0);
+	CHECK(s.anchor[CLS_STIFF] == 0 && s.anchor[CLS_STRESS] == 1);
+	double v[CAL_MAX_KEYS], S, K, z[CAL_MAX_FREE];
+	for (int k = 0; k < sp->nkey; k++)
+		v[k] = sp->key[k].start;
+	space_coords(&s, v, &S, &K, z);
+	CHECK_REL(S, 3.2e6 / 5e6, 1e-12);
+	CHECK_REL(K, 40e9 / 28e9, 1e-12);
+	double w[CAL_MAX_KEYS];
+	space_values(&s, S, K, z, w);
+	CHECK_REL(w[0], 40e9, 1e-12);
+	CHECK_REL(w[1], 3.2e6, 1e-12);
+	/* The other stresses keep their template ratio to the strength. */
+	int found = 0;
+	for (int k = 2; k < sp->nkey; k++)
+		if (strcmp(sp->key[k].name, "LCS1") == 0) {
+			CHECK_REL(w[k], 20e6 * S, 1e-12);
+			CHECK(!sp->key[k].free && sp->key[k].cls == CLS_STRESS);
+			found = 1;
+		}
+	CHECK(found);
+	/* The bounds of the free keys bound the scales. */
+	double box[4];
+	CHECK(space_scale_box(&s, S, K, z, box) == 0);
+	CHECK_NEAR(box[0], log(1e6 / 3.2e6), 1e-12);
+	CHECK_NEAR(box[1], log(20e6 / 3.2e6), 1e-12);
+	CHECK_NEAR(box[3], log(100e9 / 40e9), 1e-12);
+}
+
+static void test_runlog(const cal_spec *sp, const char *dir)
+{
+	char path[4096];
+	snprintf(path, sizeof path, "%s/calibrate-log.csv", dir);
+	remove(path);
+	runlog l;
+	CHECK(runlog_open(&l, path, sp) == 0 && l.n == 0);
+	runrec r;
+	memset(&r, 0, sizeof r);
+	for (int q = 0; q < QTY_MAX; q++)
+		r.q[q] = NAN;
+	snprintf(r.key, sizeof r.key, "0123456789abcdef");
+	r.seq = 7;
+	snprintf(r.phase, sizeof r.phase, "search");
+	snprintf(r.test, sizeof r.test, "ucs");
+	snprintf(r.specimen, sizeof r.specimen, "search");
+	r.v[0] = 0.1 + 0.2; /* not a short decimal: written to the last bit */
+	r.q[0] = 1.0 / 3;
+	r.status = "failed: solve: case.json: key \"x\", a \"quoted\" value";
+	CHECK(runlog_add(&l, &r) == 0);
+	snprintf(r.key, sizeof r.key, "fedcba9876543210");
+	r.seq = 3;
+	r.status = "ok";
+	CHECK(runlog_add(&l, &r) == 0);
+	runlog_free(&l);
+	CHECK(runlog_open(&l, path, sp) == 0 && l.n == 2);
+	const runrec *a = runlog_find(&l, "0123456789abcdef");
+	CHECK(a && a->v[0] == 0.1 + 0.2 && a->q[0] == 1.0 / 3 && isnan(a->q[1]));
+	CHECK(a &&
+	      strcmp(a->status, "failed: solve: case.json: key \"x\", a \"quoted\" value") == 0);
+	CHECK(l.r[0].seq == 3); /* rows in the order they were asked for */
+	CHECK(!runlog_find(&l, "0000000000000000"));
+	runlog_free(&l);
+	/* Another calibration's log is refused. */
+	cal_spec other = *sp;
+	other.nkey = 1;
+	CHECK(runlog_open(&l, path, &other) == -1 && strstr(err_msg(), "another calibration"));
+	runlog_free(&l);
+	remove(path);
+}
+
+int main(void)
+{
+	const char *tmp = getenv("TEST_TMPDIR");
+	test_project();
+	cal_spec sp;
+	int rc = spec_load("tests/calibrate/data/recovery.json", &sp);
+	CHECK(rc == 0);
+	if (rc) {
+		fprintf(stderr, "%s\n", err_msg());
+		return check_done();
+	}
+	CHECK(sp.nfree == 2 && sp.nkey == 6 && sp.ntest == 2 && sp.ntarget == 3);
+	CHECK(sp.target[0].from_truth && sp.scaling);
+	test_space(&sp);
+	test_runlog(&sp, tmp ? tmp : ".");
+	spec_free(&sp);
+	return check_done();
+}
