@@ -4,7 +4,9 @@
 #ifndef DEM_RUNFILE_LAYOUT_H
 #define DEM_RUNFILE_LAYOUT_H
 
+#include <hdf5.h>
 #include <inttypes.h>
+#include <stddef.h>
 
 /* The name of a snapshot's group under /snapshots: its step, as printf
  * formats an int64_t, zero-padded so names sort by step. */
@@ -19,5 +21,10 @@ static inline int run_column_count(const char *order)
 		n += *p == ',';
 	return n;
 }
+
+/* The steps of the snapshots in group g (/snapshots), ascending, from the
+ * names of its snapshot groups (other names are skipped); *steps is
+ * allocated (NULL when there are none), the count returned. */
+size_t run_snapshot_steps(hid_t g, int64_t **steps);
 
 #endif

@@ -83,7 +83,7 @@ static herr_t collect_snapshot(hid_t g, const char *name, const H5L_info_t *info
 	step_list *l = data;
 	char *end;
 	long long step = strtoll(name, &end, 10);
-	if (*end)
+	if (*end || end == name)
 		return 0;
 	if (l->n == l->cap)
 		l->step = xrealloc(l->step, (l->cap = l->cap ? 2 * l->cap : 16) * sizeof *l->step);
@@ -97,15 +97,23 @@ static int cmp_i64(const void *a, const void *b)
 	return (x > y) - (x < y);
 }
 
+size_t run_snapshot_steps(hid_t g, int64_t **steps)
+{
+	step_list l = {0};
+	H5Literate(g, H5_INDEX_NAME, H5_ITER_NATIVE, NULL, collect_snapshot, &l);
+	if (l.n) /* a run without snapshots has no list: qsort must not get NULL */
+		qsort(l.step, l.n, sizeof *l.step, cmp_i64);
+	*steps = l.step;
+	return l.n;
+}
+
 static int read_snapshot_index(hid_t f, dem_run *r)
 {
 	hid_t g = h5_open_group(f, "snapshots");
 	if (g < 0)
 		return -1;
 	step_list l = {0};
-	H5Literate(g, H5_INDEX_NAME, H5_ITER_NATIVE, NULL, collect_snapshot, &l);
-	if (l.n) /* a run without snapshots has no list: qsort must not get NULL */
-		qsort(l.step, l.n, sizeof *l.step, cmp_i64);
+	l.n = run_snapshot_steps(g, &l.step);
 	r->nsnap = l.n;
 	r->snap_step = l.step;
 	r->snap_t = xcalloc(l.n, sizeof *r->snap_t);

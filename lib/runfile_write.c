@@ -425,32 +425,6 @@ int run_snapshot(run_writer *w, const dem_snapshot *s)
 	return run_snapshot_fill(w, s, from_arrays, &a);
 }
 
-/* The snapshots' steps, ascending (the names of /snapshots' groups). */
-typedef struct {
-	size_t n, cap;
-	int64_t *step;
-} step_list;
-
-static herr_t collect_step(hid_t g, const char *name, const H5L_info_t *info, void *data)
-{
-	(void)g, (void)info;
-	step_list *l = data;
-	char *end;
-	long long step = strtoll(name, &end, 10);
-	if (*end || end == name)
-		return 0;
-	if (l->n == l->cap)
-		l->step = xrealloc(l->step, (l->cap = l->cap ? 2 * l->cap : 16) * sizeof *l->step);
-	l->step[l->n++] = step;
-	return 0;
-}
-
-static int cmp_i64(const void *a, const void *b)
-{
-	int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
-	return (x > y) - (x < y);
-}
-
 /* Field f of every snapshot as one virtual dataset /snapshots/<name> of
  * shape [S, rows(, cols)]: slab k is the dataset of snapshot k (read in
  * place, nothing copied). rows is that of the last snapshot; a snapshot of
@@ -516,16 +490,16 @@ static int write_series(hid_t file)
 		rc = h5_delete(g, snap_fields[f].name);
 	for (int h = 0; !rc && h < 4; h++)
 		rc = h5_delete(g, heads[h]);
-	step_list l = {0};
+	int64_t *steps = NULL;
+	size_t ns = 0;
 	if (!rc)
-		H5Literate(g, H5_INDEX_NAME, H5_ITER_NATIVE, NULL, collect_step, &l);
-	if (!rc && l.n) {
-		qsort(l.step, l.n, sizeof *l.step, cmp_i64);
-		double *t = xmalloc(l.n * sizeof *t), *e = xmalloc(l.n * sizeof *e);
-		double *sa = xmalloc(l.n * sizeof *sa);
-		for (size_t k = 0; !rc && k < l.n; k++) {
+		ns = run_snapshot_steps(g, &steps);
+	if (!rc && ns) {
+		double *t = xmalloc(ns * sizeof *t), *e = xmalloc(ns * sizeof *e);
+		double *sa = xmalloc(ns * sizeof *sa);
+		for (size_t k = 0; !rc && k < ns; k++) {
 			char name[64];
-			snprintf(name, sizeof name, RUN_SNAPSHOT, l.step[k]);
+			snprintf(name, sizeof name, RUN_SNAPSHOT, steps[k]);
 			hid_t s = H5Gopen2(g, name, H5P_DEFAULT);
 			rc = s < 0 || h5_read_attr_f64(s, "t", &t[k]) ||
 			     h5_read_attr_f64(s, "strain_axial", &e[k]) ||
@@ -534,16 +508,15 @@ static int write_series(hid_t file)
 				H5Gclose(s);
 		}
 		const char *dims[1] = {"t"};
-		rc = rc || h5_write(g, "t", H5T_NATIVE_DOUBLE, t, l.n, 0, "s") ||
-		     h5_scale(g, "t") ||
-		     h5_write(g, "step", H5T_NATIVE_INT64, l.step, l.n, 0, NULL) ||
-		     h5_write(g, "strain_axial", H5T_NATIVE_DOUBLE, e, l.n, 0, NULL) ||
-		     h5_write(g, "stress_axial", H5T_NATIVE_DOUBLE, sa, l.n, 0, "Pa") ||
+		rc = rc || h5_write(g, "t", H5T_NATIVE_DOUBLE, t, ns, 0, "s") || h5_scale(g, "t") ||
+		     h5_write(g, "step", H5T_NATIVE_INT64, steps, ns, 0, NULL) ||
+		     h5_write(g, "strain_axial", H5T_NATIVE_DOUBLE, e, ns, 0, NULL) ||
+		     h5_write(g, "stress_axial", H5T_NATIVE_DOUBLE, sa, ns, 0, "Pa") ||
 		     h5_attach(g, "step", dims, 1) || h5_attach(g, "strain_axial", dims, 1) ||
 		     h5_attach(g, "stress_axial", dims, 1);
 		/* The dimensions (missing from a run of format 2 continued). */
 		char last[64];
-		snprintf(last, sizeof last, RUN_SNAPSHOT, l.step[l.n - 1]);
+		snprintf(last, sizeof last, RUN_SNAPSHOT, steps[ns - 1]);
 		hid_t s = rc ? -1 : H5Gopen2(g, last, H5P_DEFAULT);
 		long long np = s < 0 ? -1 : h5_rows_of(s, "x");
 		long long nb = s < 0 ? -1 : h5_rows_of(s, "bond_state");
@@ -556,10 +529,10 @@ static int write_series(hid_t file)
 		     (!h5_exists(g, "bond") && h5_index(g, "bond", (size_t)nb, 0)) ||
 		     (!h5_exists(g, "xyz") && h5_index(g, "xyz", 3, 0));
 		for (int f = 0; !rc && f < SNAP_NFIELDS; f++)
-			rc = write_virtual(g, &snap_fields[f], l.step, l.n);
+			rc = write_virtual(g, &snap_fields[f], steps, ns);
 		free(t), free(e), free(sa);
 	}
-	free(l.step);
+	free(steps);
 	H5Gclose(g);
 	return rc ? -1 : 0;
 }
