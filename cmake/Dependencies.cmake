@@ -54,3 +54,22 @@ endif()
 dem_require(NLOPT_FOUND "NLopt" "libnlopt-dev")
 add_library(dem_nlopt INTERFACE)
 target_link_libraries(dem_nlopt INTERFACE PkgConfig::NLOPT)
+
+# MPI (OpenMPI) for solve's ranks: DEM_MPI=AUTO builds with it when it is
+# installed (tools/deps installs it), ON requires it, OFF builds without.
+# A solve built without MPI runs as one process and says so when a launcher
+# starts it as several.
+set(DEM_MPI AUTO CACHE STRING "Build solve with MPI (OpenMPI): AUTO, ON or OFF")
+set_property(CACHE DEM_MPI PROPERTY STRINGS AUTO ON OFF)
+add_library(dem_mpi INTERFACE)
+if(NOT DEM_MPI STREQUAL "OFF")
+  find_package(MPI COMPONENTS C QUIET)
+  if(DEM_MPI STREQUAL "ON")
+    dem_require(MPI_C_FOUND "MPI (OpenMPI)" "libopenmpi-dev openmpi-bin")
+  endif()
+  if(MPI_C_FOUND)
+    target_link_libraries(dem_mpi INTERFACE MPI::MPI_C)
+    target_compile_definitions(dem_mpi INTERFACE DEM_MPI)
+    set(DEM_WITH_MPI ON)
+  endif()
+endif()

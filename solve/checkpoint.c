@@ -374,7 +374,7 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 	L->n = nc;
 	memset(L->f, 0, 6 * nc * sizeof *L->f);
 	pairlist_csr(L, e->p.n);
-	contacts_reserve_blocks(e);
+	contacts_index_blocks(e);
 	return 0;
 }
 

@@ -69,13 +69,14 @@ static void add_contact(engine *e, pairlist *L, const pairlist *old, size_t *o, 
 	L->n++;
 }
 
-void contacts_reserve_blocks(engine *e)
+void contacts_index_blocks(engine *e)
 {
-	size_t nb = nblocks(e->pairs.contacts.n);
-	if (nb > e->scratch.ncblock) {
-		e->scratch.ncblock = nb + nb / 2 + 1;
-		e->scratch.cblock =
-		    xrealloc(e->scratch.cblock, e->scratch.ncblock * sizeof *e->scratch.cblock);
+	const pairlist *L = &e->pairs.contacts;
+	size_t nb = nblocks(e->p.n);
+	for (size_t blk = 0, c = 0; blk <= nb; blk++) {
+		while (c < L->n && (size_t)L->rec[c].i < blk * BLOCK)
+			c++;
+		e->scratch.cfirst[blk] = c;
 	}
 }
 
@@ -106,7 +107,7 @@ void contacts_rebuild(engine *e)
 				add_contact(e, L, old, &o, (int32_t)i, js[q]);
 	}
 	pairlist_csr(L, P->n);
-	contacts_reserve_blocks(e);
+	contacts_index_blocks(e);
 	memcpy(P->x_ref, P->x, 3 * P->n * sizeof *P->x);
 	platens_rebuild(e);
 	e->pairs.rebuilds++;
@@ -152,12 +153,14 @@ DEM_VECTOR_CLONES static void contact_block(engine *e, size_t lo, size_t hi, int
 	}
 }
 
+/* In the blocks of their particle i, as the bonds (the same sums whatever
+ * the shares); the blocks hold very different numbers of contacts, so they
+ * are handed out a few at a time. */
 void contacts_forces(engine *e, int measure)
 {
-	size_t nb = nblocks(e->pairs.contacts.n);
-#pragma omp for schedule(static)
-	for (size_t k = 0; k < nb; k++) {
-		contact_block(e, k * BLOCK, block_end(k, e->pairs.contacts.n), measure,
-		              &e->scratch.cblock[k]);
-	}
+	size_t nb = nblocks(e->p.n);
+	const size_t *first = e->scratch.cfirst;
+#pragma omp for schedule(dynamic, 4)
+	for (size_t k = 0; k < nb; k++)
+		contact_block(e, first[k], first[k + 1], measure, &e->scratch.cblock[k]);
 }

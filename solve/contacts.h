@@ -7,8 +7,8 @@ typedef struct engine engine;
 /* Rebuild the contact list (and the platens' candidates) from the current
  * positions. */
 void contacts_rebuild(engine *e);
-/* Size the per-block sums for the current contact list. */
-void contacts_reserve_blocks(engine *e);
+/* Index the contact list by the particle block of each contact's i. */
+void contacts_index_blocks(engine *e);
 /* This step's contact forces, inside the step's parallel region. */
 void contacts_forces(engine *e, int measure);
 

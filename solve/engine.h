@@ -127,8 +127,8 @@ typedef struct {
 
 /* Per-block sums and a per-particle buffer, allocated once. */
 typedef struct {
-	pair_sums *bblock, *cblock;
-	size_t ncblock;
+	pair_sums *bblock, *cblock; /* bonds and contacts by the block of their i */
+	size_t *cfirst;             /* [particle blocks + 1] first contact of each */
 	particle_sums *pblock;
 	double *z;   /* [n] */
 	double *acc; /* [n][6] sum of the bond forces and torques per unit radius */

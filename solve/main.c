@@ -8,10 +8,11 @@
 #include "lib/err.h"
 #include "lib/progress.h"
 #include "solve/case.h"
+#include "solve/par.h"
 #include "solve/report.h"
 #include "solve/run.h"
 
-int main(int argc, char **argv)
+static int solve_main(int argc, char **argv)
 {
 	const char *assembly = NULL, *output = "run.h5", *restart = NULL, *report = NULL,
 	           *depfile = NULL;
@@ -108,5 +109,26 @@ int main(int argc, char **argv)
 		fatal(NULL);
 	int code = run_case(&cs, &a, &o);
 	case_free(&cs);
+	return code;
+}
+
+int main(int argc, char **argv)
+{
+	err_program(argv[0]);
+	if (par_init(&argc, &argv))
+		fatal(NULL);
+	if (par_size() > 1) {
+		if (par_rank() == 0)
+			fprintf(
+			    stderr,
+			    "solve: started on %d ranks: this version runs a case on one rank "
+			    "(its threads: --threads); the domain decomposition over ranks is not "
+			    "in it yet\n",
+			    par_size());
+		par_finalize();
+		return 1;
+	}
+	int code = solve_main(argc, argv);
+	par_finalize();
 	return code;
 }

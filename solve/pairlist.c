@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "solve/pairlist.h"
+#include "solve/reduce.h"
 
 void pairlist_free(pairlist *l)
 {
@@ -33,17 +34,10 @@ void pairlist_csr(pairlist *l, size_t np)
 
 void pair_sums_total(const pair_sums *blk, size_t nb, pair_sums *out)
 {
-	memset(out, 0, sizeof *out);
-	for (size_t k = 0; k < nb; k++) {
-		out->e_damage += blk[k].e_damage;
-		out->e_friction += blk[k].e_friction;
-		out->e_viscous += blk[k].e_viscous;
-		out->e_elastic += blk[k].e_elastic;
-		for (int c = 0; c < 9; c++)
-			out->love[c] += blk[k].love[c];
-		for (int c = 0; c < 5; c++)
-			out->count[c] += blk[k].count[c];
-	}
+	/* A pair_sums is an array of doubles. */
+	enum { NF = sizeof(pair_sums) / sizeof(double) };
+	_Static_assert(sizeof(pair_sums) == NF * sizeof(double), "pair_sums: doubles only");
+	reduce_blocks((const double *)blk, nb, NF, NF, (double *)out);
 }
 
 void love_add(double love[9], const batch_geom *g, int q, const double f[6])

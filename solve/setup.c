@@ -209,6 +209,8 @@ static void scratch_alloc(engine *e, int threads)
 	e->team = e->team > 0 ? e->team : 1;
 	e->scratch.pblock = xcalloc(nblocks(n) + 1, sizeof *e->scratch.pblock);
 	e->scratch.bblock = xcalloc(nblocks(n) + 1, sizeof *e->scratch.bblock);
+	e->scratch.cblock = xcalloc(nblocks(n) + 1, sizeof *e->scratch.cblock);
+	e->scratch.cfirst = xcalloc(nblocks(n) + 1, sizeof *e->scratch.cfirst);
 	e->scratch.acc = xmalloc((6 * n + 1) * sizeof *e->scratch.acc);
 	e->out.thread_cracks = xcalloc((size_t)e->nthreads, sizeof *e->out.thread_cracks);
 	e->scratch.z = xmalloc((n + 1) * sizeof *e->scratch.z);
@@ -301,7 +303,7 @@ void engine_free(engine *e)
 	surface_free(&e->bc.surf);
 	gauge_free(&e->bc.gauge);
 	free(e->scratch.pblock), free(e->scratch.bblock), free(e->scratch.cblock),
-	    free(e->scratch.z), free(e->scratch.acc);
+	    free(e->scratch.cfirst), free(e->scratch.z), free(e->scratch.acc);
 	bonds_split_free(&e->pairs.split);
 	for (int t = 0; t < e->nthreads; t++)
 		free(e->out.thread_cracks[t].c), free(e->out.thread_cracks[t].bond);

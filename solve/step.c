@@ -17,6 +17,7 @@
  * G(t) is G · ½ (v(t - Δt/2) + v(t + Δt/2)) Δt, the matching rule. */
 #include <math.h>
 #include <omp.h>
+#include <stddef.h>
 #include <string.h>
 
 #include "lib/vec3.h"
@@ -27,8 +28,10 @@
 #include "solve/engine.h"
 #include "solve/measure.h"
 #include "solve/pairlist.h"
+#include "solve/par.h"
 #include "solve/platen_contact.h"
 #include "solve/platens.h"
+#include "solve/reduce.h"
 #include "solve/step.h"
 #include "solve/surface.h"
 #include "solve/timers.h"
@@ -221,36 +224,30 @@ static void particles_integrate(engine *e, int k, int measure)
 		integrate_block(e, blk, measure);
 }
 
-/* Block sums in block order (serial, after the parallel step). */
+/* Block sums (after the parallel step): the sums exact (reduce.h), the
+ * largest displacement and speed and the first bad particle. */
 static void particles_sum(engine *e)
 {
 	size_t n = e->p.n, nb = nblocks(n);
 	particle_sums *t = &e->sums.particles;
-	memset(t, 0, sizeof *t);
+	const particle_sums *blk = e->scratch.pblock;
+	/* The summed members are the doubles before disp2. */
+	enum {
+		STRIDE = sizeof(particle_sums) / sizeof(double),
+		NF = offsetof(particle_sums, disp2) / sizeof(double)
+	};
+	_Static_assert(sizeof(particle_sums) == STRIDE * sizeof(double),
+	               "particle_sums: doubles only");
+	reduce_blocks((const double *)blk, nb, STRIDE, NF, (double *)t);
+	t->disp2 = t->v2max = 0;
 	t->bad = (double)n;
 	for (size_t k = 0; k < nb; k++) {
-		const particle_sums *s = &e->scratch.pblock[k];
-		t->ke += s->ke;
-		t->ke_new += s->ke_new;
-		t->e_damped += s->e_damped;
-		t->e_work += s->e_work;
-		for (int c = 0; c < 2; c++) {
-			t->load[c] += s->load[c];
-			t->ksum[c] += s->ksum[c];
-			t->ntouch[c] += s->ntouch[c];
-			t->layer[c] += s->layer[c];
-		}
-		t->lateral_force += s->lateral_force;
-		t->constraint_force += s->constraint_force;
-		t->platen_friction += s->platen_friction;
-		t->platen_viscous += s->platen_viscous;
-		t->platen_elastic += s->platen_elastic;
-		for (int c = 0; c < 9; c++)
-			t->love[c] += s->love[c];
-		t->disp2 = s->disp2 > t->disp2 ? s->disp2 : t->disp2;
-		t->v2max = s->v2max > t->v2max ? s->v2max : t->v2max;
-		t->bad = s->bad < t->bad ? s->bad : t->bad;
+		t->disp2 = blk[k].disp2 > t->disp2 ? blk[k].disp2 : t->disp2;
+		t->v2max = blk[k].v2max > t->v2max ? blk[k].v2max : t->v2max;
+		t->bad = blk[k].bad < t->bad ? blk[k].bad : t->bad;
 	}
+	par_max(&t->disp2, 2); /* disp2, v2max */
+	par_min(&t->bad, 1);
 }
 
 void engine_step(engine *e, int measure)
@@ -301,7 +298,7 @@ void engine_step(engine *e, int measure)
 			particles_integrate(e, k, measure);
 	}
 	pair_sums_total(e->scratch.bblock, nblocks(e->p.n), &e->sums.bonds);
-	pair_sums_total(e->scratch.cblock, nblocks(e->pairs.contacts.n), &e->sums.contacts);
+	pair_sums_total(e->scratch.cblock, nblocks(e->p.n), &e->sums.contacts);
 	particles_sum(e);
 	phase_stop(&e->tm, TM_INTEGRATE);
 	phase_start(&e->tm, TM_NEIGHBOUR);

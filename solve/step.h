@@ -15,6 +15,8 @@ typedef struct {
 	double constraint_force; /* N, Σ radial reaction of constrained particles */
 	double platen_friction, platen_viscous, platen_elastic;
 	double love[9];
+	/* Not summed: the largest, the lowest (disp2 and v2max stay adjacent,
+	 * particles_sum reduces them as a pair). */
 	double disp2; /* max squared displacement since the rebuild */
 	double v2max; /* m^2/s^2, largest squared speed at t + dt/2 */
 	double bad;   /* lowest particle index with a non-finite state, or n */

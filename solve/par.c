@@ -1,0 +1,93 @@
+/* The ranks of a run (par.h). */
+#include <stdlib.h>
+
+#ifdef DEM_MPI
+#include <mpi.h>
+#endif
+
+#include "lib/err.h"
+#include "solve/par.h"
+
+static int rank_, size_ = 1;
+#ifdef DEM_MPI
+static int mpi_; /* MPI_Init was called */
+#endif
+
+int par_launcher_size(void)
+{
+	static const char *vars[] = {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"};
+	for (size_t k = 0; k < sizeof vars / sizeof vars[0]; k++) {
+		const char *v = getenv(vars[k]);
+		if (v && *v)
+			return atoi(v) > 0 ? atoi(v) : 1;
+	}
+	return 0;
+}
+
+int par_init(int *argc, char ***argv)
+{
+	int launched = par_launcher_size();
+#ifdef DEM_MPI
+	/* A plain `solve` does not start MPI at all: it runs as before,
+	 * without MPI's start-up time. */
+	if (launched) {
+		int provided;
+		MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
+		mpi_ = 1;
+		MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+		MPI_Comm_size(MPI_COMM_WORLD, &size_);
+	}
+	return 0;
+#else
+	(void)argc, (void)argv;
+	if (launched > 1)
+		return err_set("started as %d processes by a launcher (mpirun?), but this solve "
+		               "was built without MPI: install OpenMPI (tools/deps) and rebuild "
+		               "(tools/build), or run it as one process",
+		               launched);
+	return 0;
+#endif
+}
+
+void par_finalize(void)
+{
+#ifdef DEM_MPI
+	if (mpi_)
+		MPI_Finalize();
+	mpi_ = 0;
+#endif
+}
+
+int par_rank(void) { return rank_; }
+int par_size(void) { return size_; }
+
+void par_sum(xsum *a, int n)
+{
+	if (size_ == 1)
+		return;
+	for (int k = 0; k < n; k++)
+		xsum_normalize(&a[k]);
+#ifdef DEM_MPI
+	MPI_Allreduce(MPI_IN_PLACE, a, n * DEM_XSUM_WORDS, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
+#endif
+}
+
+void par_max(double *v, int n)
+{
+#ifdef DEM_MPI
+	if (size_ > 1)
+		MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+#else
+	(void)v, (void)n;
+#endif
+}
+
+void par_min(double *v, int n)
+{
+#ifdef DEM_MPI
+	if (size_ > 1)
+		MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+#else
+	(void)v, (void)n;
+#endif
+}

@@ -1,0 +1,29 @@
+/* The ranks of a run (DESIGN.md §4): MPI processes when solve is built with
+ * MPI (DEM_MPI) and started by a launcher such as mpirun, otherwise one.
+ *
+ * Every reduction over the ranks goes through here: exact sums (lib/xsum.h)
+ * whose result does not depend on the number of ranks, maxima and minima. */
+#ifndef DEM_PAR_H
+#define DEM_PAR_H
+
+#include "lib/xsum.h"
+
+/* Join the launcher's ranks, if a launcher started this process: 0, or -1
+ * with the message set (lib/err.h) when a launcher asked for several
+ * processes and this solve was built without MPI. */
+int par_init(int *argc, char ***argv);
+void par_finalize(void);
+int par_rank(void);
+int par_size(void);
+/* The process count a launcher announced in the environment (Open MPI's
+ * mpirun, or a PMI launcher such as MPICH's or Slurm's), or 0 when none
+ * did. */
+int par_launcher_size(void);
+/* Each of the n accumulators summed over the ranks, in place on every rank
+ * (normalized first, xsum.h). */
+void par_sum(xsum *a, int n);
+/* The largest (smallest) of each of v[0..n) over the ranks, in place. */
+void par_max(double *v, int n);
+void par_min(double *v, int n);
+
+#endif
