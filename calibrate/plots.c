@@ -39,7 +39,7 @@ static int convergence(const report *rp, const char *png)
 	fputs("EOD\ntitle_text = ", d.f);
 	plot_quote(d.f, rp->sp->name);
 	fputc('\n', d.f);
-	return plot_png(&d, "calibrate_convergence", png, 900, 560);
+	return plot_draw(&d, "calibrate_convergence", png, 900, 560);
 }
 
 static int targets(const report *rp, const char *png)
@@ -69,7 +69,7 @@ static int targets(const report *rp, const char *png)
 	fprintf(d.f, "EOD\nntargets = %d\nhas_confirm = %d\ntitle_text = ", sp->ntarget, conf);
 	plot_quote(d.f, sp->name);
 	fputc('\n', d.f);
-	return plot_png(&d, "calibrate_targets", png, 900, 560);
+	return plot_draw(&d, "calibrate_targets", png, 900, 560);
 }
 
 int report_plots(const report *rp, const char *dir)

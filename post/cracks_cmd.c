@@ -130,13 +130,11 @@ static void orientation_data(FILE *f, const dem_run *r, const specimen *sp, doub
 
 static void draw(const char *dir, const char *script, plot_data *d, int w, int h)
 {
-	char name[64];
-	snprintf(name, sizeof name, "%s.png", script);
-	char *png = out_path(dir, name);
-	if (plot_png(d, script, png, w, h))
+	char *fig = plot_file(dir, script);
+	if (plot_draw(d, script, fig, w, h))
 		fatal(NULL);
-	printf("wrote %s\n", png);
-	free(png);
+	printf("wrote %s\n", fig);
+	free(fig);
 }
 
 static void plot_maps(const char *dir, const dem_run *r, const specimen *sp, const map_opts *o)
@@ -166,6 +164,7 @@ int post_cracks(int argc, char **argv)
 	const char *out = NULL;
 	map_opts o = {0, 0, 0, 10};
 	int no_png = 0, no_vtk = 0;
+	const char *format = "png";
 	const cli_opt opts[] = {
 	    {"out", CLI_STR, &out, "DIR", "", "output directory (default: that of the run)", 0, 0},
 	    {"surface-depth", CLI_NUM, &o.depth, "D", "m",
@@ -178,6 +177,8 @@ int post_cracks(int argc, char **argv)
 	     90},
 	    {"no-png", CLI_FLAG, &no_png, NULL, "", "no figures", 0, 0},
 	    {"no-vtk", CLI_FLAG, &no_vtk, NULL, "", "no VTK series", 0, 0},
+	    {"format", CLI_STR, &format, "png|pdf|svg", "",
+	     "figure format (each figure's gnuplot script is left beside it as NAME.gp)", 0, 0},
 	};
 	const char *file = post_one_file(
 	    "post cracks [options] RUN.h5",
@@ -188,6 +189,8 @@ int post_cracks(int argc, char **argv)
 	    "cracks_count.png (cracks by mode against axial strain) and\n"
 	    "cracks_orientation.png (histogram of crack orientations).",
 	    opts, (int)(sizeof opts / sizeof opts[0]), argc, argv);
+	if (plot_set_format(format))
+		fatal(NULL);
 	dem_run r;
 	load_run("cracks", file, &r);
 	specimen sp;

@@ -125,13 +125,11 @@ static int energy_data(FILE *f, const dem_run *r)
 
 static void draw(const char *dir, const char *name, const char *script, plot_data *d)
 {
-	char file[64];
-	snprintf(file, sizeof file, "%s.png", name);
-	char *png = out_path(dir, file);
-	if (plot_png(d, script, png, 900, 650))
+	char *fig = plot_file(dir, name);
+	if (plot_draw(d, script, fig, 900, 650))
 		fatal(NULL);
-	printf("wrote %s\n", png);
-	free(png);
+	printf("wrote %s\n", fig);
+	free(fig);
 }
 
 static void plot_curves(const char *dir, const char *path, const dem_run *r, const experiment *e,
@@ -174,7 +172,7 @@ static void plot_curves(const char *dir, const char *path, const dem_run *r, con
 
 int post_curve(int argc, char **argv)
 {
-	const char *out = NULL, *exp_path = NULL, *exp_label = "experiment";
+	const char *out = NULL, *exp_path = NULL, *exp_label = "experiment", *format = "png";
 	int no_png = 0;
 	const cli_opt opts[] = {
 	    {"out", CLI_STR, &out, "DIR", "", "output directory (default: that of the run)", 0, 0},
@@ -182,6 +180,8 @@ int post_curve(int argc, char **argv)
 	     "CSV of experimental points to overlay (share/doc/post.md)", 0, 0},
 	    {"experiment-label", CLI_STR, &exp_label, "TEXT", "", "legend of those points", 0, 0},
 	    {"no-png", CLI_FLAG, &no_png, NULL, "", "write the CSV only", 0, 0},
+	    {"format", CLI_STR, &format, "png|pdf|svg", "",
+	     "figure format (each figure's gnuplot script is left beside it as NAME.gp)", 0, 0},
 	};
 	const char *file =
 	    post_one_file("post curve [options] RUN.h5",
@@ -190,6 +190,8 @@ int post_curve(int argc, char **argv)
 	                  "volumetric.png, bonds.png (broken bonds by mode against axial strain)\n"
 	                  "and energy.png, with experimental points overlaid if given.",
 	                  opts, (int)(sizeof opts / sizeof opts[0]), argc, argv);
+	if (plot_set_format(format))
+		fatal(NULL);
 	dem_run r;
 	load_run("curve", file, &r);
 	if (r.nrows == 0)

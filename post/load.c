@@ -4,9 +4,12 @@
 #include <string.h>
 #include <unistd.h>
 
+#include <cjson/cJSON.h>
+
 #include "lib/err.h"
 #include "lib/h5.h"
 #include "post/load.h"
+#include "post/plot.h"
 
 static void readable_or_die(const char *path)
 {
@@ -48,11 +51,36 @@ file_kind load_kind(const char *cmd, const char *path)
 	return kind;
 }
 
+char *load_caption(const char *path, const dem_run *r)
+{
+	cJSON *c = r->prov.config ? cJSON_Parse(r->prov.config) : NULL;
+	const cJSON *test = cJSON_GetObjectItemCaseSensitive(c, "test");
+	const cJSON *mat = cJSON_GetObjectItemCaseSensitive(c, "material");
+	const cJSON *name = cJSON_GetObjectItemCaseSensitive(mat, "name");
+	char *text = NULL;
+	size_t n = 0;
+	FILE *f = open_memstream(&text, &n);
+	if (!f)
+		fatal("out of memory");
+	fputs(path, f);
+	if (cJSON_IsString(test))
+		fprintf(f, " · %s", test->valuestring);
+	if (cJSON_IsString(name))
+		fprintf(f, " · %s", name->valuestring);
+	fclose(f);
+	cJSON_Delete(c);
+	return text;
+}
+
 void load_run(const char *cmd, const char *path, dem_run *r)
 {
 	readable_or_die(path);
-	if (run_read(path, r) == 0)
+	if (run_read(path, r) == 0) {
+		char *caption = load_caption(path, r);
+		plot_set_footer(caption);
+		free(caption);
 		return;
+	}
 	unfinished(cmd, path);
 	if (!strstr(err_msg(), "\"" ASSEMBLY_FORMAT "\""))
 		fatal(NULL);

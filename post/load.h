@@ -11,8 +11,11 @@ typedef enum { FILE_RUN, FILE_ASSEMBLY } file_kind;
 /* The kind of a toolchain file (by its `format` attribute); fatal when the
  * file is missing or of neither kind. */
 file_kind load_kind(const char *cmd, const char *path);
-/* run_read(), fatal on failure. cmd names the command in messages. */
+/* run_read(), fatal on failure. cmd names the command in messages. The
+ * run's caption becomes the footer of the figures drawn next (plot.h). */
 void load_run(const char *cmd, const char *path, dem_run *r);
+/* "PATH · test · material name" of a run (malloc'd). */
+char *load_caption(const char *path, const dem_run *r);
 /* run_read_snapshot(), fatal on failure. */
 void load_snapshot(const char *path, const dem_run *r, size_t k, dem_snapshot *s);
 

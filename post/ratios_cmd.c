@@ -186,13 +186,11 @@ static void plot(const char *dir, const run_ratios *runs, int nruns, const ratio
 			plot_quote(d.f, text);
 			fputc('\n', d.f);
 		}
-		char name[64];
-		snprintf(name, sizeof name, "%s.png", scripts[p]);
-		char *png = out_path(dir, name);
-		if (plot_png(&d, scripts[p], png, p == 0 ? 900 : 1400, 650))
+		char *fig = plot_file(dir, scripts[p]);
+		if (plot_draw(&d, scripts[p], fig, p == 0 ? 900 : 1400, 650))
 			fatal(NULL);
-		printf("wrote %s\n", png);
-		free(png);
+		printf("wrote %s\n", fig);
+		free(fig);
 	}
 }
 
@@ -202,6 +200,7 @@ int post_ratios(int argc, char **argv)
 	const char *at_stress = NULL, *labels = NULL;
 	double width = 10, sigma_ref = 0;
 	int solid = 0, no_png = 0;
+	const char *format = "png";
 	const cli_opt opts[] = {
 	    {"out", CLI_STR, &out, "DIR", "", "output directory (default: that of the first run)",
 	     0, 0},
@@ -218,6 +217,8 @@ int post_ratios(int argc, char **argv)
 	     "reference stress of r; 0: each run's axial stress at the instant", 0, 1e15},
 	    {"labels", CLI_STR, &labels, "LIST", "", "comma-separated run names for legends", 0, 0},
 	    {"no-png", CLI_FLAG, &no_png, NULL, "", "write the CSV only", 0, 0},
+	    {"format", CLI_STR, &format, "png|pdf|svg", "",
+	     "figure format (each figure's gnuplot script is left beside it as NAME.gp)", 0, 0},
 	};
 	const cli_spec spec = {
 	    .usage = "post ratios [options] RUN.h5 [RUN.h5 ...]",
@@ -238,6 +239,8 @@ int post_ratios(int argc, char **argv)
 	};
 	char *pos[MAX_RUNS];
 	int nruns = cli_parse(&spec, argc, argv, pos);
+	if (plot_set_format(format))
+		fatal(NULL);
 	instant in;
 	if (instant_parse(&in, at_snap, at_time, at_strain, at_stress))
 		cli_usage_error(&spec, "%s", err_msg());
@@ -261,6 +264,20 @@ int post_ratios(int argc, char **argv)
 	printf("wrote %s\n", csv);
 	for (int q = 0; q < nruns; q++)
 		summarise(&runs[q], &bins);
+	if (!no_png && nruns > 1) {
+		/* Several runs: the footer names them all (one run: its caption). */
+		char *text = NULL;
+		size_t n = 0;
+		FILE *f = open_memstream(&text, &n);
+		if (!f)
+			fatal("out of memory");
+		fprintf(f, "%d runs:", nruns);
+		for (int q = 0; q < nruns; q++)
+			fprintf(f, "%s %s", q ? "," : "", runs[q].path);
+		fclose(f);
+		plot_set_footer(text);
+		free(text);
+	}
 	if (!no_png)
 		plot(dir, runs, nruns, &bins);
 	for (int q = 0; q < nruns; q++) {

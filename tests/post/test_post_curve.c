@@ -1,7 +1,10 @@
 /* post curve on a synthetic run: curve.csv is the history table, and the
  * four figures are real images with the curves in their colours;
- * experimental points add black markers. */
+ * experimental points add black markers. Each figure's gnuplot script is
+ * left beside it and draws it again; --format pdf and svg draw vector
+ * figures, an unknown format is refused. */
 #include <math.h>
+#include <sys/stat.h>
 
 #include "lib/runfile.h"
 #include "tests/check.h"
@@ -73,7 +76,37 @@ int main(void)
 	res = harness_post("curve --experiment %s --experiment-label lab %s", exp, run);
 	CHECK(res.status == 0);
 	harness_free(&res);
-	CHECK(pixels(dir, "stress_strain.png", 0x000000) > black + 200);
+	long marks = pixels(dir, "stress_strain.png", 0x000000);
+	CHECK(marks > black + 200);
+
+	/* The script beside the figure draws the same figure again. */
+	snprintf(path, sizeof path, "%s/stress_strain.gp", dir);
+	text = harness_slurp(path);
+	CHECK(text && strstr(text, "set output 'stress_strain.png'"));
+	CHECK(text && strstr(text, "run.h5 · ucs"));
+	free(text);
+	snprintf(path, sizeof path, "%s/stress_strain.png", dir);
+	remove(path);
+	char cmd[1300];
+	snprintf(cmd, sizeof cmd, "cd '%s' && gnuplot stress_strain.gp", dir);
+	CHECK(system(cmd) == 0);
+	CHECK(pixels(dir, "stress_strain.png", 0x000000) == marks);
+
+	/* Vector figures. */
+	const char *vec[][2] = {{"pdf", "%PDF-"}, {"svg", "<svg"}};
+	for (int k = 0; k < 2; k++) {
+		res = harness_post("curve --format %s %s", vec[k][0], run);
+		CHECK(res.status == 0);
+		harness_free(&res);
+		snprintf(path, sizeof path, "%s/stress_strain.%s", dir, vec[k][0]);
+		text = harness_slurp(path);
+		struct stat st;
+		CHECK(text && strstr(text, vec[k][1]) && stat(path, &st) == 0 && st.st_size > 5000);
+		free(text);
+	}
+	res = harness_post("curve --format eps %s", run);
+	CHECK(res.status == 1 && strstr(res.err, "--format eps: expected png, pdf or svg"));
+	harness_free(&res);
 	run_free(&r);
 	return check_done();
 }
