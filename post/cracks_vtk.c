@@ -76,7 +76,7 @@ static void write_discs(const char *path, const dem_run *r, double t)
 	    {"step", VTKIO_I64, 1, step},
 	    {"strain_axial", VTKIO_F64, 1, ce},
 	    {"fn", VTKIO_F64, 1, cfn},
-	    {"fs", VTKIO_F64, 1, cfs},
+	    {"fs_magnitude", VTKIO_F64, 1, cfs},
 	    {"radius", VTKIO_F64, 1, crad},
 	    {"normal", VTKIO_F64, 3, cnorm},
 	    {"i", VTKIO_I32, 1, pi},

@@ -7,8 +7,20 @@
 #include "lib/vec3.h"
 #include "post/scene.h"
 
-void scene_put(const char *path, const vtkio_mesh *m)
+static const vtkio_array *fields;
+static int nfields;
+
+void scene_fields(const vtkio_array *fd, int n)
 {
+	fields = fd;
+	nfields = n;
+}
+
+void scene_put(const char *path, const vtkio_mesh *mesh)
+{
+	vtkio_mesh with = *mesh, *m = &with;
+	with.fdata = fields;
+	with.nfdata = nfields;
 	char tmp[4096];
 	if (afile_begin(path, tmp, sizeof tmp))
 		fatal(NULL);
@@ -43,6 +55,47 @@ void scene_disc(double *x, const double c[3], const double normal[3], double r, 
 	}
 }
 
+/* The stress of every particle from its bonds' forces (scene.h), [n][9]
+ * row-major, and its mean and von Mises invariants. */
+static void particle_stress(const dem_assembly *a, const dem_bonds *b, const dem_snapshot *s,
+                            double *sig, double *mean, double *mises)
+{
+	size_t n = a->n;
+	memset(sig, 0, 9 * n * sizeof *sig);
+	for (size_t k = 0; k < b->n; k++) {
+		int32_t i = b->i[k], j = b->j[k];
+		double nv[3], f[3], d;
+		v3_sub(nv, s->x + 3 * j, s->x + 3 * i);
+		d = v3_norm(nv);
+		if (!(d > 0))
+			continue;
+		v3_scale(nv, nv, 1 / d);
+		/* The force on i: fn along n (tension positive) and the shear force. */
+		for (int c = 0; c < 3; c++)
+			f[c] = s->fn[k] * nv[c] + s->fs[3 * k + c];
+		double ai = d * a->r[i] / (a->r[i] + a->r[j]), aj = d - ai;
+		for (int p = 0; p < 3; p++)
+			for (int q = 0; q < 3; q++) {
+				/* l_i = ai n with f; l_j = -aj n with -f. */
+				sig[9 * i + 3 * p + q] += ai * nv[p] * f[q];
+				sig[9 * j + 3 * p + q] += aj * nv[p] * f[q];
+			}
+	}
+	for (size_t k = 0; k < n; k++) {
+		double v = 4.0 / 3.0 * POST_PI * a->r[k] * a->r[k] * a->r[k], *t = sig + 9 * k;
+		for (int c = 0; c < 9; c++)
+			t[c] /= v;
+		double p = (t[0] + t[4] + t[8]) / 3, j2 = 0;
+		for (int r = 0; r < 3; r++)
+			for (int c = 0; c < 3; c++) {
+				double sym = 0.5 * (t[3 * r + c] + t[3 * c + r]) - (r == c ? p : 0);
+				j2 += 0.5 * sym * sym;
+			}
+		mean[k] = p;
+		mises[k] = sqrt(3 * j2);
+	}
+}
+
 void scene_particles(const char *path, const dem_assembly *a, const dem_bonds *b,
                      const dem_snapshot *s)
 {
@@ -50,13 +103,13 @@ void scene_particles(const char *path, const dem_assembly *a, const dem_bonds *b
 	int32_t *id = xmalloc(n * sizeof *id);
 	for (size_t k = 0; k < n; k++)
 		id[k] = (int32_t)k;
-	vtkio_array arr[8] = {
+	vtkio_array arr[11] = {
 	    {"id", VTKIO_I32, 1, id},
 	    {"radius", VTKIO_F64, 1, a->r},
 	    {"material", VTKIO_I32, 1, a->material},
 	};
 	int narr = 3;
-	double *disp = NULL, *damage = NULL;
+	double *disp = NULL, *damage = NULL, *sig = NULL, *mean = NULL, *mises = NULL;
 	int32_t *broken = NULL;
 	if (s) {
 		disp = xmalloc(3 * n * sizeof *disp);
@@ -84,11 +137,18 @@ void scene_particles(const char *path, const dem_assembly *a, const dem_bonds *b
 		arr[narr++] = (vtkio_array){"angular_velocity", VTKIO_F64, 3, s->w};
 		arr[narr++] = (vtkio_array){"damage", VTKIO_F64, 1, damage};
 		arr[narr++] = (vtkio_array){"broken_bonds", VTKIO_I32, 1, broken};
+		sig = xmalloc(9 * n * sizeof *sig);
+		mean = xmalloc(n * sizeof *mean);
+		mises = xmalloc(n * sizeof *mises);
+		particle_stress(a, b, s, sig, mean, mises);
+		arr[narr++] = (vtkio_array){"stress", VTKIO_F64, 9, sig};
+		arr[narr++] = (vtkio_array){"stress_mean", VTKIO_F64, 1, mean};
+		arr[narr++] = (vtkio_array){"stress_von_mises", VTKIO_F64, 1, mises};
 	}
 	vtkio_mesh m = {
 	    .npoints = n, .x = s ? s->x : a->x, .kind = VTKIO_VERTS, .pdata = arr, .npdata = narr};
 	scene_put(path, &m);
-	free(id), free(disp), free(damage), free(broken);
+	free(id), free(disp), free(damage), free(broken), free(sig), free(mean), free(mises);
 }
 
 void scene_bonds(const char *path, const dem_bonds *b, const dem_snapshot *s)

@@ -9,7 +9,13 @@
  *   geometry   the specimen boundary triangulation
  * Particle damage D_i is the mean over the bonds of particle i of d_b,
  * with d_b = 1 for a broken bond and max(d_n, d_s) otherwise (0 when the
- * particle has no bond). Platens sit at the particle extents along the
+ * particle has no bond). A particle's stress (Pa, tension positive, as
+ * Yade's bodyStressTensors) is (1/V_i) Σ_b l_ib ⊗ f_ib over its bonds,
+ * with V_i = 4/3 π r_i³, l_ib the branch from its centre to the bond's
+ * contact point and f_ib the bond's force on it (the forces a snapshot
+ * holds: non-bonded contacts are not in it); with its mean (p = tr σ / 3)
+ * and von Mises (q = sqrt(3/2 s:s), s the deviator of the symmetric part)
+ * invariants. Platens sit at the particle extents along the
  * loading axis (min of h - r, max of h + r in post/frame.h terms), the
  * faces the specimen presses on, with a radius 1.2 times the specimen's. */
 #ifndef DEM_POST_SCENE_H
@@ -19,6 +25,9 @@
 #include "post/frame.h"
 #include "post/vtkio.h"
 
+/* Field data every file written next carries (the frame's time, strain,
+ * stress, ...), or n = 0 for none; the arrays must outlive those writes. */
+void scene_fields(const vtkio_array *fd, int n);
 /* Write m to path (.vtu or .vtp by its extension) atomically; fatal on
  * failure. */
 void scene_put(const char *path, const vtkio_mesh *m);

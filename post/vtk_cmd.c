@@ -1,6 +1,7 @@
 /* post vtk: ParaView files of a run (a time series over its snapshots) or
  * of an assembly (the packing as made). See post/scene.h for what each
  * file holds and share/paraview/ for a script that shows them. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -52,6 +53,20 @@ static size_t pick_snapshots(size_t nsnap, long every, size_t *snaps)
 	return n;
 }
 
+/* The history value of column col (NaN without it) at the row nearest in
+ * time to t. */
+static double history_at(const dem_run *r, const char *col, double t)
+{
+	const double *v = run_column_data(r, col), *ht = run_column_data(r, "t");
+	if (!v || !ht || !r->nrows)
+		return NAN;
+	size_t best = 0;
+	for (size_t k = 1; k < r->nrows; k++)
+		if (fabs(ht[k] - t) < fabs(ht[best] - t))
+			best = k;
+	return v[best];
+}
+
 static void run_files(const char *file, const char *dir, long every)
 {
 	dem_run r;
@@ -72,6 +87,17 @@ static void run_files(const char *file, const char *dir, long every)
 	for (size_t k = 0; k < nframes; k++) {
 		dem_snapshot s;
 		load_snapshot(file, &r, snaps[k], &s);
+		/* The frame's state as field data of each of its files (ParaView
+		 * shows it with the Annotate tools). */
+		double pressure = history_at(&r, "pressure", s.t);
+		const vtkio_array fields[] = {
+		    {"time", VTKIO_F64, 1, &s.t},
+		    {"step", VTKIO_I64, 1, &s.step},
+		    {"strain_axial", VTKIO_F64, 1, &s.strain_axial},
+		    {"stress_axial", VTKIO_F64, 1, &s.stress_axial},
+		    {"confining_pressure", VTKIO_F64, 1, &pressure},
+		};
+		scene_fields(fields, (int)(sizeof fields / sizeof fields[0]));
 		for (int p = 0; p < PART_CRACKS; p++) {
 			if (p == PART_BONDS && r.bonds.n == 0)
 				continue;
@@ -87,6 +113,7 @@ static void run_files(const char *file, const char *dir, long every)
 			free(path);
 			entries[p][k] = (pvd_entry){s.t, p, xstrdup(name)};
 		}
+		scene_fields(NULL, 0);
 		snapshot_free(&s);
 		progress_update(&pr, (double)(k + 1), NULL);
 	}

@@ -6,6 +6,7 @@
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -90,6 +91,8 @@ void attach_arrays(vtkDataSet *ds, const vtkio_mesh *m)
 		ds->GetPointData()->AddArray(make_array(m->pdata[k], m->npoints));
 	for (int k = 0; k < m->ncdata; k++)
 		ds->GetCellData()->AddArray(make_array(m->cdata[k], cell_count(m)));
+	for (int k = 0; k < m->nfdata; k++)
+		ds->GetFieldData()->AddArray(make_array(m->fdata[k], 1));
 }
 
 // VTK's own messages are silenced: the C caller reports a failure.

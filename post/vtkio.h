@@ -36,6 +36,8 @@ typedef struct {
 	int npdata;
 	const vtkio_array *cdata; /* cell arrays, [ncells] tuples each */
 	int ncdata;
+	const vtkio_array *fdata; /* field data: one tuple each (the frame's time, ...) */
+	int nfdata;
 } vtkio_mesh;
 
 /* Write m to path as an unstructured grid (.vtu) or polygonal data (.vtp).

@@ -86,6 +86,53 @@ static void check_particles(const dem_run *run, const dem_snapshot *s)
 	CHECK(bad == 0);
 	CHECK(damaged > 0); /* the test means something */
 	free(sum), free(nb), free(broken);
+
+	/* Stress: Σ_p V_p σ_p is the Love–Weber sum Σ_b d n ⊗ f over the bonds
+	 * (tension positive: f = fn n + fs on i); the invariants match the
+	 * tensor. */
+	check_array(r, 'p', "stress", 9, n);
+	check_array(r, 'p', "stress_mean", 1, n);
+	check_array(r, 'p', "stress_von_mises", 1, n);
+	double love[9] = {0}, got[9] = {0}, scale = 0;
+	for (size_t b = 0; b < run->bonds.n; b++) {
+		double nv[3], f[3];
+		v3_sub(nv, s->x + 3 * run->bonds.j[b], s->x + 3 * run->bonds.i[b]);
+		for (int c = 0; c < 3; c++)
+			f[c] = s->fn[b] * nv[c] / v3_norm(nv) + s->fs[3 * b + c];
+		for (int c = 0; c < 9; c++)
+			love[c] += nv[c / 3] * f[c % 3];
+	}
+	bad = 0;
+	for (long k = 0; k < n; k++) {
+		double rr = run->assembly.r[k],
+		       v = 4.0 / 3.0 * 3.14159265358979323846 * rr * rr * rr, t[9];
+		for (int c = 0; c < 9; c++) {
+			t[c] = vtkr_value(r, 'p', "stress", k, c);
+			got[c] += v * t[c];
+		}
+		double p = (t[0] + t[4] + t[8]) / 3, s2 = 0;
+		for (int c = 0; c < 9; c++) {
+			double sym = 0.5 * (t[c] + t[3 * (c % 3) + c / 3]) - (c % 4 == 0 ? p : 0);
+			s2 += sym * sym;
+		}
+		bad += fabs(vtkr_value(r, 'p', "stress_mean", k, 0) - p) > 1e-9 * fabs(p) + 1e-6;
+		double q = vtkr_value(r, 'p', "stress_von_mises", k, 0);
+		bad += fabs(q - sqrt(1.5 * s2)) > 1e-9 * q + 1e-6;
+	}
+	for (int c = 0; c < 9; c++)
+		scale = fmax(scale, fabs(love[c]));
+	for (int c = 0; c < 9; c++)
+		bad += fabs(got[c] - love[c]) > 1e-9 * scale;
+	CHECK(bad == 0 && scale > 0);
+
+	/* The frame's state as field data. */
+	long one = 0;
+	CHECK(vtkr_array(r, 'f', "time", &one) == 1 && one == 1);
+	CHECK(vtkr_value(r, 'f', "time", 0, 0) == run->snap_t[2]);
+	CHECK(vtkr_value(r, 'f', "step", 0, 0) == run->snap_step[2]);
+	CHECK(vtkr_value(r, 'f', "strain_axial", 0, 0) == run->snap_strain[2]);
+	CHECK(vtkr_value(r, 'f', "stress_axial", 0, 0) == run->snap_stress[2]);
+	CHECK(vtkr_array(r, 'f', "confining_pressure", &one) == 1);
 	vtkr_close(r);
 }
 
@@ -163,7 +210,7 @@ static void check_cracks(const dem_run *run, const dem_snapshot *last)
 				bad += vtkr_value(r, 'c', "t", c, 0) != q->t;
 				bad += vtkr_value(r, 'c', "strain_axial", c, 0) != q->strain_axial;
 				bad += vtkr_value(r, 'c', "fn", c, 0) != q->fn;
-				bad += vtkr_value(r, 'c', "fs", c, 0) != q->fs;
+				bad += vtkr_value(r, 'c', "fs_magnitude", c, 0) != q->fs;
 				bad += vtkr_value(r, 'c', "i", c, 0) != q->i;
 				bad += vtkr_value(r, 'c', "radius", c, 0) != q->radius;
 			}

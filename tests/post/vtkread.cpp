@@ -72,8 +72,9 @@ extern "C" long vtkr_cell_point(const vtkr *r, long c, int k)
 
 static vtkDataArray *find(const vtkr *r, char where, const char *name)
 {
-	vtkFieldData *fd = where == 'p' ? static_cast<vtkFieldData *>(r->data->GetPointData())
-	                                : static_cast<vtkFieldData *>(r->data->GetCellData());
+	vtkFieldData *fd = where == 'p'   ? static_cast<vtkFieldData *>(r->data->GetPointData())
+	                   : where == 'c' ? static_cast<vtkFieldData *>(r->data->GetCellData())
+	                                  : r->data->GetFieldData();
 	return fd->GetArray(name);
 }
 

@@ -20,7 +20,8 @@ int vtkr_cell_type(const vtkr *r, long c); /* VTK_VERTEX 1, VTK_LINE 3, VTK_POLY
 int vtkr_cell_size(const vtkr *r, long c);
 long vtkr_cell_point(const vtkr *r, long c, int k);
 
-/* Arrays on points (where 'p') or cells ('c'): the number of components,
+/* Arrays on points (where 'p'), cells ('c') or the whole data set (field
+ * data, 'f'): the number of components,
  * or -1 when there is no array of that name; *ntuples gets its length. */
 int vtkr_array(const vtkr *r, char where, const char *name, long *ntuples);
 double vtkr_value(const vtkr *r, char where, const char *name, long tuple, int comp);
