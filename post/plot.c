@@ -133,7 +133,7 @@ static void prelude(FILE *f, const char *ext, const char *out, int width, int he
 	if (footer) {
 		fputs("set label 1001 ", f);
 		plot_quote(f, footer);
-		fputs(" at screen 0.99, 0.012 right font ',8' tc rgb '#777777' noenhanced\n", f);
+		fputs(" at screen 0.995, 0.008 right font ',7' tc rgb '#777777' noenhanced\n", f);
 	}
 }
 

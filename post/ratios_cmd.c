@@ -27,6 +27,7 @@ typedef struct {
 	int64_t step;
 	double t, strain, stress; /* at the snapshot used */
 	double sigma_ref;         /* Pa, the denominator of r */
+	int plateau;              /* the "peak" is where a strain stop ended a rising curve */
 	long ncontacts;
 	ratio_stat *stat; /* [RATIO_NGROUPS][nbins] */
 } run_ratios;
@@ -55,6 +56,22 @@ static void compute_run(run_ratios *rr, const instant *in, const ratio_bins *bin
 	if (r.bonds.n == 0)
 		fatal("%s: the run has no bonds (/bonds is missing or empty)", rr->path);
 	printf("%s\n", desc);
+	/* A peak at the end of a run that a strain stop ended is no peak: the
+	 * stress was still rising (or on a plateau) when the run stopped. */
+	const double *sa = run_column_data(&r, "stress_axial");
+	if (in->kind == AT_PEAK && sa && r.nrows > 2 && r.status &&
+	    strstr(r.status, "axial strain reached")) {
+		size_t top = 0;
+		for (size_t k = 1; k < r.nrows; k++)
+			top = sa[k] > sa[top] ? k : top;
+		if (sa[r.nrows - 1] >= 0.99 * sa[top]) {
+			rr->plateau = 1;
+			warn("%s: the axial stress has no peak before the run ended (%s): the "
+			     "instant is "
+			     "the strain stop's plateau, not a limit stress",
+			     rr->path, r.status);
+		}
+	}
 	dem_snapshot s;
 	load_snapshot(rr->path, &r, rr->snap, &s);
 	frame f;
@@ -140,7 +157,8 @@ static void write_csv(const char *path, const run_ratios *runs, int nruns, const
 
 /* Datablock $<group>: one index per run, rows theta_mid r r_std tau/ref
  * tau_std/ref count (NaN in empty bins, which gnuplot leaves out). */
-static void data_group(FILE *f, int g, const run_ratios *runs, int nruns, const ratio_bins *bins)
+static void data_group(FILE *f, int g, const run_ratios *runs, int nruns, const ratio_bins *bins,
+                       long min_count)
 {
 	fprintf(f, "$%s << EOD\n", ratio_group_name[g]);
 	for (int q = 0; q < nruns; q++) {
@@ -148,7 +166,8 @@ static void data_group(FILE *f, int g, const run_ratios *runs, int nruns, const 
 			fputs("\n\n", f);
 		for (int k = 0; k < bins->n; k++) {
 			const ratio_stat *st = &runs[q].stat[g * bins->n + k];
-			double ref = runs[q].sigma_ref;
+			/* Too few contacts to mean anything: not drawn. */
+			double ref = (long)st->count >= min_count ? runs[q].sigma_ref : NAN;
 			double v[] = {0.5 * (bins->edges[k] + bins->edges[k + 1]),
 			              st->sn_mean / ref,
 			              st->sn_std / ref,
@@ -164,24 +183,30 @@ static void data_group(FILE *f, int g, const run_ratios *runs, int nruns, const 
 	fputs("EOD\n", f);
 }
 
-static void plot(const char *dir, const run_ratios *runs, int nruns, const ratio_bins *bins)
+/* sigma_given: the reference is --sigma-ref, one value for every run. */
+static void plot(const char *dir, const run_ratios *runs, int nruns, const ratio_bins *bins,
+                 long min_count, int sigma_given)
 {
 	const char *scripts[] = {"ratios", "ratios_groups"};
 	for (int p = 0; p < 2; p++) {
 		plot_data d;
 		plot_begin(&d);
 		for (int g = 0; g < RATIO_NGROUPS; g++)
-			data_group(d.f, g, runs, nruns, bins);
-		size_t ndamaged = 0;
+			data_group(d.f, g, runs, nruns, bins, min_count);
+		size_t ndamaged = 0; /* in the bins drawn */
 		for (int q = 0; q < nruns; q++)
-			for (int k = 0; k < bins->n; k++)
-				ndamaged += runs[q].stat[RATIO_DAMAGED * bins->n + k].count;
-		fprintf(d.f, "nruns = %d\nndamaged = %zu\narray label[%d]\n", nruns, ndamaged,
-		        nruns);
+			for (int k = 0; k < bins->n; k++) {
+				size_t c = runs[q].stat[RATIO_DAMAGED * bins->n + k].count;
+				ndamaged += (long)c >= min_count ? c : 0;
+			}
+		fprintf(d.f, "nruns = %d\nndamaged = %zu\nmin_count = %ld\narray label[%d]\n",
+		        nruns, ndamaged, min_count, nruns);
 		for (int q = 0; q < nruns; q++) {
 			char text[512];
-			snprintf(text, sizeof text, "%s (σ@_a^{ref} = %.3g MPa)", runs[q].label,
-			         1e-6 * runs[q].sigma_ref);
+			snprintf(text, sizeof text, "%s (σ@_a^{ref} = %.3g MPa, %s%s)",
+			         runs[q].label, 1e-6 * runs[q].sigma_ref,
+			         sigma_given ? "common" : "its own at the instant",
+			         runs[q].plateau ? "; no peak: strain stop" : "");
 			fprintf(d.f, "label[%d] = ", q + 1);
 			plot_quote(d.f, text);
 			fputc('\n', d.f);
@@ -200,6 +225,7 @@ int post_ratios(int argc, char **argv)
 	const char *at_stress = NULL, *labels = NULL;
 	double width = 10, sigma_ref = 0;
 	int solid = 0, no_png = 0;
+	long min_count = 20;
 	const char *format = "png";
 	const cli_opt opts[] = {
 	    {"out", CLI_STR, &out, "DIR", "", "output directory (default: that of the first run)",
@@ -216,6 +242,9 @@ int post_ratios(int argc, char **argv)
 	    {"sigma-ref", CLI_NUM, &sigma_ref, "S", "Pa",
 	     "reference stress of r; 0: each run's axial stress at the instant", 0, 1e15},
 	    {"labels", CLI_STR, &labels, "LIST", "", "comma-separated run names for legends", 0, 0},
+	    {"min-contacts", CLI_INT, &min_count, "N", "",
+	     "figures: bins with fewer contacts are not drawn (the CSV has them all, with counts)",
+	     1, 1e9},
 	    {"no-png", CLI_FLAG, &no_png, NULL, "", "write the CSV only", 0, 0},
 	    {"format", CLI_STR, &format, "png|pdf|svg", "",
 	     "figure format (each figure's gnuplot script is left beside it as NAME.gp)", 0, 0},
@@ -278,8 +307,21 @@ int post_ratios(int argc, char **argv)
 		plot_set_footer(text);
 		free(text);
 	}
+	/* A run whose every bin has fewer contacts than --min-contacts would
+	 * have nothing drawn: draw all bins then, and say so. */
+	for (int q = 0; q < nruns && !no_png; q++) {
+		int drawn = 0;
+		for (int k = 0; k < bins.n; k++)
+			drawn |= (long)runs[q].stat[RATIO_ALL * bins.n + k].count >= min_count;
+		if (!drawn && runs[q].ncontacts > 0) {
+			warn("%s: no bin has %ld contacts (--min-contacts): the figures draw every "
+			     "bin",
+			     runs[q].label, min_count);
+			min_count = 1;
+		}
+	}
 	if (!no_png)
-		plot(dir, runs, nruns, &bins);
+		plot(dir, runs, nruns, &bins, min_count, sigma_ref > 0);
 	for (int q = 0; q < nruns; q++) {
 		free(runs[q].label);
 		free(runs[q].stat);

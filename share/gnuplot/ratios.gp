@@ -3,9 +3,13 @@
 # Fig. 11). Drawn by `post ratios`, which defines before this script:
 #   $all     datablock, one index per run, rows:
 #            theta_mid(deg) r r_std tau/ref tau_std/ref count
-#            (NaN in an empty bin: the line stops there)
+#            (NaN in an empty bin, or one with fewer than min_count
+#            contacts: the line stops there)
 #   nruns    number of runs;  label[k]  legend text of run k
+#   min_count  fewest contacts a drawn bin has
 set title 'Micro-macro compressive stress ratio by contact orientation'
+set label 1002 sprintf('bins of fewer than %d contacts not drawn', min_count) \
+    at graph 0.01, graph 0.03 left font ',9' tc rgb '#555555'
 set xlabel 'angle θ between contact normal and horizontal plane (°)'
 set ylabel 'r = mean σ_n / σ@_a^{ref}'
 set xrange [0:90]

@@ -4,7 +4,10 @@
 #            theta_mid(deg) r r_std tau/ref tau_std/ref count
 #   nruns    number of runs;  label[k]  legend text of run k
 #   ndamaged number of damaged contacts in compression (all runs)
+#   min_count  fewest contacts a drawn bin has (fewer: NaN, not drawn)
 set multiplot layout 1,2
+set label 1002 sprintf('bins of fewer than %d contacts not drawn', min_count) \
+    at graph 0.01, graph 0.03 left font ',9' tc rgb '#555555'
 set xlabel 'angle θ between contact normal and horizontal plane (°)'
 set xrange [0:90]
 set xtics 0,10,90

@@ -355,6 +355,24 @@ int main(void)
 			check_png(png);
 			snprintf(png, sizeof png, "%s/ratios_groups.png", dir);
 			CHECK(harness_exists(png));
+			/* The legend says which reference r is of; bins of too few
+			 * contacts are left out, or all drawn when none has enough. */
+			r = harness_post("ratios --snapshot 0 --min-contacts 5 %s", run);
+			CHECK(r.status == 0 && !strstr(r.err, "no bin has"));
+			harness_free(&r);
+			snprintf(png, sizeof png, "%s/ratios.gp", dir);
+			char *gp = harness_slurp(png);
+			CHECK(gp && strstr(gp, "its own at the instant") &&
+			      strstr(gp, "min_count = 5\n"));
+			free(gp);
+			r = harness_post(
+			    "ratios --snapshot 0 --sigma-ref 1e7 --min-contacts 100000 %s", run);
+			CHECK(r.status == 0);
+			CHECK_CONTAINS(r.err, "no bin has 100000 contacts (--min-contacts)");
+			harness_free(&r);
+			gp = harness_slurp(png);
+			CHECK(gp && strstr(gp, "10 MPa, common") && strstr(gp, "min_count = 1\n"));
+			free(gp);
 		}
 	}
 	char dir[1024];
