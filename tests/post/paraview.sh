@@ -19,20 +19,27 @@ skip() {
 	echo "SKIPPED: $*"
 	exit 77
 }
-pv=$(command -v pvbatch) || skip "pvbatch not found (tools/deps --optional installs it)"
+marker="tools/deps --optional installs this"
+pv=$(command -v pvbatch) || pv=""
+# The pvbatch of tools/deps, even where /usr/local/bin is not first on PATH.
+if { [ -z "$pv" ] || ! grep -q "$marker" "$pv"; } && grep -qs "$marker" /usr/local/bin/pvbatch; then
+	echo "note: using /usr/local/bin/pvbatch, not ${pv:-none} (PATH=$PATH)"
+	pv=/usr/local/bin/pvbatch
+fi
+[ -n "$pv" ] || skip "pvbatch not found (tools/deps --optional installs it)"
 # The pvbatch tools/deps installs starts its own virtual display when there
 # is none; Debian's own needs one.
 xvfb=no
-if [ -z "${DISPLAY:-}" ] && ! grep -q "tools/deps --optional installs this" "$pv"; then
+if [ -z "${DISPLAY:-}" ] && ! grep -q "$marker" "$pv"; then
 	command -v xvfb-run >/dev/null 2>&1 ||
 		skip "no X display and no xvfb-run for pvbatch (Debian: xvfb xauth)"
 	xvfb=yes
 fi
 run_pvbatch() {
 	if [ $xvfb = yes ]; then
-		xvfb-run -a -s "-screen 0 1920x1200x24 -noreset" pvbatch "$@"
+		xvfb-run -a -s "-screen 0 1920x1200x24 -noreset" "$pv" "$@"
 	else
-		pvbatch "$@"
+		"$pv" "$@"
 	fi
 }
 echo 'import paraview.simple' >"$tmp/probe.py"
