@@ -1,6 +1,6 @@
 """Show a run written by `post vtk` in ParaView, and save a picture.
 
-    pvbatch share/paraview/show_run.py VTK_DIR [OUT.png] [--time T] [--size W H]
+    pvbatch share/paraview/show_run.py VTK_DIR [OUT.png] [--time T] [--size W H] [--bonds]
     paraview --script=share/paraview/show_run.py    (then VTK_DIR from $DEM_VTK_DIR)
 
 VTK_DIR is the directory `post vtk` wrote (particles.pvd, cracks.pvd,
@@ -15,12 +15,16 @@ change of the platens' distance and their `stress_axial`):
          where the bonds broke inside the specimen;
   right  every crack so far as a disc inside the translucent specimen,
          coloured by the axial strain at which it formed, so that the order
-         in which the fracture grew shows.
+         in which the fracture grew shows;
+  --bonds adds a third view: the broken-bond network, each broken bond
+         (bonds.pvd, `state` 2 or 3) as a line between the two sphere
+         centres, tension red and shear blue.
 Each colour range runs between percentiles of what is shown (damage: 0 to
 the 99th, at least 0.05; strain: 2nd to 98th), so that one outlier does not
 set it; the legends are horizontal bars inside each view. The loading axis
 is found from the platens. With OUT.png the layout is saved, W x H pixels
-(default 1280 x 640, which fits xvfb-run's default screen).
+(default 1280 x 640, which fits xvfb-run's default screen; 1920 x 640 with
+--bonds).
 """
 import math
 import os
@@ -30,21 +34,25 @@ from paraview import servermanager
 from paraview.simple import (
     AssignViewToLayout, Calculator, Clip, ColorBy, CreateLayout, CreateView, GetAnimationScene,
     GetColorTransferFunction, GetOpacityTransferFunction, GetScalarBar, Glyph, PVDReader,
-    Render, SaveScreenshot, Show, Text, XMLPolyDataReader)
+    Render, SaveScreenshot, Show, Text, Threshold, XMLPolyDataReader)
 
 DAMAGE_MAP = "Inferno (matplotlib)"  # inverted: intact pale, broken dark
 STRAIN_MAP = "Viridis (matplotlib)"  # inverted: first cracks yellow, last dark blue
 DEFAULT_SIZE = (1280, 640)
+TENSION = [0.839, 0.153, 0.157]  # share/gnuplot/style.gp colours
+SHEAR = [0.122, 0.306, 0.620]
 
 
 def parse(argv):
     args = {"dir": os.environ.get("DEM_VTK_DIR"), "out": None, "time": None,
-            "size": DEFAULT_SIZE}
+            "size": None, "bonds": False}
     rest = list(argv)
     while rest:
         a = rest.pop(0)
         if a == "--time":
             args["time"] = float(rest.pop(0))
+        elif a == "--bonds":
+            args["bonds"] = True
         elif a == "--size":
             args["size"] = (int(rest.pop(0)), int(rest.pop(0)))
         elif args["dir"] is None or (args["dir"] == os.environ.get("DEM_VTK_DIR") and
@@ -53,7 +61,10 @@ def parse(argv):
         else:
             args["out"] = a
     if not args["dir"]:
-        sys.exit("usage: pvbatch show_run.py VTK_DIR [OUT.png] [--time T] [--size W H]")
+        sys.exit("usage: pvbatch show_run.py VTK_DIR [OUT.png] [--time T] [--size W H] [--bonds]")
+    if args["size"] is None:
+        w, h = DEFAULT_SIZE
+        args["size"] = (w * 3 // 2, h) if args["bonds"] else (w, h)
     return args
 
 
@@ -199,6 +210,45 @@ def label(view, text):
     d.Justification = "Center"
 
 
+def bond_view(path, t, platens, centre, axis, towards, length):
+    """The broken bonds as lines between the sphere centres, by mode."""
+    view = CreateView("RenderView")
+    view.ViewTime = t
+    bonds = PVDReader(FileName=path("bonds.pvd"))
+    bonds.UpdatePipeline(t)
+    broken = Threshold(Input=bonds)
+    broken.Scalars = ["CELLS", "state"]
+    broken.LowerThreshold = 2
+    broken.UpperThreshold = 3
+    try:
+        broken.ThresholdMethod = "Between"
+    except AttributeError:
+        pass
+    lines = Show(broken, view)
+    ColorBy(lines, ("CELLS", "state"))
+    states = GetColorTransferFunction("state")
+    states.InterpretValuesAsCategories = 1
+    states.Annotations = ["2", "tension", "3", "shear"]
+    states.IndexedColors = TENSION + SHEAR
+    lines.LineWidth = 2
+    try:
+        lines.RenderLinesAsTubes = 1
+    except AttributeError:
+        pass
+    lines.SetScalarBarVisibility(view, True)
+    bar = GetScalarBar(states, view)
+    legend(bar, "broken bond", "%s")
+    bar.ScalarBarLength = 0.3
+    plates = Show(platens, view)
+    plates.DiffuseColor = [0.55, 0.55, 0.55]
+    plates.Opacity = 0.5
+    camera(view, centre, axis, towards, length)
+    state = values(broken, t, "CELLS", "state")
+    label(view, "%d broken bonds (%d in tension, %d in shear)\nas lines between the sphere "
+          "centres" % (len(state), state.count(2), state.count(3)))
+    return view
+
+
 def main(argv):
     args = parse(argv)
     path = lambda name: os.path.join(args["dir"], name)
@@ -275,11 +325,21 @@ def main(argv):
     label(right, "%d cracks so far (%d tension, %d shear)\nas discs, by the axial strain at which "
           "each formed" % (len(modes), modes.count(1), modes.count(2)))
 
+    views = [left, right]
+    if args["bonds"]:
+        views.append(bond_view(path, t, platens, centre, axis, towards, length))
+
     layout = CreateLayout("run")
     AssignViewToLayout(view=left, layout=layout, hint=0)
-    layout.SplitHorizontal(0, 0.5)
-    AssignViewToLayout(view=right, layout=layout, hint=2)
-    for view in (left, right):
+    if len(views) == 2:
+        layout.SplitHorizontal(0, 0.5)
+        AssignViewToLayout(view=right, layout=layout, hint=2)
+    else:
+        layout.SplitHorizontal(0, 1.0 / 3)
+        AssignViewToLayout(view=right, layout=layout, hint=2)
+        layout.SplitHorizontal(2, 0.5)
+        AssignViewToLayout(view=views[2], layout=layout, hint=6)
+    for view in views:
         Render(view)
         camera(view, centre, axis, towards, length)
     if args["out"]:

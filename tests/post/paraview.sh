@@ -3,7 +3,8 @@
 # picture shows the run: post_synth -> post vtk, post curve -> pvbatch
 # share/paraview/show_run.py (default size) -> paraview_check.py (size, not
 # blank, each crack disc in the colour of the strain at which it formed and
-# each sphere behind the cut in the colour of its damage, where they are).
+# each sphere behind the cut in the colour of its damage, where they are),
+# then again with --bonds (each broken bond in the colour of its mode too).
 # Skipped (exit status 77) with the reason when pvbatch cannot run here;
 # with DEM_REQUIRE_PARAVIEW=1 (tools/check, which installs ParaView) that is
 # a failure instead.
@@ -56,3 +57,5 @@ fi
 "$bin/post" curve --no-png "$tmp/run.h5" >/dev/null
 (cd "$src" && run_pvbatch share/paraview/show_run.py "$tmp/vtk" "$tmp/show.png")
 /usr/bin/python3 "$src/tests/post/paraview_check.py" "$tmp/show.png" "$tmp/vtk" 1280 640
+(cd "$src" && run_pvbatch share/paraview/show_run.py "$tmp/vtk" "$tmp/bonds.png" --bonds)
+/usr/bin/python3 "$src/tests/post/paraview_check.py" "$tmp/bonds.png" "$tmp/vtk" 1920 640 --bonds

@@ -1,7 +1,7 @@
 """Check the picture share/paraview/show_run.py saved of a run: its size,
 that it is not blank, and that the colours are where the data put them.
 
-    python3 paraview_check.py SHOW.png VTK_DIR W H
+    python3 paraview_check.py SHOW.png VTK_DIR W H [--bonds]
 
 Reads the PNG and the VTK files with Debian's python3-vtk9 (what
 libvtk9-dev brings), not with ParaView. The picture is two views side by
@@ -11,7 +11,9 @@ must have the colour of inverted Viridis at the axial strain at which the
 crack formed, over the 2nd to 98th percentile of those strains; most of
 them must, and clearly more than with another crack's strain. Left view:
 likewise each sphere behind the cut in sight at its centre, with inverted
-Inferno at its damage (0 to the 99th percentile). Prints what it measured;
+Inferno at its damage (0 to the 99th percentile). With --bonds (a picture
+of show_run.py --bonds: three views, each W/3 x H), the third view too:
+each broken bond's midpoint in the colour of its mode. Prints what it measured;
 exits 1 with the reason on the first check that fails.
 """
 import math
@@ -26,6 +28,8 @@ from vtkmodules.vtkRenderingCore import vtkCamera
 # matplotlib's Viridis and Inferno at 0, 1/4, 1/2, 3/4, 1.
 VIRIDIS = [(68, 1, 84), (59, 82, 139), (33, 145, 140), (94, 201, 98), (253, 231, 37)]
 INFERNO = [(0, 0, 4), (87, 16, 110), (188, 55, 84), (249, 142, 9), (252, 255, 164)]
+TENSION = (214, 39, 40)  # share/gnuplot/style.gp colours
+SHEAR = (31, 78, 158)
 BACKGROUND = (255, 255, 255)
 
 
@@ -86,6 +90,8 @@ def near(pixel, target, tol):
 
 def main(argv):
     png, vtk_dir, w, h = argv[0], argv[1], int(argv[2]), int(argv[3])
+    bonds = argv[4:] == ["--bonds"]
+    vw, vh = w // (3 if bonds else 2), h  # each view
     image = read(vtkPNGReader, png)
     dims = image.GetDimensions()
     if (dims[0], dims[1]) != (w, h):
@@ -97,14 +103,14 @@ def main(argv):
         return scalars.GetTuple(y * w + x)[:3]
 
     # Not blank: each view has drawn pixels and many colours.
-    for name, x0 in (("left", 0), ("right", w // 2)):
+    for name, x0 in (("left", 0), ("right", vw), ("bonds", 2 * vw))[:3 if bonds else 2]:
         drawn, colours = 0, set()
         for y in range(0, h, 2):
-            for x in range(x0, x0 + w // 2, 2):
+            for x in range(x0, x0 + vw, 2):
                 p = pixel(x, y)
                 colours.add(tuple(int(v) // 8 for v in p))
                 drawn += p != BACKGROUND
-        frac = drawn / float((h // 2) * (w // 4))
+        frac = drawn / float((h // 2) * (vw // 2))
         print("%s view: %.1f %% of pixels drawn, %d colours" % (name, 100 * frac, len(colours)))
         if frac < 0.05 or len(colours) < 50:
             fail("the %s view is (nearly) blank" % name)
@@ -138,7 +144,6 @@ def main(argv):
     cam.SetViewUp(axis)
     cam.SetViewAngle(30)
     cam.SetClippingRange(0.1 * length, 10 * length)
-    vw, vh = w // 2, h
     m = cam.GetCompositeProjectionTransformMatrix(vw / float(vh), -1, 1)
 
     def project(p, x0):
@@ -159,8 +164,8 @@ def main(argv):
         centres[c] = [sum(p[i] for p in pts) / len(pts) for i in range(3)]
     good = looked = 0
     for c, e in enumerate(strain):
-        x, y = project(centres[c], w // 2)
-        if not (w // 2 + 2 <= x < w - 2 and 2 <= y < h - 2):
+        x, y = project(centres[c], vw)
+        if not (vw + 2 <= x < 2 * vw - 2 and 2 <= y < h - 2):
             continue
         looked += 1
         want = colour(VIRIDIS, 1 - (e - lo) / (hi - lo))  # inverted
@@ -177,15 +182,15 @@ def main(argv):
     # map puts another crack's strain well apart, the pixel has this
     # crack's colour and not that one.
     def matches(c, e):
-        x, y = project(centres[c], w // 2)
+        x, y = project(centres[c], vw)
         want = colour(VIRIDIS, 1 - (e - lo) / (hi - lo))
         return any(near(pixel(x + dx, y + dy), want, 40) for dx in (-1, 0, 1) for dy in (-1, 0, 1))
 
     pairs = own = other = 0
     for c, e in enumerate(strain):
-        x, y = project(centres[c], w // 2)
+        x, y = project(centres[c], vw)
         f = strain[(c + len(strain) // 2) % len(strain)]
-        if not (w // 2 + 2 <= x < w - 2 and 2 <= y < h - 2) or abs(e - f) < 0.3 * (hi - lo):
+        if not (vw + 2 <= x < 2 * vw - 2 and 2 <= y < h - 2) or abs(e - f) < 0.3 * (hi - lo):
             continue
         pairs += 1
         own += matches(c, e)
@@ -247,7 +252,36 @@ def main(argv):
           "colour, %d the other's" % (pairs, own, other))
     if pairs >= 10 and own - other < 0.3 * pairs:
         fail("the sphere colours do not follow their damage")
+    if bonds:
+        check_bonds(vtk_dir, pixel, project, 2 * vw, vw, h)
     print("ok")
+
+
+def check_bonds(vtk_dir, pixel, project, x0, vw, h):
+    """Third view: each broken bond's midpoint in the colour of its mode,
+    and clearly more often than in the other mode's colour."""
+    data = read(vtkXMLPolyDataReader, last_file(vtk_dir, "bonds.pvd"))
+    state = [s[0] for s in array(data, "state")]
+    good = other = looked = 0
+    for c, st in enumerate(state):
+        if st < 2:
+            continue
+        ids = data.GetCell(c).GetPointIds()
+        a, b = data.GetPoint(ids.GetId(0)), data.GetPoint(ids.GetId(1))
+        x, y = project([(a[i] + b[i]) / 2 for i in range(3)], x0)
+        if not (x0 + 2 <= x < x0 + vw - 2 and 2 <= y < h - 2):
+            continue
+        looked += 1
+        own, alt = (TENSION, SHEAR) if st == 2 else (SHEAR, TENSION)
+        around = [pixel(x + dx, y + dy) for dx in (-1, 0, 1) for dy in (-1, 0, 1)]
+        good += any(near(p, own, 40) for p in around)
+        other += any(near(p, alt, 40) for p in around)
+    print("bonds view: %d of %d broken bonds in sight have the colour of their mode at their "
+          "midpoint, %d the other mode's" % (good, looked, other))
+    if looked < 10:
+        fail("too few broken bonds (%d) in sight to check their colours" % looked)
+    if good < 0.6 * looked or good - other < 0.3 * looked:
+        fail("the broken bonds do not have the colours of their modes")
 
 
 main(sys.argv[1:])
