@@ -6,9 +6,11 @@
 VTK_DIR is the directory `post vtk` wrote (particles.pvd, cracks.pvd,
 platens.pvd, geometry.vtp). Two views side by side, at the last snapshot
 (or the one at time T, s), under a title with the time, the axial strain
-and the axial stress (compression positive) of the run's history at that
-time, from the curve.csv `post curve` wrote beside VTK_DIR (without it: the
-change of the platens' distance and their `stress_axial`):
+and the axial stress (compression positive) of that frame: its field data
+(`post vtk` writes time, strain_axial and stress_axial in every frame);
+in files without them, the run's history at that time from the curve.csv
+`post curve` wrote beside VTK_DIR, else the change of the platens' distance
+and their `stress_axial`:
   left   the spheres behind a cut through the loading axis, as sphere glyphs
          of their true radius, coloured by `damage` (the mean over a sphere's
          bonds of 1 for a broken bond, else its damage): the cut face shows
@@ -121,6 +123,21 @@ def percentile(xs, p):
     k = int(math.floor(r))
     f = r - k
     return s[k] if k + 1 >= len(s) else s[k] * (1 - f) + s[k + 1] * f
+
+
+def frame_state(source, t):
+    """Time, axial strain and axial stress (Pa) of the frame shown at time t,
+    from its field data; None in files without them."""
+    source.UpdatePipeline(t)
+    data = servermanager.Fetch(source)
+    fields = data.GetFieldData() if data is not None else None
+    got = []
+    for name in ("time", "strain_axial", "stress_axial"):
+        a = fields.GetArray(name) if fields is not None else None
+        if a is None or a.GetNumberOfTuples() < 1:
+            return None
+        got.append(a.GetValue(0))
+    return tuple(got)
 
 
 def history_at(vtk_dir, t):
@@ -267,10 +284,14 @@ def main(argv):
         src.UpdatePipeline(t)
     towards = across(axis)
     strain = (length0 - length) / length0
-    history = history_at(args["dir"], t)
-    if history is not None:
+    shown_t = t
+    state = frame_state(particles, t)
+    history = history_at(args["dir"], t) if state is None else None
+    if state is not None:
+        shown_t, strain, stress = state
+    elif history is not None:
         strain, stress = history
-    title = "t = %.4g ms, axial strain %.3f %%" % (1e3 * t, 100 * strain)
+    title = "t = %.4g ms, axial strain %.3f %%" % (1e3 * shown_t, 100 * strain)
     if stress is not None:
         title += ", axial stress %.3g MPa" % (stress / 1e6)
 
