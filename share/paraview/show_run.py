@@ -1,6 +1,7 @@
 """Show a run written by `post vtk` in ParaView, and save a picture.
 
     pvbatch share/paraview/show_run.py VTK_DIR [OUT.png] [--time T] [--size W H] [--bonds]
+                                       [--ranges-at-end]
     paraview --script=share/paraview/show_run.py    (then VTK_DIR from $DEM_VTK_DIR)
 
 VTK_DIR is the directory `post vtk` wrote (particles.pvd, cracks.pvd,
@@ -23,7 +24,8 @@ and their `stress_axial`:
          centres, tension red and shear blue.
 Each colour range runs between percentiles of what is shown (damage: 0 to
 the 99th, at least 0.05; strain: 2nd to 98th), so that one outlier does not
-set it; the legends are horizontal bars inside each view. The loading axis
+set it; with --ranges-at-end the ranges are those of the last frame, the
+same for every frame of a series (tools/render-series); the legends are horizontal bars inside each view. The loading axis
 is found from the platens. With OUT.png the layout is saved, W x H pixels
 (default 1280 x 640, which fits xvfb-run's default screen; 1920 x 640 with
 --bonds).
@@ -47,7 +49,7 @@ SHEAR = [0.122, 0.306, 0.620]
 
 def parse(argv):
     args = {"dir": os.environ.get("DEM_VTK_DIR"), "out": None, "time": None,
-            "size": None, "bonds": False}
+            "size": None, "bonds": False, "ranges_at_end": False}
     rest = list(argv)
     while rest:
         a = rest.pop(0)
@@ -55,6 +57,8 @@ def parse(argv):
             args["time"] = float(rest.pop(0))
         elif a == "--bonds":
             args["bonds"] = True
+        elif a == "--ranges-at-end":
+            args["ranges_at_end"] = True
         elif a == "--size":
             args["size"] = (int(rest.pop(0)), int(rest.pop(0)))
         elif args["dir"] is None or (args["dir"] == os.environ.get("DEM_VTK_DIR") and
@@ -63,7 +67,8 @@ def parse(argv):
         else:
             args["out"] = a
     if not args["dir"]:
-        sys.exit("usage: pvbatch show_run.py VTK_DIR [OUT.png] [--time T] [--size W H] [--bonds]")
+        sys.exit("usage: pvbatch show_run.py VTK_DIR [OUT.png] [--time T] [--size W H] [--bonds] "
+                 "[--ranges-at-end]")
     if args["size"] is None:
         w, h = DEFAULT_SIZE
         args["size"] = (w * 3 // 2, h) if args["bonds"] else (w, h)
@@ -311,7 +316,8 @@ def main(argv):
     spheres.GlyphType.PhiResolution = 12
     shown = Show(spheres, left)
     ColorBy(shown, ("POINTS", "damage"))
-    damage = values(half, t, "POINTS", "damage")
+    range_t = times[-1] if args["ranges_at_end"] else t
+    damage = values(half, range_t, "POINTS", "damage")
     hi = min(1.0, max(0.05, percentile(damage, 99)))
     lut = colour_map("damage", DAMAGE_MAP, 0.0, hi, True)
     shown.SetScalarBarVisibility(left, True)
@@ -325,13 +331,15 @@ def main(argv):
     right = CreateView("RenderView")
     right.ViewTime = t
     formed = [100 * e for e in values(cracks, t, "CELLS", "strain_axial")]
+    formed_range = ([100 * e for e in values(cracks, range_t, "CELLS", "strain_axial")]
+                    if args["ranges_at_end"] else formed)
     if formed:
         pct = Calculator(Input=cracks, AttributeType="Cell Data",
                          ResultArrayName="formed_at_strain_pct", Function="100*strain_axial")
         discs = Show(pct, right)
         ColorBy(discs, ("CELLS", "formed_at_strain_pct"))
-        slut = colour_map("formed_at_strain_pct", STRAIN_MAP, percentile(formed, 2),
-                          percentile(formed, 98), True)
+        slut = colour_map("formed_at_strain_pct", STRAIN_MAP, percentile(formed_range, 2),
+                          percentile(formed_range, 98), True)
         discs.SetScalarBarVisibility(right, True)
         legend(GetScalarBar(slut, right), "axial strain (%) when the crack formed", "%-#.3g")
     if os.path.exists(path("geometry.vtp")):

@@ -4,7 +4,9 @@
 # share/paraview/show_run.py (default size) -> paraview_check.py (size, not
 # blank, each crack disc in the colour of the strain at which it formed and
 # each sphere behind the cut in the colour of its damage, where they are),
-# then again with --bonds (each broken bond in the colour of its mode too).
+# then again with --bonds (each broken bond in the colour of its mode too);
+# then tools/render-series: one numbered picture per frame kept, the first
+# and the last different.
 # Skipped (exit status 77) with the reason when pvbatch cannot run here;
 # with DEM_REQUIRE_PARAVIEW=1 (tools/check, which installs ParaView) that is
 # a failure instead.
@@ -59,3 +61,21 @@ fi
 /usr/bin/python3 "$src/tests/post/paraview_check.py" "$tmp/show.png" "$tmp/vtk" 1280 640
 (cd "$src" && run_pvbatch share/paraview/show_run.py "$tmp/vtk" "$tmp/bonds.png" --bonds)
 /usr/bin/python3 "$src/tests/post/paraview_check.py" "$tmp/bonds.png" "$tmp/vtk" 1920 640 --bonds
+
+# The series: every other frame and the last, numbered from 0.
+nt=$(grep -c 'timestep=' "$tmp/vtk/particles.pvd")
+want=$(((nt - 1) / 2 + 1))
+[ $(((nt - 1) % 2)) -eq 0 ] || want=$((want + 1))
+if [ $xvfb = yes ]; then
+	xvfb-run -a -s "-screen 0 1920x1200x24 -noreset" sh "$src/tools/render-series" \
+		"$tmp/vtk" "$tmp/frames" --every 2
+else
+	PATH=$(dirname "$pv"):$PATH sh "$src/tools/render-series" "$tmp/vtk" "$tmp/frames" --every 2
+fi
+got=$(ls "$tmp/frames" | grep -c '^frame_[0-9][0-9][0-9][0-9]\.png$')
+last=$(printf 'frame_%04d.png' $((want - 1)))
+echo "series: $nt frames in the run, $got pictures, $want expected"
+[ "$got" -eq "$want" ] && [ -s "$tmp/frames/$last" ] ||
+	{ echo "FAIL: render-series wrote $got pictures, expected $want"; exit 1; }
+! cmp -s "$tmp/frames/frame_0000.png" "$tmp/frames/$last" ||
+	{ echo "FAIL: the first and last pictures of the series are the same"; exit 1; }
