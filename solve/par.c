@@ -72,22 +72,16 @@ void par_sum(xsum *a, int n)
 #endif
 }
 
-void par_max(double *v, int n)
-{
 #ifdef DEM_MPI
+static void reduce(double *v, int n, MPI_Op op)
+{
 	if (size_ > 1)
-		MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-#else
-	(void)v, (void)n;
-#endif
+		MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, op, MPI_COMM_WORLD);
 }
 
-void par_min(double *v, int n)
-{
-#ifdef DEM_MPI
-	if (size_ > 1)
-		MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+void par_max(double *v, int n) { reduce(v, n, MPI_MAX); }
+void par_min(double *v, int n) { reduce(v, n, MPI_MIN); }
 #else
-	(void)v, (void)n;
+void par_max(double *v, int n) { (void)v, (void)n; }
+void par_min(double *v, int n) { (void)v, (void)n; }
 #endif
-}

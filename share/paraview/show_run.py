@@ -223,6 +223,13 @@ def legend(bar, title, fmt):
     bar.DrawTickLabels = 0
 
 
+def show_platens(platens, view):
+    """The platens, grey and half transparent."""
+    plates = Show(platens, view)
+    plates.DiffuseColor = [0.55, 0.55, 0.55]
+    plates.Opacity = 0.5
+
+
 def label(view, text):
     t = Text(Text=text)
     d = Show(t, view)
@@ -261,9 +268,7 @@ def bond_view(path, t, platens, centre, axis, towards, length):
     bar = GetScalarBar(states, view)
     legend(bar, "broken bond", "%s")
     bar.ScalarBarLength = 0.3
-    plates = Show(platens, view)
-    plates.DiffuseColor = [0.55, 0.55, 0.55]
-    plates.Opacity = 0.5
+    show_platens(platens, view)
     camera(view, centre, axis, towards, length)
     state = values(broken, t, "CELLS", "state")
     label(view, "%d broken bonds (%d in tension, %d in shear)\nas lines between the sphere "
@@ -322,9 +327,7 @@ def main(argv):
     lut = colour_map("damage", DAMAGE_MAP, 0.0, hi, True)
     shown.SetScalarBarVisibility(left, True)
     legend(GetScalarBar(lut, left), "damage (0 to the 99th percentile)", "%-#.2f")
-    plates = Show(platens, left)
-    plates.DiffuseColor = [0.55, 0.55, 0.55]
-    plates.Opacity = 0.5
+    show_platens(platens, left)
     camera(left, centre, axis, towards, length)
     label(left, title + "\nspheres behind a cut through the axis, by damage")
 
@@ -346,9 +349,7 @@ def main(argv):
         outline = Show(XMLPolyDataReader(FileName=[path("geometry.vtp")]), right)
         outline.DiffuseColor = [0.7, 0.7, 0.7]
         outline.Opacity = 0.12
-    plates2 = Show(platens, right)
-    plates2.DiffuseColor = [0.55, 0.55, 0.55]
-    plates2.Opacity = 0.5
+    show_platens(platens, right)
     camera(right, centre, axis, towards, length)
     modes = values(cracks, t, "CELLS", "mode")
     label(right, "%d cracks so far (%d tension, %d shear)\nas discs, by the axial strain at which "
