@@ -131,7 +131,8 @@ static void prelude(FILE *f, const char *ext, const char *out, int width, int he
 	plot_quote(f, out);
 	fprintf(f, "\n%s\n", plot_script("style"));
 	if (footer) {
-		fputs("set label 1001 ", f);
+		/* A line more at the foot, for the footer below the axis label. */
+		fputs("set bmargin 4\nset label 1001 ", f);
 		plot_quote(f, footer);
 		fputs(" at screen 0.995, 0.008 right font ',7' tc rgb '#777777' noenhanced\n", f);
 	}

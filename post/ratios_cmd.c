@@ -205,7 +205,7 @@ static void plot(const char *dir, const run_ratios *runs, int nruns, const ratio
 			char text[512];
 			snprintf(text, sizeof text, "%s (σ@_a^{ref} = %.3g MPa, %s%s)",
 			         runs[q].label, 1e-6 * runs[q].sigma_ref,
-			         sigma_given ? "common" : "its own at the instant",
+			         sigma_given ? "common" : "own",
 			         runs[q].plateau ? "; no peak: strain stop" : "");
 			fprintf(d.f, "label[%d] = ", q + 1);
 			plot_quote(d.f, text);

@@ -10,8 +10,8 @@ set ylabel 'error against the target (%)'
 set xrange [-0.6:ntargets - 0.4]
 set xtics noenhanced
 set offsets 0, 0, graph 0.08, graph 0.08
-set key below horizontal
-set bmargin 6
+set key at screen 0.5, 0.03 center bottom horizontal
+set bmargin 7
 set style fill transparent solid 0.15 noborder
 cmd = "plot $targets using 1:(0):($1 - 0.4):($1 + 0.4):(-$6):6:xtic(2) with boxxyerror" . \
       " lc rgb '#009E73' title 'tolerance'," . \

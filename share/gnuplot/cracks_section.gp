@@ -11,7 +11,7 @@ set size ratio -1
 set xrange [-1.1 * R:1.1 * R]
 set yrange [-0.05 * H:1.05 * H]
 set object 1 rectangle from -R,0 to R,H fillstyle empty border lc rgb '#888888' lw 1.5
-set key outside bottom center horizontal
-set bmargin 6
+set key at screen 0.5, 0.03 center bottom horizontal
+set bmargin 7
 plot $tension using 1:2:3:4 with vectors nohead lw 2 lc rgb tension_colour title 'tension', \
      $shear using 1:2:3:4 with vectors nohead lw 2 lc rgb shear_colour title 'shear'

@@ -12,8 +12,8 @@ set xrange [0:360]
 set xtics 0,45,360
 set yrange [0:H]
 set size ratio H / (2 * pi * R)
-set key outside bottom center horizontal
-set bmargin 6
+set key at screen 0.5, 0.03 center bottom horizontal
+set bmargin 7
 plot $tension using 1:2 with points pt 7 ps 0.7 lc rgb tension_colour \
         title sprintf('tension (%d in the specimen)', ntension), \
      $shear using 1:2 with points pt 9 ps 0.8 lc rgb shear_colour \

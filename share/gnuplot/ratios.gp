@@ -9,7 +9,7 @@
 #   min_count  fewest contacts a drawn bin has
 set title 'Micro-macro compressive stress ratio by contact orientation'
 set label 1002 sprintf('bins of fewer than %d contacts not drawn', min_count) \
-    at graph 0.01, graph 0.03 left font ',9' tc rgb '#555555'
+    at screen 0.005, 0.008 left font ',7' tc rgb '#777777'
 set xlabel 'angle θ between contact normal and horizontal plane (°)'
 set ylabel 'r = mean σ_n / σ@_a^{ref}'
 set xrange [0:90]

@@ -362,8 +362,7 @@ int main(void)
 			harness_free(&r);
 			snprintf(png, sizeof png, "%s/ratios.gp", dir);
 			char *gp = harness_slurp(png);
-			CHECK(gp && strstr(gp, "its own at the instant") &&
-			      strstr(gp, "min_count = 5\n"));
+			CHECK(gp && strstr(gp, "MPa, own)") && strstr(gp, "min_count = 5\n"));
 			free(gp);
 			r = harness_post(
 			    "ratios --snapshot 0 --sigma-ref 1e7 --min-contacts 100000 %s", run);
