@@ -138,6 +138,16 @@ static void prelude(FILE *f, const char *ext, const char *out, int width, int he
 	}
 }
 
+/* gnuplot's whole input for a figure: the prelude, d's data, the script's
+ * body and the closing of the output. */
+static void gnuplot_input(FILE *f, const plot_data *d, const char *body, const char *ext,
+                          const char *out, int width, int height)
+{
+	prelude(f, ext, out, width, height);
+	fwrite(d->text, 1, d->len, f);
+	fprintf(f, "\n%s\nset output\n", body);
+}
+
 /* The figure's script beside it: gnuplot run in its directory draws it. */
 static int write_script(const plot_data *d, const char *body, const char *path, const char *ext,
                         int width, int height)
@@ -162,9 +172,7 @@ static int write_script(const plot_data *d, const char *body, const char *path, 
 	        "# %s, drawn by post: run `gnuplot %s` in this directory to draw it again\n"
 	        "# (the style, the data and the plot commands are all below).\n",
 	        slash ? slash + 1 : path, strrchr(gp, '/') ? strrchr(gp, '/') + 1 : gp);
-	prelude(f, ext, slash ? slash + 1 : path, width, height);
-	fwrite(d->text, 1, d->len, f);
-	fprintf(f, "\n%s\nset output\n", body);
+	gnuplot_input(f, d, body, ext, slash ? slash + 1 : path, width, height);
 	int bad = ferror(f);
 	if (fclose(f) || bad) {
 		afile_discard(tmp);
@@ -207,9 +215,7 @@ int plot_draw(plot_data *d, const char *script, const char *path, int width, int
 		afile_discard(tmp);
 		return err_set("%s: cannot start gnuplot", path);
 	}
-	prelude(gp, ext, tmp, width, height);
-	fwrite(d->text, 1, d->len, gp);
-	fprintf(gp, "\n%s\nset output\n", body);
+	gnuplot_input(gp, d, body, ext, tmp, width, height);
 	int status = pclose(gp);
 	signal(SIGPIPE, old);
 	if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0 ||

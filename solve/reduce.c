@@ -1,10 +1,8 @@
 /* The step's reductions (reduce.h). */
-#include <stdlib.h>
-
+#include "solve/reduce.h"
 #include "lib/err.h"
 #include "lib/xsum.h"
 #include "solve/par.h"
-#include "solve/reduce.h"
 
 void reduce_blocks(const double *blk, size_t nb, size_t stride, int nf, double *out)
 {
