@@ -28,12 +28,21 @@ struct run_writer {
 
 hid_t run_hid(run_writer *w) { return w->file; }
 
-/* The history columns that hold integers, and their type in the file; the
- * others are float64. (Format 2 and older stored them all as float64.) */
+/* The history columns that hold integers (the step, the counts), and their
+ * type in the file; the others are float64. (Format 2 and older stored them
+ * all as float64, and the first files of format 3 all but step and stage.) */
 static hid_t column_type(const char *name)
 {
-	if (strcmp(name, "step") == 0)
-		return H5T_NATIVE_INT64;
+	static const char *const counts[] = {"step",
+	                                     "bonds_intact",
+	                                     "bonds_damaged",
+	                                     "bonds_broken_tension",
+	                                     "bonds_broken_shear",
+	                                     "contacts",
+	                                     "contacts_platen"};
+	for (size_t k = 0; k < sizeof counts / sizeof *counts; k++)
+		if (strcmp(name, counts[k]) == 0)
+			return H5T_NATIVE_INT64;
 	if (strcmp(name, "stage") == 0)
 		return H5T_NATIVE_INT32;
 	return H5T_NATIVE_DOUBLE;

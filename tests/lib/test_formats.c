@@ -328,15 +328,16 @@ static void test_run_roundtrip(const char *path)
  * back as numbers like the others. */
 static void test_integer_columns(const char *path)
 {
-	static const run_column cols[] = {{"t", "s"}, {"step", ""}, {"stage", ""}};
+	static const run_column cols[] = {
+	    {"t", "s"}, {"step", ""}, {"stage", ""}, {"bonds_intact", ""}, {"force_axial", "N"}};
 	dem_assembly a;
 	make_assembly(&a, 10);
 	dem_provenance prov;
 	prov_init(&prov, "solve", "{}", 1);
-	run_writer *w = run_create(path, &prov, &a, cols, 3);
+	run_writer *w = run_create(path, &prov, &a, cols, 5);
 	CHECK(w != NULL);
 	for (int k = 0; w && k < 300; k++) {
-		double row[3] = {1e-6 * k, 100.0 * k, 1 + k / 200};
+		double row[5] = {1e-6 * k, 100.0 * k, 1 + k / 200, 5000 - k, 0.5 * k};
 		CHECK(run_history(w, row) == 0);
 	}
 	CHECK(w && run_finish(w, "complete") == 0);
@@ -347,12 +348,21 @@ static void test_integer_columns(const char *path)
 	d = H5Dopen2(f, "history/stage", H5P_DEFAULT), t = H5Dget_type(d);
 	CHECK(H5Tget_class(t) == H5T_INTEGER && H5Tget_size(t) == 4);
 	H5Tclose(t), H5Dclose(d);
+	d = H5Dopen2(f, "history/bonds_intact", H5P_DEFAULT), t = H5Dget_type(d);
+	CHECK(H5Tget_class(t) == H5T_INTEGER && H5Tget_size(t) == 8);
+	H5Tclose(t), H5Dclose(d);
+	d = H5Dopen2(f, "history/force_axial", H5P_DEFAULT), t = H5Dget_type(d);
+	CHECK(H5Tget_class(t) == H5T_FLOAT);
+	H5Tclose(t), H5Dclose(d);
 	H5Fclose(f);
 	dem_run r;
 	CHECK(run_read(path, &r) == 0);
 	const double *step = run_column_data(&r, "step"), *stage = run_column_data(&r, "stage");
 	CHECK(r.nrows == 300 && step && stage);
 	CHECK(step && step[299] == 29900 && stage && stage[199] == 1 && stage[200] == 2);
+	const double *intact = run_column_data(&r, "bonds_intact");
+	const double *force = run_column_data(&r, "force_axial");
+	CHECK(intact && intact[299] == 4701 && force && force[299] == 149.5);
 	run_free(&r);
 	prov_free(&prov);
 	assembly_free(&a);

@@ -75,6 +75,10 @@ check(h.stress_axial.attrs.get("units") == "Pa", "stress_axial units")
 check(h.rate.attrs.get("units") == "1/s", "rate units")
 check(h.step.dtype == np.int64, "history step dtype %s" % h.step.dtype)
 check(h.stage.dtype == np.int32, "history stage dtype %s" % h.stage.dtype)
+for name in ("bonds_intact", "bonds_damaged", "bonds_broken_tension",
+             "bonds_broken_shear", "contacts", "contacts_platen"):
+    check(h[name].dtype == np.int64, "history %s dtype %s" % (name, h[name].dtype))
+check(int(h.bonds_intact[0]) > 0, "bonds at the start")
 check(int(h.step[0]) == 0 and int(h.step[1]) == 100, "history steps %r" % h.step.values[:2])
 check(bool(np.all(h.stage.values == 1)), "one stage")
 columns = f["history"].attrs["columns"].decode().split(",")
