@@ -1,4 +1,5 @@
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -411,7 +412,12 @@ int synth_run(const char *path, const synth_opts *o)
 	for (size_t k = 0; k < b.n; k++)
 		bond_model(&a, &b, k, &f, o, &g, &m[k]);
 	dem_provenance prov;
-	prov_init(&prov, "solve", "{\"test\":\"ucs\",\"synthetic\":true}", o->seed);
+	char config[160];
+	snprintf(config, sizeof config,
+	         "{\"test\":\"ucs\",\"synthetic\":true,\"material\":{\"name\":\"synthetic\","
+	         "\"density\":%.17g}}",
+	         SYNTH_DENSITY);
+	prov_init(&prov, "solve", config, o->seed);
 	run_writer *w = run_create(path, &prov, &a, columns, NCOLS);
 	int rc = !w || run_write_bonds(w, &b) || write_history(w, &b, m, o);
 	for (int s = 0; !rc && s < o->nsnap; s++)

@@ -10,12 +10,15 @@
  * |fs| reaches tau + mu |fn|, both linear in e so the failure strain of
  * each bond is known in closed form; strengths are halved in an inclined
  * band so the cracks draw a shear band. The axial stress follows
- * sigma_p (e / e_p) exp(1 - e / e_p), peaking at e_p. Everything is
- * deterministic for a seed. */
+ * sigma_p (e / e_p) exp(1 - e / e_p), peaking at e_p. The configuration
+ * names a material of density SYNTH_DENSITY. Everything is deterministic
+ * for a seed. */
 #ifndef DEM_TESTS_POST_SYNTH_H
 #define DEM_TESTS_POST_SYNTH_H
 
 #include <stdint.h>
+
+#define SYNTH_DENSITY 2000.0 /* kg/m^3 */
 
 typedef struct {
 	int nparticles;     /* target count (fewer if the cylinder is full) */

@@ -40,27 +40,28 @@ int main(void)
 	fputs("not a run\n", f);
 	fclose(f);
 
-	const char *commands[] = {"ratios", "cracks", "vtk", "curve"};
-	for (int c = 0; c < 4; c++) {
+	/* vtk and lammps read assemblies too */
+	const char *commands[] = {"ratios", "cracks", "vtk", "curve", "lammps"};
+	const int both[] = {0, 0, 1, 0, 1};
+	for (int c = 0; c < 5; c++) {
 		snprintf(msg, sizeof msg,
 		         "post: %s/missing.h5: cannot read: No such file or directory\n", dir);
 		char args[1200];
 		snprintf(args, sizeof args, "%s/missing.h5", dir);
 		expect(1, msg, commands[c], args);
-		if (c == 2)
+		if (both[c])
 			snprintf(msg, sizeof msg,
 			         "post: %s: not a run file (solve) or an assembly file (pack): "
-			         "post vtk reads "
-			         "one of them\n",
-			         text);
+			         "post %s reads one of them\n",
+			         text, commands[c]);
 		else
 			snprintf(msg, sizeof msg,
 			         "post: %s: not a readable HDF5 file (missing, truncated or "
 			         "another format)\n",
 			         text);
 		expect(1, msg, commands[c], text);
-		if (c == 2)
-			continue; /* vtk reads assemblies too */
+		if (both[c])
+			continue;
 		snprintf(msg, sizeof msg,
 		         "post: %s: attribute 'format': value \"dem-assembly\": expected "
 		         "\"dem-run\" (an "
@@ -78,7 +79,7 @@ int main(void)
 		fputs("half an HDF5 file\n", k);
 		fclose(k);
 	}
-	for (int c = 0; c < 4; c++) {
+	for (int c = 0; c < 5; c++) {
 		snprintf(
 		    msg, sizeof msg,
 		    "post: %s: the temporary file of a program still writing it, or killed: "
@@ -131,8 +132,8 @@ int main(void)
 	CHECK(res.status == 2);
 	CHECK_STR(
 	    res.err,
-	    "post: unknown command 'nonsense': expected ratios, cracks, vtk, curve or summary "
-	    "(see post --help)\n");
+	    "post: unknown command 'nonsense': expected ratios, cracks, vtk, curve, summary or "
+	    "lammps (see post --help)\n");
 	harness_free(&res);
 	res = harness_post("--help");
 	CHECK(res.status == 0);
