@@ -1,9 +1,11 @@
 #!/bin/sh
 # The workflows re-run exactly what changed: nothing when nothing changed;
 # solve and post, not pack, when a material file changes; everything when the
-# specimen or the seed changes. Two cases run side by side with make -j2, and
-# a failing solve leaves no run.h5 that make would take as complete.
-# A run may take another case's file and a sphere count of its own.
+# specimen or the seed changes. Runs on the same specimen share one assembly,
+# packed once (also under make -j2) and linked from each run's directory. Two
+# cases run side by side with make -j2, and a failing solve leaves no run.h5
+# that make would take as complete. A run may take another case's file and a
+# sphere count of its own.
 # Usage: make.sh BIN_DIR SOURCE_DIR TMP_DIR
 set -eu
 bin=$1 src=$2 tmp=$3
@@ -43,11 +45,19 @@ expect() { # expected-programs make-arguments...
 	[ "$got" = "$want" ] || { cat "$tmp/log" >&2; fail "make $*: ran '$got', expected '$want'"; }
 }
 
+# Where run R's assembly.h5 leads, relative to runs/.
+assembly_of() { realpath --relative-to="$tmp/runs" "$tmp/runs/$1/assembly.h5"; }
+
 expect "pack solve post post post post" a
-for f in assembly.h5 assembly.d pack.txt run.h5 run.d report.json summary.json curve.csv \
+for f in assembly.h5 specimen.key run.h5 run.d report.json summary.json curve.csv \
 	stress_strain.png cracks.csv vtk/run.pvd; do
 	[ -s "$tmp/runs/a/$f" ] || fail "runs/a/$f missing"
 done
+for f in assembly.h5 assembly.d pack.txt pack.args; do
+	[ -s "$tmp/runs/specimens/small/$f" ] || fail "runs/specimens/small/$f missing"
+done
+[ -L "$tmp/runs/a/assembly.h5" ] || fail "runs/a/assembly.h5 is not a link"
+[ "$(assembly_of a)" = specimens/small/assembly.h5 ] || fail "runs/a/assembly.h5 leads to $(assembly_of a)"
 expect "" a
 expect "" a -n
 sleep 1
@@ -60,15 +70,32 @@ expect "pack solve post post post post" a
 expect "pack solve post post post post" a SEED=7 -n
 expect "pack solve post post post post" a SEED=7
 expect "" a SEED=7
-expect "pack solve post post post post" a
+[ "$(assembly_of a)" = specimens/small.seed-7/assembly.h5 ] || fail "SEED=7: runs/a/assembly.h5 leads to $(assembly_of a)"
+# Back to the specimen's own seed: its assembly is still there and current,
+# older than a's run; the run's key changed, so solve runs, pack does not.
+expect "solve post post post post" a -n
+expect "solve post post post post" a
+[ "$(assembly_of a)" = specimens/small/assembly.h5 ] || fail "runs/a/assembly.h5 not back on specimens/small"
 
-# Side by side: both complete, each with its own files.
-ran -j2 a b > /dev/null || { cat "$tmp/log" >&2; fail "make -j2 a b failed"; }
+# Two runs on one specimen: after a clean, a dry run lists one pack, then
+# both solves; make -j2 packs it once, both complete, each with its own run.
+rm -rf "$tmp/runs"
+expect "pack solve post post post post solve post post post post" a b -n
+got=$(ran -j2 a b) || { cat "$tmp/log" >&2; fail "make -j2 a b failed"; }
+[ "$(echo "$got" | tr ' ' '\n' | grep -c pack)" = 1 ] || fail "make -j2 a b: ran '$got', expected one pack"
 [ -s "$tmp/runs/b/vtk/run.pvd" ] || fail "make -j2: runs/b incomplete"
+[ "$(assembly_of b)" = specimens/small/assembly.h5 ] || fail "runs/b/assembly.h5 leads to $(assembly_of b)"
+ls "$tmp/runs/specimens" | grep -qv '^small$' && fail "more than one specimen packed: $(ls "$tmp/runs/specimens")"
+# Both runs depend on it: a changed specimen re-packs it once, and both solve.
+sleep 1
+touch "$tmp/share/specimens/small.json"
+expect "pack solve post post post post solve post post post post" a b -n
+expect "pack solve post post post post solve post post post post" a b
 
-# A run of another run's case with a sphere count of its own.
+# A run of another run's case with a sphere count of its own: a specimen of its own.
 expect "pack solve post post post post" c COUNT=900
-grep -q -- "--count 300 " "$tmp/runs/c/pack.args" || fail "c.count not used"
+[ "$(cat "$tmp/runs/c/specimen.key")" = small.count-300 ] || fail "c.count not in c's key"
+grep -q -- "--count 300$" "$tmp/runs/specimens/small.count-300/pack.args" || fail "c.count not used"
 grep -q "cases/a.json" "$tmp/runs/c/run.d" || fail "c.case not used"
 
 # A case solve rejects: make fails, names the key, leaves no run.h5.
