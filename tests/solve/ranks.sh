@@ -48,5 +48,5 @@ cat > tri.json <<JSON
  "stop": {"steps": 1200}}
 JSON
 "$bin/solve" --quiet --threads 1 --output tri1.h5 tri.json
-ranks 2 --threads 1 --output tri3.h5 tri.json
-same tri1.h5 tri3.h5
+ranks 2 --threads 1 --output tri2.h5 tri.json
+same tri1.h5 tri2.h5
