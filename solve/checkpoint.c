@@ -17,6 +17,7 @@
 #include "solve/checkpoint.h"
 #include "solve/contacts.h"
 #include "solve/pairlist.h"
+#include "solve/ranks.h"
 
 typedef struct {
 	const char *name;
@@ -375,6 +376,7 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 	memset(L->f, 0, 6 * nc * sizeof *L->f);
 	pairlist_csr(L, e->p.n);
 	contacts_index_blocks(e);
+	ranks_contacts(e);
 	return 0;
 }
 

@@ -18,6 +18,7 @@
 #include "solve/laws/cundall.h"
 #include "solve/pairlist.h"
 #include "solve/platens.h"
+#include "solve/ranks.h"
 
 /* Whether i < j are bonded: a binary search of the bonds, sorted by (i, j). */
 static int bonded(const engine *e, int32_t i, int32_t j)
@@ -110,6 +111,7 @@ void contacts_rebuild(engine *e)
 	contacts_index_blocks(e);
 	memcpy(P->x_ref, P->x, 3 * P->n * sizeof *P->x);
 	platens_rebuild(e);
+	ranks_contacts(e);
 	e->pairs.rebuilds++;
 	e->pairs.rebuild = 0;
 }
@@ -154,13 +156,13 @@ DEM_VECTOR_CLONES static void contact_block(engine *e, size_t lo, size_t hi, int
 }
 
 /* In the blocks of their particle i, as the bonds (the same sums whatever
- * the shares); the blocks hold very different numbers of contacts, so they
- * are handed out a few at a time. */
+ * the shares), this rank's blocks (ranks.h); the blocks hold very
+ * different numbers of contacts, so they are handed out a few at a time. */
 void contacts_forces(engine *e, int measure)
 {
-	size_t nb = nblocks(e->p.n);
+	size_t b0 = e->ranks.blk0, b1 = e->ranks.blk1;
 	const size_t *first = e->scratch.cfirst;
 #pragma omp for schedule(dynamic, 4)
-	for (size_t k = 0; k < nb; k++)
+	for (size_t k = b0; k < b1; k++)
 		contact_block(e, first[k], first[k + 1], measure, &e->scratch.cblock[k]);
 }

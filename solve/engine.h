@@ -30,6 +30,7 @@
 #include "solve/measure.h"
 #include "solve/pairlist.h"
 #include "solve/platens.h"
+#include "solve/ranks.h"
 #include "solve/step.h"
 #include "solve/surface.h"
 #include "solve/timers.h"
@@ -154,6 +155,7 @@ struct engine {
 	engine_sums sums;
 	engine_output out;
 	engine_scratch scratch;
+	rank_split ranks; /* this rank's particles, and what crosses to others */
 	phase_timers tm;
 };
 

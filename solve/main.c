@@ -71,6 +71,8 @@ static int solve_main(int argc, char **argv)
 	progress_log_every(log_every);
 	if (show_progress)
 		progress_force(1);
+	/* Rank 0 speaks and writes for all (run.c). */
+	quiet = quiet || par_rank() > 0;
 	if (quiet)
 		progress_force(0);
 	run_opts o = {.output = output,
@@ -102,7 +104,7 @@ static int solve_main(int argc, char **argv)
 	                   {"the material", cs.material_file},
 	                   {"the assembly", cs.assembly}};
 	cli_check_outputs(&spec, outs, 3, ins, 3);
-	if (depfile && depfile_write(depfile, output, inputs, 3))
+	if (depfile && par_rank() == 0 && depfile_write(depfile, output, inputs, 3))
 		fatal(NULL);
 	dem_assembly a;
 	if (assembly_read(cs.assembly, &a))
@@ -117,17 +119,6 @@ int main(int argc, char **argv)
 	err_program(argv[0]);
 	if (par_init(&argc, &argv))
 		fatal(NULL);
-	if (par_size() > 1) {
-		if (par_rank() == 0)
-			fprintf(
-			    stderr,
-			    "solve: started on %d ranks: this version runs a case on one rank "
-			    "(its threads: --threads); the domain decomposition over ranks is not "
-			    "in it yet\n",
-			    par_size());
-		par_finalize();
-		return 1;
-	}
 	int code = solve_main(argc, argv);
 	par_finalize();
 	return code;

@@ -11,6 +11,14 @@
 static int rank_, size_ = 1;
 #ifdef DEM_MPI
 static int mpi_; /* MPI_Init was called */
+
+/* A rank that exits before par_finalize (an error, fatal()) takes the
+ * others down with it, instead of leaving them waiting in a collective. */
+static void abort_unfinished(void)
+{
+	if (mpi_ && size_ > 1)
+		MPI_Abort(MPI_COMM_WORLD, 1);
+}
 #endif
 
 int par_launcher_size(void)
@@ -36,6 +44,7 @@ int par_init(int *argc, char ***argv)
 		mpi_ = 1;
 		MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
 		MPI_Comm_size(MPI_COMM_WORLD, &size_);
+		atexit(abort_unfinished);
 	}
 	return 0;
 #else

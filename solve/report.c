@@ -6,6 +6,7 @@
 
 #include "lib/err.h"
 #include "lib/json.h"
+#include "solve/ranks.h"
 #include "solve/report.h"
 
 static const char *const phase_names[] = {"neighbour", "bonds", "contacts", "integration",
@@ -50,6 +51,8 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	double ns_bond_cpu = steps > 0 && nb > 0 ? 1e9 * e->tm.cpu[TM_BONDS] / (steps * nb) : 0;
 	size_t state = engine_bytes(e);
 	long rss = peak_rss();
+	double pbal[2], bbal[2];
+	ranks_balance(e, pbal, bbal);
 	if (!o->quiet) {
 		fprintf(
 		    stderr,
@@ -58,6 +61,12 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 		    " neighbour rebuilds\n",
 		    err_program_name(), steps, wall, rate, e->team, e->team > 1 ? "s" : "", ns_bond,
 		    state / n, e->pairs.rebuilds);
+		if (e->ranks.size > 1)
+			fprintf(stderr,
+			        "  on %d ranks: particles per rank %.0f at most, %.0f on average "
+			        "(%.3f); bonds %.0f, %.0f (%.3f)\n",
+			        e->ranks.size, pbal[0], pbal[1], pbal[0] / pbal[1], bbal[0],
+			        bbal[1], bbal[1] > 0 ? bbal[0] / bbal[1] : 1);
 		for (int k = 0; k < TM_TOTAL; k++)
 			fprintf(stderr, "  %-12s %9.3f s %6.1f %%\n", phase_names[k],
 			        e->tm.total[k], wall > 0 ? 100 * e->tm.total[k] / wall : 0);
@@ -70,6 +79,9 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	json_num(j, "particles", n);
 	json_num(j, "bonds", nb);
 	json_num(j, "threads", e->team);
+	json_num(j, "ranks", e->ranks.size);
+	json_num(j, "rank_particles_max_over_mean", pbal[0] / pbal[1]);
+	json_num(j, "rank_bonds_max_over_mean", bbal[1] > 0 ? bbal[0] / bbal[1] : 1);
 	json_num(j, "steps", steps);
 	json_num(j, "wall", wall);
 	json_num(j, "particle_steps_per_second", rate);

@@ -1,6 +1,12 @@
 /* The run loop: steps, the history table, snapshots, checkpoints, stop
  * rules, diagnoses of a failing simulation, interruption and the run
- * report. Everything the loop does besides engine_step is timed as output. */
+ * report. Everything the loop does besides engine_step is timed as output.
+ *
+ * On several ranks (ranks.h) every rank runs the loop and takes the same
+ * decisions from the same global state; rank 0 alone writes the run file
+ * (the others have no writer) after the pairs' histories are gathered, and
+ * the decisions a clock or a signal makes (a budget, an interruption, a
+ * checkpoint due by wall time) are agreed on after each step. */
 #include <inttypes.h>
 #include <math.h>
 #include <signal.h>
@@ -23,6 +29,8 @@
 #include "solve/history.h"
 #include "solve/measure.h"
 #include "solve/output.h"
+#include "solve/par.h"
+#include "solve/ranks.h"
 #include "solve/report.h"
 #include "solve/run.h"
 #include "solve/step.h"
@@ -58,7 +66,18 @@ static int flush_now_and_then(loop_state *L)
 	if (now - L->last_flush < FLUSH_EVERY)
 		return 0;
 	L->last_flush = now;
-	return run_flush(L->w);
+	return L->w ? run_flush(L->w) : 0;
+}
+
+/* The crack log's rows so far, written by rank 0 (counted by all). */
+static int write_cracks(loop_state *L)
+{
+	engine *e = L->e;
+	if (L->w)
+		return output_cracks(e, L->w);
+	e->out.crack_rows += e->out.cracks.n;
+	e->out.cracks.n = 0;
+	return 0;
 }
 
 static int snapshot(loop_state *L)
@@ -68,7 +87,8 @@ static int snapshot(loop_state *L)
 		return 0;
 	L->last_snapshot_step = e->clock.step;
 	e->out.last_snapshot_strain = engine_strain(e);
-	return output_snapshot(e, L->w) || flush_now_and_then(L);
+	ranks_sync_pairs(e);
+	return (L->w && output_snapshot(e, L->w)) || flush_now_and_then(L);
 }
 
 static int snapshot_due(loop_state *L)
@@ -95,17 +115,24 @@ static int snapshot_due(loop_state *L)
 static int checkpoint(loop_state *L)
 {
 	engine *e = L->e;
-	if (output_cracks(e, L->w) || run_flush(L->w))
-		return -1;
 	L->last_checkpoint = timer_now();
-	return checkpoint_write(e, run_hid(L->w));
+	ranks_sync_pairs(e);
+	if (write_cracks(L) || !L->w)
+		return 0;
+	return run_flush(L->w) || checkpoint_write(e, run_hid(L->w));
 }
 
-static int checkpoint_due(const loop_state *L)
+/* Whether a checkpoint is due by the step count (agreed) or by rank 0's
+ * wall clock (agreed after the step, with the signals). */
+static int checkpoint_due_by_step(const loop_state *L)
 {
 	const dem_case *cs = L->e->cs;
-	if (cs->checkpoint_every && L->e->clock.step % cs->checkpoint_every == 0)
-		return 1;
+	return cs->checkpoint_every && L->e->clock.step % cs->checkpoint_every == 0;
+}
+
+static int checkpoint_due_by_wall(const loop_state *L)
+{
+	const dem_case *cs = L->e->cs;
 	return cs->checkpoint_wall > 0 && timer_now() - L->last_checkpoint >= cs->checkpoint_wall;
 }
 
@@ -125,7 +152,7 @@ static int history(loop_state *L)
 	if (e->sums.meas.step == 0)
 		e->energy.initial = e->energy.kinetic + elastic;
 	boundary_arm_drop(e, elastic);
-	return run_history(L->w, row);
+	return L->w ? run_history(L->w, row) : 0;
 }
 
 /* The steps one rule leaves before it ends the run (its clock counted from
@@ -199,13 +226,14 @@ static void finish(loop_state *L)
 		rc = snapshot(L);
 	if (L->how != END_FAILED)
 		rc = rc || checkpoint(L);
-	rc = rc || output_cracks(e, L->w);
+	rc = rc || write_cracks(L);
 	progress_end(&L->pg);
 	if (rc) {
-		run_abort(L->w);
+		if (L->w)
+			run_abort(L->w);
 		fatal(NULL);
 	}
-	if (run_finish(L->w, L->status))
+	if (L->w && run_finish(L->w, L->status))
 		fatal(NULL);
 	phase_stop(&e->tm, TM_OUTPUT);
 }
@@ -234,6 +262,7 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 	char why[512], diag[1024];
 	boundary_track_peak(e);
 	if (e->sums.particles.bad < (double)e->p.n) {
+		ranks_sync_pairs(e);
 		diagnose_nan(e, (size_t)e->sums.particles.bad, diag, sizeof diag);
 		if (measure)
 			history(L);
@@ -260,22 +289,28 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 		snprintf(L->ending, sizeof L->ending, "%s", status);
 		return END_NONE;
 	}
+	/* What a signal or rank 0's clock decides, agreed by the ranks. */
+	int agreed[3] = {interrupted,
+	                 par_rank() == 0 && o->max_wall > 0 &&
+	                     timer_now() - L->wall0 >= o->max_wall,
+	                 par_rank() == 0 && checkpoint_due_by_wall(L)};
+	ranks_agree(agreed, 3);
 	if (snapshot_due(L) && snapshot(L))
 		fatal(NULL);
-	if (checkpoint_due(L) && (checkpoint(L) || run_save_recovery(L->w)))
+	if ((checkpoint_due_by_step(L) || agreed[2]) &&
+	    (checkpoint(L) || (L->w && run_save_recovery(L->w))))
 		fatal(NULL);
-	if (e->out.cracks.n >= 4096 && (output_cracks(e, L->w) || flush_now_and_then(L)))
+	if (e->out.cracks.n >= 4096 && (write_cracks(L) || flush_now_and_then(L)))
 		fatal(NULL);
-	int budget = (o->max_steps && e->clock.step - L->step0 >= o->max_steps) ||
-	             (o->max_wall > 0 && timer_now() - L->wall0 >= o->max_wall);
-	if (interrupted || budget) {
+	int budget = (o->max_steps && e->clock.step - L->step0 >= o->max_steps) || agreed[1];
+	if (agreed[0] || budget) {
 		if (!o->quiet) {
 			progress_end(&L->pg);
 			fprintf(stderr,
 			        "%s: interrupted at step %" PRId64
 			        " (%s); continue with: solve --restart %s\n",
 			        err_program_name(), e->clock.step,
-			        interrupted ? strsignal(interrupted) : "budget", o->output);
+			        agreed[0] ? strsignal(agreed[0]) : "budget", o->output);
 		}
 		return end(L, END_INTERRUPTED, RUN_INTERRUPTED, "interrupted");
 	}
@@ -326,15 +361,18 @@ static int run_loop(engine *e, run_writer *w, const run_opts *o)
 	for (int k = 0; k < AFILE_NSIGNALS; k++)
 		sigaction(afile_signals[k], &old[k], NULL);
 	phase_stop(&e->tm, TM_TOTAL);
-	if (L.code == RUN_FAILED)
+	if (L.code == RUN_FAILED && par_rank() == 0)
 		fprintf(stderr, "%s: %s\n", err_program_name(), L.status);
-	report_print(e, L.step0, L.status, o);
+	if (par_rank() == 0)
+		report_print(e, L.step0, L.status, o);
 	return L.code;
 }
 
 /* The run file, with the assembly embedded. */
 static run_writer *create(engine *e, const dem_assembly *a, const run_opts *o)
 {
+	if (par_rank() > 0)
+		return NULL;
 	phase_start(&e->tm, TM_SETUP);
 	dem_provenance prov;
 	prov_init(&prov, "solve", e->cs->config, 0);
@@ -350,7 +388,7 @@ static run_writer *create(engine *e, const dem_assembly *a, const run_opts *o)
 static int bonds_then_loop(engine *e, run_writer *w, const run_opts *o)
 {
 	phase_start(&e->tm, TM_SETUP);
-	if (output_bonds(e, w))
+	if (w && output_bonds(e, w))
 		fatal(NULL);
 	phase_stop(&e->tm, TM_SETUP);
 	return run_loop(e, w, o);
@@ -483,9 +521,12 @@ static int run_continue(const run_opts *o, const char *from, dem_run *r)
 	phase_start(&e.tm, TM_SETUP);
 	if (checkpoint_read(&e, from))
 		fatal(NULL);
-	run_writer *w = run_reopen(from, o->restart, e.out.history_rows, e.out.crack_rows);
-	if (!w || drop_later_snapshots(w, e.clock.step))
-		fatal(NULL);
+	run_writer *w = NULL;
+	if (par_rank() == 0) {
+		w = run_reopen(from, o->restart, e.out.history_rows, e.out.crack_rows);
+		if (!w || drop_later_snapshots(w, e.clock.step))
+			fatal(NULL);
+	}
 	if (!o->quiet)
 		fprintf(stderr, "%s: %s: continuing from step %" PRId64 " (t = %g s, stage %d)\n",
 		        err_program_name(), from, e.clock.step, e.clock.t, e.prog.stage + 1);

@@ -19,8 +19,10 @@
 #include "solve/contacts.h"
 #include "solve/engine.h"
 #include "solve/pairlist.h"
+#include "solve/par.h"
 #include "solve/plan.h"
 #include "solve/platens.h"
+#include "solve/ranks.h"
 #include "solve/surface.h"
 #include "solve/timers.h"
 #include "solve/timestep.h"
@@ -246,7 +248,12 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 	gauge_init(e);
 	geometry_sizes(e, a);
 	scratch_alloc(e, o->threads);
-	bonds_split(e, e->team);
+	/* Every rank splits the particles alike: into shares for the largest
+	 * team of any rank, times the ranks (ranks.h). */
+	double team = e->team;
+	par_max(&team, 1);
+	bonds_split(e, (int)team * par_size());
+	ranks_split(e);
 	e->prog.peak = e->prog.stage_peak = -INFINITY;
 	boundary_begin_stage(e);
 	contacts_rebuild(e);
@@ -305,6 +312,7 @@ void engine_free(engine *e)
 	free(e->scratch.pblock), free(e->scratch.bblock), free(e->scratch.cblock),
 	    free(e->scratch.cfirst), free(e->scratch.z), free(e->scratch.acc);
 	bonds_split_free(&e->pairs.split);
+	ranks_free(&e->ranks);
 	for (int t = 0; t < e->nthreads; t++)
 		free(e->out.thread_cracks[t].c), free(e->out.thread_cracks[t].bond);
 	free(e->out.thread_cracks);

@@ -31,6 +31,7 @@
 #include "solve/par.h"
 #include "solve/platen_contact.h"
 #include "solve/platens.h"
+#include "solve/ranks.h"
 #include "solve/reduce.h"
 #include "solve/step.h"
 #include "solve/surface.h"
@@ -224,13 +225,14 @@ static void particles_integrate(engine *e, int k, int measure)
 		integrate_block(e, blk, measure);
 }
 
-/* Block sums (after the parallel step): the sums exact (reduce.h), the
- * largest displacement and speed and the first bad particle. */
+/* Block sums of this rank's particles (after the parallel step), then over
+ * the ranks: the sums exact (reduce.h), the largest displacement and speed
+ * and the first bad particle. */
 static void particles_sum(engine *e)
 {
-	size_t n = e->p.n, nb = nblocks(n);
+	size_t n = e->p.n, nb = e->ranks.blk1 - e->ranks.blk0;
 	particle_sums *t = &e->sums.particles;
-	const particle_sums *blk = e->scratch.pblock;
+	const particle_sums *blk = e->scratch.pblock + e->ranks.blk0;
 	/* The summed members are the doubles before disp2. */
 	enum {
 		STRIDE = sizeof(particle_sums) / sizeof(double),
@@ -246,8 +248,11 @@ static void particles_sum(engine *e)
 		t->v2max = blk[k].v2max > t->v2max ? blk[k].v2max : t->v2max;
 		t->bad = blk[k].bad < t->bad ? blk[k].bad : t->bad;
 	}
-	par_max(&t->disp2, 2); /* disp2, v2max */
-	par_min(&t->bad, 1);
+	double top[3] = {t->disp2, t->v2max, -t->bad}; /* one message */
+	par_max(top, 3);
+	t->disp2 = top[0];
+	t->v2max = top[1];
+	t->bad = -top[2];
 }
 
 void engine_step(engine *e, int measure)
@@ -267,14 +272,17 @@ void engine_step(engine *e, int measure)
 		                             .volume = e->bc.surf.volume};
 	phase_stop(&e->tm, TM_NEIGHBOUR);
 	phase_start(&e->tm, TM_BONDS);
-	/* Each thread takes shares tid, tid + team, ... (bonds.h): the crossing
-	 * bonds, then, after the contacts' barrier, the other bonds and the
-	 * particles, which read and move only the share's own particles. */
+	/* Each thread takes this rank's shares s0 + tid, s0 + tid + team, ...
+	 * (bonds.h, ranks.h): the crossing bonds, then the contacts, then, once
+	 * the crossing forces have reached the ranks of their j, the other
+	 * bonds and the particles, which read and move only the share's own
+	 * particles. */
+	size_t blk0 = e->ranks.blk0, nblk = e->ranks.blk1 - blk0, ncracks = e->out.cracks.n;
 #pragma omp parallel num_threads(e->team)
 	{
-		int tid = omp_get_thread_num(), nth = omp_get_num_threads(),
-		    shares = e->pairs.split.n;
-		for (int k = tid; k < shares; k += nth)
+		int tid = omp_get_thread_num(), nth = omp_get_num_threads(), s0 = e->ranks.s0,
+		    s1 = e->ranks.s1;
+		for (int k = s0 + tid; k < s1; k += nth)
 			bonds_cross(e, k, measure);
 #pragma omp master
 		{
@@ -284,22 +292,25 @@ void engine_step(engine *e, int measure)
 		contacts_forces(e, measure);
 #pragma omp master
 		{
+			ranks_exchange_forces(e);
 			phase_stop(&e->tm, TM_CONTACTS);
 			phase_start(&e->tm, TM_BONDS);
 		}
-		for (int k = tid; k < shares; k += nth)
+#pragma omp barrier
+		for (int k = s0 + tid; k < s1; k += nth)
 			bonds_share(e, k, measure);
 #pragma omp master
 		{
 			phase_stop(&e->tm, TM_BONDS);
 			phase_start(&e->tm, TM_INTEGRATE);
 		}
-		for (int k = tid; k < shares; k += nth)
+		for (int k = s0 + tid; k < s1; k += nth)
 			particles_integrate(e, k, measure);
 	}
-	pair_sums_total(e->scratch.bblock, nblocks(e->p.n), &e->sums.bonds);
-	pair_sums_total(e->scratch.cblock, nblocks(e->p.n), &e->sums.contacts);
+	pair_sums_total(e->scratch.bblock + blk0, nblk, &e->sums.bonds);
+	pair_sums_total(e->scratch.cblock + blk0, nblk, &e->sums.contacts);
 	particles_sum(e);
+	ranks_share_state(e);
 	phase_stop(&e->tm, TM_INTEGRATE);
 	phase_start(&e->tm, TM_NEIGHBOUR);
 
@@ -327,6 +338,7 @@ void engine_step(engine *e, int measure)
 		                                    : 0;
 	}
 	bonds_collect_cracks(e);
+	ranks_share_cracks(e, ncracks);
 	boundary_finish_step(e);
 	e->clock.t += e->clock.dt;
 	e->clock.step++;

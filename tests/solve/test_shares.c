@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "solve/engine.h"
+#include "solve/ranks.h"
 #include "tests/check.h"
 #include "tests/solve/fixture.h"
 #include "tests/solve/harness.h"
@@ -24,6 +25,7 @@ static void run(engine *e, const dem_case *c, const dem_assembly *a, int shares)
 {
 	harness_engine(e, c, a);
 	bonds_split(e, shares);
+	ranks_split(e);
 	for (int s = 0; s < STEPS; s++)
 		engine_step(e, s % 50 == 0);
 }

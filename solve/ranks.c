@@ -1,0 +1,340 @@
+/* The particles split among the ranks, and what crosses between them
+ * (ranks.h). With one rank, everything here but the split is a no-op. */
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef DEM_MPI
+#include <mpi.h>
+#endif
+
+#include "lib/err.h"
+#include "solve/blocks.h"
+#include "solve/bonds.h"
+#include "solve/engine.h"
+#include "solve/par.h"
+#include "solve/ranks.h"
+
+/* The rank of particle p: the last rank whose first particle is at most p
+ * (ranks may be empty). */
+static int rank_of(const rank_split *R, size_t p)
+{
+	int lo = 0, hi = R->size - 1;
+	while (lo < hi) {
+		int mid = (lo + hi + 1) / 2;
+		if (R->pfirst[mid] <= p)
+			lo = mid;
+		else
+			hi = mid - 1;
+	}
+	return lo;
+}
+
+static void link_add(rank_links *ls, int peer, size_t idx)
+{
+	rank_link *l = NULL;
+	for (int k = 0; k < ls->n && !l; k++)
+		if (ls->l[k].peer == peer)
+			l = &ls->l[k];
+	if (!l) {
+		ls->l = xrealloc(ls->l, ((size_t)ls->n + 1) * sizeof *ls->l);
+		l = &ls->l[ls->n++];
+		*l = (rank_link){.peer = peer};
+	}
+	if (l->n == l->cap) {
+		l->cap = l->cap ? 2 * l->cap : 64;
+		l->idx = xrealloc(l->idx, l->cap * sizeof *l->idx);
+	}
+	l->idx[l->n++] = idx;
+}
+
+static void links_free(rank_links *ls)
+{
+	for (int k = 0; k < ls->n; k++)
+		free(ls->l[k].idx), free(ls->l[k].buf);
+	free(ls->l);
+	memset(ls, 0, sizeof *ls);
+}
+
+/* Empty the links, keeping their peers' buffers for reuse. */
+static void links_clear(rank_links *ls)
+{
+	for (int k = 0; k < ls->n; k++)
+		ls->l[k].n = 0;
+}
+
+static void links_buffers(rank_links *ls)
+{
+	for (int k = 0; k < ls->n; k++)
+		ls->l[k].buf = xrealloc(ls->l[k].buf, (6 * ls->l[k].n + 1) * sizeof *ls->l[k].buf);
+}
+
+void ranks_split(engine *e)
+{
+	rank_split *R = &e->ranks;
+	const bond_split *S = &e->pairs.split;
+	const bond *rec = e->pairs.bonds.rec;
+	ranks_free(R);
+	R->size = par_size();
+	R->rank = par_rank();
+	R->pfirst = xmalloc(((size_t)R->size + 1) * sizeof *R->pfirst);
+	for (int q = 0; q <= R->size; q++)
+		R->pfirst[q] = S->pfirst[(size_t)q * (size_t)S->n / (size_t)R->size];
+	R->s0 = (int)((size_t)R->rank * (size_t)S->n / (size_t)R->size);
+	R->s1 = (int)((size_t)(R->rank + 1) * (size_t)S->n / (size_t)R->size);
+	R->p0 = S->pfirst[R->s0];
+	R->p1 = S->pfirst[R->s1];
+	R->blk0 = nblocks(R->p0);
+	R->blk1 = R->p1 > R->p0 ? nblocks(R->p1) : R->blk0;
+	for (int u = 0, src = 0; u < S->n; u++) {
+		while ((size_t)u >= (size_t)(src + 1) * (size_t)S->n / (size_t)R->size)
+			src++;
+		for (size_t c = S->cfirst[u]; c < S->cfirst[u + 1]; c++) {
+			int dst = rank_of(R, (size_t)rec[S->cross[c]].j);
+			if (src == dst)
+				continue;
+			if (src == R->rank)
+				link_add(&R->bsend, dst, c);
+			else if (dst == R->rank)
+				link_add(&R->brecv, src, c);
+		}
+	}
+	links_buffers(&R->bsend);
+	links_buffers(&R->brecv);
+}
+
+void ranks_contacts(engine *e)
+{
+	rank_split *R = &e->ranks;
+	if (R->size == 1)
+		return;
+	const pairlist *L = &e->pairs.contacts;
+	links_clear(&R->csend);
+	links_clear(&R->crecv);
+	for (size_t c = 0; c < L->n; c++) {
+		int ri = rank_of(R, (size_t)L->rec[c].i), rj = rank_of(R, (size_t)L->rec[c].j);
+		if (ri == rj)
+			continue;
+		if (ri == R->rank)
+			link_add(&R->csend, rj, c);
+		else if (rj == R->rank)
+			link_add(&R->crecv, ri, c);
+	}
+	links_buffers(&R->csend);
+	links_buffers(&R->crecv);
+}
+
+#ifdef DEM_MPI
+enum { TAG_BONDS = 1, TAG_CONTACTS = 2 };
+
+/* Post the receives (or pack and post the sends) of links ls. */
+static void post(rank_links *ls, int send, int tag, double *src, size_t stride, MPI_Request *req,
+                 int *nreq)
+{
+	for (int k = 0; k < ls->n; k++) {
+		rank_link *l = &ls->l[k];
+		if (send) {
+			for (size_t q = 0; q < l->n; q++)
+				memcpy(l->buf + 6 * q, src + stride * l->idx[q],
+				       6 * sizeof *l->buf);
+			MPI_Isend(l->buf, (int)(6 * l->n), MPI_DOUBLE, l->peer, tag, MPI_COMM_WORLD,
+			          &req[(*nreq)++]);
+		} else {
+			MPI_Irecv(l->buf, (int)(6 * l->n), MPI_DOUBLE, l->peer, tag, MPI_COMM_WORLD,
+			          &req[(*nreq)++]);
+		}
+	}
+}
+
+static void unpack(const rank_links *ls, double *dst, size_t stride)
+{
+	for (int k = 0; k < ls->n; k++) {
+		const rank_link *l = &ls->l[k];
+		for (size_t q = 0; q < l->n; q++)
+			memcpy(dst + stride * l->idx[q], l->buf + 6 * q, 6 * sizeof *l->buf);
+	}
+}
+#endif
+
+void ranks_exchange_forces(engine *e)
+{
+#ifdef DEM_MPI
+	rank_split *R = &e->ranks;
+	if (R->size == 1)
+		return;
+	int nreq = 0;
+	MPI_Request *req =
+	    xmalloc((size_t)(R->bsend.n + R->brecv.n + R->csend.n + R->crecv.n + 1) * sizeof *req);
+	/* A crossing bond's part is a bond_part; its force is what j needs. */
+	double *parts = (double *)e->pairs.split.part;
+	const size_t pstride = sizeof(bond_part) / sizeof(double);
+	_Static_assert(sizeof(bond_part) % sizeof(double) == 0 && offsetof(bond_part, f) == 0,
+	               "bond_part: its force first, in doubles");
+	post(&R->brecv, 0, TAG_BONDS, NULL, 0, req, &nreq);
+	post(&R->crecv, 0, TAG_CONTACTS, NULL, 0, req, &nreq);
+	post(&R->bsend, 1, TAG_BONDS, parts, pstride, req, &nreq);
+	post(&R->csend, 1, TAG_CONTACTS, e->pairs.contacts.f, 6, req, &nreq);
+	MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE);
+	free(req);
+	unpack(&R->brecv, parts, pstride);
+	unpack(&R->crecv, e->pairs.contacts.f, 6);
+#else
+	(void)e;
+#endif
+}
+
+#ifdef DEM_MPI
+/* Every rank's rows [first[q], first[q + 1]) of an array of rows of `row`
+ * bytes gathered in place on every rank. */
+static void gather_rows(void *base, const size_t *first, size_t row, int size)
+{
+	int *cnt = xmalloc((size_t)size * sizeof *cnt), *dsp = xmalloc((size_t)size * sizeof *dsp);
+	MPI_Datatype t;
+	MPI_Type_contiguous((int)row, MPI_BYTE, &t);
+	MPI_Type_commit(&t);
+	for (int q = 0; q < size; q++) {
+		cnt[q] = (int)(first[q + 1] - first[q]);
+		dsp[q] = (int)first[q];
+	}
+	MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, base, cnt, dsp, t, MPI_COMM_WORLD);
+	MPI_Type_free(&t);
+	free(cnt), free(dsp);
+}
+#endif
+
+void ranks_share_state(engine *e)
+{
+#ifdef DEM_MPI
+	rank_split *R = &e->ranks;
+	if (R->size == 1)
+		return;
+	/* x, v and ω in one message: each rank's rows of [n][9]. */
+	particles *P = &e->p;
+	double *const arr[3] = {P->x, P->v, P->w};
+	R->state = xrealloc(R->state, (9 * P->n + 1) * sizeof *R->state);
+	for (size_t i = R->p0; i < R->p1; i++)
+		for (int a = 0; a < 3; a++)
+			memcpy(R->state + 9 * i + 3 * a, arr[a] + 3 * i, 3 * sizeof *R->state);
+	gather_rows(R->state, R->pfirst, 9 * sizeof *R->state, R->size);
+	for (size_t i = 0; i < P->n; i++)
+		if (i < R->p0 || i >= R->p1)
+			for (int a = 0; a < 3; a++)
+				memcpy(arr[a] + 3 * i, R->state + 9 * i + 3 * a,
+				       3 * sizeof *R->state);
+#else
+	(void)e;
+#endif
+}
+
+void ranks_share_cracks(engine *e, size_t first)
+{
+#ifdef DEM_MPI
+	rank_split *R = &e->ranks;
+	if (R->size == 1)
+		return;
+	crack_buf *cb = &e->out.cracks;
+	size_t mine = cb->n - first;
+	int *cnt = xmalloc((size_t)R->size * sizeof *cnt);
+	int own = (int)mine;
+	MPI_Allgather(&own, 1, MPI_INT, cnt, 1, MPI_INT, MPI_COMM_WORLD);
+	size_t *at = xmalloc(((size_t)R->size + 1) * sizeof *at);
+	at[0] = first;
+	for (int q = 0; q < R->size; q++)
+		at[q + 1] = at[q] + (size_t)cnt[q];
+	size_t total = at[R->size];
+	if (total > first) {
+		if (total > cb->cap) {
+			cb->cap = total + total / 2;
+			cb->c = xrealloc(cb->c, cb->cap * sizeof *cb->c);
+			cb->bond = xrealloc(cb->bond, cb->cap * sizeof *cb->bond);
+		}
+		/* This rank's rows move to their place in rank order, which is
+		 * bond order (ranks own increasing particles, bonds go by i). */
+		memmove(cb->c + at[R->rank], cb->c + first, mine * sizeof *cb->c);
+		memmove(cb->bond + at[R->rank], cb->bond + first, mine * sizeof *cb->bond);
+		gather_rows(cb->c, at, sizeof *cb->c, R->size);
+		gather_rows(cb->bond, at, sizeof *cb->bond, R->size);
+		cb->n = total;
+	}
+	free(cnt), free(at);
+#else
+	(void)e, (void)first;
+#endif
+}
+
+#ifdef DEM_MPI
+/* The rows of a pair list each rank owns: the pairs of its particles i
+ * (listed by i, blkfirst[] the first of each particle block; a rank's
+ * first particle is a block boundary or the particle count). */
+static void gather_pairs(pairlist *L, const size_t *blkfirst, const rank_split *R, int forces)
+{
+	size_t *first = xmalloc(((size_t)R->size + 1) * sizeof *first);
+	for (int q = 0; q <= R->size; q++)
+		first[q] = blkfirst[nblocks(R->pfirst[q])];
+	gather_rows(L->rec, first, sizeof *L->rec, R->size);
+	if (forces)
+		gather_rows(L->f, first, 6 * sizeof *L->f, R->size);
+	free(first);
+}
+#endif
+
+void ranks_sync_pairs(engine *e)
+{
+#ifdef DEM_MPI
+	rank_split *R = &e->ranks;
+	if (R->size == 1)
+		return;
+	gather_pairs(&e->pairs.bonds, e->pairs.split.bfirst, R, 1);
+	gather_pairs(&e->pairs.contacts, e->scratch.cfirst, R, 1);
+	platens *pl = &e->bc.pl;
+	size_t *first = xmalloc(((size_t)R->size + 1) * sizeof *first);
+	for (int k = 0; k < 2; k++) {
+		/* The candidates are listed by particle. */
+		for (int q = 0, c = 0; q <= R->size; q++) {
+			while ((size_t)c < pl->ncand[k] && (size_t)pl->who[k][c] < R->pfirst[q])
+				c++;
+			first[q] = (size_t)c;
+		}
+		first[R->size] = pl->ncand[k];
+		gather_rows(pl->pc[k], first, sizeof *pl->pc[k], R->size);
+	}
+	free(first);
+#else
+	(void)e;
+#endif
+}
+
+void ranks_agree(int *flags, int n)
+{
+#ifdef DEM_MPI
+	if (par_size() > 1)
+		MPI_Allreduce(MPI_IN_PLACE, flags, n, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+#else
+	(void)flags, (void)n;
+#endif
+}
+
+void ranks_balance(const engine *e, double particles[2], double bonds[2])
+{
+	const rank_split *R = &e->ranks;
+	const size_t *bfirst = e->pairs.split.bfirst;
+	particles[0] = bonds[0] = 0;
+	for (int q = 0; q < R->size; q++) {
+		double np = (double)(R->pfirst[q + 1] - R->pfirst[q]);
+		double nb =
+		    (double)(bfirst[nblocks(R->pfirst[q + 1])] - bfirst[nblocks(R->pfirst[q])]);
+		particles[0] = np > particles[0] ? np : particles[0];
+		bonds[0] = nb > bonds[0] ? nb : bonds[0];
+	}
+	particles[1] = (double)e->p.n / R->size;
+	bonds[1] = (double)e->pairs.bonds.n / R->size;
+}
+
+void ranks_free(rank_split *r)
+{
+	free(r->pfirst), free(r->state);
+	links_free(&r->bsend);
+	links_free(&r->brecv);
+	links_free(&r->csend);
+	links_free(&r->crecv);
+	memset(r, 0, sizeof *r);
+}

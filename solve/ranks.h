@@ -1,0 +1,72 @@
+/* The particles split among the ranks of a run (par.h), and what crosses
+ * between them (ranks.c).
+ *
+ * Each rank takes a contiguous run of the thread shares of bonds.h (whole
+ * particle blocks in Morton order, so a run of them is a compact piece of
+ * the specimen): it computes the bonds and contacts whose first particle
+ * (i < j) is its own, moves its own particles and sums its own blocks. A
+ * pair that reaches into a later rank ("crossing") is computed by the rank
+ * of i, which sends its force to the rank of j; there it is added where
+ * pair order puts it, so every particle's force is the same sum, bit for
+ * bit, on any number of ranks. Between steps every rank holds every
+ * particle's position and velocities (the state a neighbour search and the
+ * crossing pairs read); the histories of bonds and contacts live with the
+ * rank of their i and are gathered only for output. */
+#ifndef DEM_RANKS_H
+#define DEM_RANKS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct engine engine;
+
+/* The pair forces one rank sends to (receives from) another each step. */
+typedef struct {
+	int peer;
+	size_t n, cap;
+	size_t *idx; /* crossing-bond slots (bonds.h) or contact indices */
+	double *buf; /* [n][6] */
+} rank_link;
+
+typedef struct {
+	int n;
+	rank_link *l;
+} rank_links;
+
+typedef struct {
+	int size, rank;
+	size_t *pfirst;          /* [size + 1] first particle of each rank */
+	int s0, s1;              /* this rank's shares of pairs.split */
+	size_t p0, p1;           /* its particles */
+	size_t blk0, blk1;       /* its particle blocks */
+	rank_links bsend, brecv; /* crossing bonds' forces */
+	rank_links csend, crecv; /* crossing contacts' forces */
+	double *state;           /* [n][9] x, v, ω: what ranks_share_state sends */
+} rank_split;
+
+/* This rank's part of the shares (after bonds_split). */
+void ranks_split(engine *e);
+/* The crossing contacts (after each contact rebuild). */
+void ranks_contacts(engine *e);
+/* Inside the step's parallel region, by one thread: the forces of the
+ * crossing bonds and contacts sent to the ranks of their j. */
+void ranks_exchange_forces(engine *e);
+/* After the step: every particle's new position and velocities on every
+ * rank. */
+void ranks_share_state(engine *e);
+/* After the step: the failures this rank found since `first` (the length
+ * of e->out.cracks before the step) and those of the other ranks, in bond
+ * order on every rank. */
+void ranks_share_cracks(engine *e, size_t first);
+/* Before output: every bond's and contact's history and force, and the
+ * platen contacts, on every rank. */
+void ranks_sync_pairs(engine *e);
+/* Flags that every rank must agree on (a signal, a budget, a checkpoint
+ * due): each the largest over the ranks, in place. */
+void ranks_agree(int *flags, int n);
+/* The load balance: the largest and the mean number of particles (and of
+ * bonds, by their i) per rank. */
+void ranks_balance(const engine *e, double particles[2], double bonds[2]);
+void ranks_free(rank_split *r);
+
+#endif
