@@ -267,6 +267,16 @@ static void test_defects(void)
 {
 	trimesh m = {0};
 	refused(&m, "mesh: no surface triangles: the geometry has no closed boundary");
+	/* A triangle between a corner and a copy of it. */
+	add_cube(&m, 0, 0, 0, 1, 0);
+	m.vert = realloc(m.vert, 27 * sizeof(double));
+	m.tri = realloc(m.tri, 39 * sizeof(int32_t));
+	memcpy(m.vert + 24, m.vert, 3 * sizeof(double));
+	int32_t collapsed[3] = {0, 8, 1};
+	memcpy(m.tri + 36, collapsed, sizeof collapsed);
+	m.nvert = 9;
+	m.ntri = 13;
+	refused(&m, "mesh: the boundary has 1 degenerate triangle (two corners at one point)");
 	/* The projective plane: 10 triangles, every edge shared by two, no
 	 * consistent orientation (Euler characteristic 6 - 15 + 10 = 1). */
 	static const int32_t rp2[10][3] = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}, {0, 5, 1},
@@ -277,6 +287,16 @@ static void test_defects(void)
 	memcpy(m.vert, corners, sizeof corners);
 	memcpy(m.tri, rp2, sizeof rp2);
 	refused(&m, "mesh: the boundary surface is not orientable");
+	/* Two cubes that touch at a corner. */
+	add_cube(&m, 0, 0, 0, 1, 0);
+	add_cube(&m, 1, 1, 1, 1, 0);
+	refused(&m, "mesh: the boundary is not a manifold surface: 1 vertex is shared by "
+	            "surfaces that meet only there");
+	/* Two cubes that overlap. */
+	add_cube(&m, 0, 0, 0, 1, 0);
+	add_cube(&m, 0.5, 0.5, 0.5, 1, 0);
+	refused(&m, "mesh: the boundary surface intersects itself (triangles that cross, or of "
+	            "zero area): its inside is not defined");
 }
 
 /* A built-in shape's extent, known before meshing (pack makes its periodic
