@@ -12,6 +12,10 @@
 #include <stdarg.h>
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Record the current error (replaces any earlier one; err_msg() may be one
  * of the arguments). Always returns -1. */
 int err_set(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
@@ -27,7 +31,7 @@ const char *err_program_name(void);
 
 /* Print "<program>: <message>" on stderr and exit with status 1. With fmt ==
  * NULL the current error message is printed; err_msg() may be an argument. */
-_Noreturn void fatal(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+void fatal(const char *fmt, ...) __attribute__((noreturn, format(printf, 1, 2)));
 void warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
 /* malloc/calloc/realloc that exit with a clear message when memory runs out. */
@@ -35,5 +39,9 @@ void *xmalloc(size_t n);
 void *xcalloc(size_t count, size_t size);
 void *xrealloc(void *p, size_t n);
 char *xstrdup(const char *s);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -11,8 +11,8 @@
  * with sizes refined on curved boundaries. The boundary is then the faces
  * that belong to one volume element only (a volume mesh), the boundary
  * surfaces of the union of all volumes (a CAD solid), or every surface
- * element (a surface mesh); pack/trimesh.c checks it is closed and orients
- * it. */
+ * element (a surface mesh); pack/trimesh_close.cpp checks it is closed and
+ * orients it. */
 #include <errno.h>
 #include <math.h>
 #include <omp.h>

@@ -1,8 +1,9 @@
 /* Specimen geometry: every source (built-in cylinder, disc, box; .geo,
  * .brep, .step in millimetres, .msh volume mesh) gives a closed, outward
  * triangulation whose volume, area and signed distances match the shape's
- * own formulas; open and unreadable files are refused with one clear
- * message. A built-in shape's extent is known before it is meshed. */
+ * own formulas; open and unreadable files, and boundaries that enclose no
+ * well-defined solid, are refused with one clear message. A built-in
+ * shape's extent is known before it is meshed. */
 #include "tests/check.h"
 
 #include "lib/err.h"
@@ -169,30 +170,41 @@ static void test_bad_files(void)
 	CHECK_CONTAINS(err_msg(), "line 1");
 }
 
-/* A cube with every other triangle flipped and a smaller cube inside it
- * (a cavity): orientation makes the outer normals point out and the
- * cavity's point into the cavity, so the volume is the difference. */
-static void test_orientation(void)
+/* Append a cube of edge `edge` with its lowest corner at (x, y, z); with
+ * `flip`, every other triangle points into it. */
+static void add_cube(trimesh *m, double x, double y, double z, double edge, int flip)
 {
 	static const double unit[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
 	                                  {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
 	static const int32_t faces[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7},
 	                                     {0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5},
 	                                     {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
-	trimesh m = {16, 24, malloc(48 * sizeof(double)), malloc(72 * sizeof(int32_t))};
-	for (int c = 0; c < 2; c++)
-		for (int v = 0; v < 8; v++)
-			for (int k = 0; k < 3; k++)
-				m.vert[3 * (8 * c + v) + k] =
-				    c ? 0.25 + 0.5 * unit[v][k] : unit[v][k];
-	for (int c = 0; c < 2; c++)
-		for (int t = 0; t < 12; t++) {
-			int32_t *o = m.tri + 3 * (12 * c + t);
-			int flip = t % 2;
-			o[0] = 8 * c + faces[t][0];
-			o[1] = 8 * c + faces[t][flip ? 2 : 1];
-			o[2] = 8 * c + faces[t][flip ? 1 : 2];
-		}
+	const double lo[3] = {x, y, z};
+	int32_t base = (int32_t)m->nvert;
+	m->vert = realloc(m->vert, 3 * (m->nvert + 8) * sizeof *m->vert);
+	m->tri = realloc(m->tri, 3 * (m->ntri + 12) * sizeof *m->tri);
+	for (int v = 0; v < 8; v++)
+		for (int k = 0; k < 3; k++)
+			m->vert[3 * (base + v) + k] = lo[k] + edge * unit[v][k];
+	for (int t = 0; t < 12; t++) {
+		int32_t *o = m->tri + 3 * (m->ntri + t);
+		int f = flip && t % 2;
+		o[0] = base + faces[t][0];
+		o[1] = base + faces[t][f ? 2 : 1];
+		o[2] = base + faces[t][f ? 1 : 2];
+	}
+	m->nvert += 8;
+	m->ntri += 12;
+}
+
+/* A cube with every other triangle flipped and a smaller cube inside it
+ * (a cavity): orientation makes the outer normals point out and the
+ * cavity's point into the cavity, so the volume is the difference. */
+static void test_orientation(void)
+{
+	trimesh m = {0};
+	add_cube(&m, 0, 0, 0, 1, 1);
+	add_cube(&m, 0.25, 0.25, 0.25, 0.5, 1);
 	CHECK(trimesh_close(&m, "cubes") == 0);
 	double v, a, lo[3], hi[3];
 	trimesh_measure(&m, &v, &a, lo, hi);
@@ -212,6 +224,79 @@ static void test_orientation(void)
 	CHECK_STR(err_msg(), "cubes: the boundary is not a manifold surface: 2 edges are shared by "
 	                     "more than two triangles");
 	trimesh_free(&m);
+}
+
+/* A cube whose triangles each have their own three vertices, numbered
+ * backwards: welding leaves its 8 corners in order of first use, and a
+ * triangle that points in is flipped from (a, b, c) to (a, c, b). */
+static void test_weld(void)
+{
+	trimesh cube = {0};
+	add_cube(&cube, 0, 0, 0, 1, 1);
+	trimesh m = {36, 12, malloc(108 * sizeof(double)), malloc(36 * sizeof(int32_t))};
+	for (int k = 0; k < 36; k++) {
+		memcpy(m.vert + 3 * (35 - k), cube.vert + 3 * cube.tri[k], 3 * sizeof(double));
+		m.tri[k] = 35 - k;
+	}
+	CHECK(trimesh_close(&m, "cube") == 0);
+	CHECK(m.nvert == 8);
+	static const double first[4][3] = {{0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 1, 0}};
+	for (int i = 0; i < 4; i++)
+		for (int k = 0; k < 3; k++)
+			CHECK(m.vert[3 * i + k] == first[i][k]);
+	static const int32_t tri[6] = {0, 1, 2, 0, 3, 1};
+	for (int k = 0; k < 6; k++)
+		CHECK(m.tri[k] == tri[k]);
+	double v, a, lo[3], hi[3];
+	trimesh_measure(&m, &v, &a, lo, hi);
+	CHECK_NEAR(v, 1, 1e-15);
+	trimesh_free(&m);
+	trimesh_free(&cube);
+}
+
+/* trimesh_close refuses m with message msg. */
+static void refused(trimesh *m, const char *msg)
+{
+	CHECK(trimesh_close(m, "mesh") == -1);
+	CHECK_STR(err_msg(), msg);
+	trimesh_free(m);
+}
+
+/* Boundaries that enclose no well-defined solid. */
+static void test_defects(void)
+{
+	trimesh m = {0};
+	refused(&m, "mesh: no surface triangles: the geometry has no closed boundary");
+	/* A triangle between a corner and a copy of it. */
+	add_cube(&m, 0, 0, 0, 1, 0);
+	m.vert = realloc(m.vert, 27 * sizeof(double));
+	m.tri = realloc(m.tri, 39 * sizeof(int32_t));
+	memcpy(m.vert + 24, m.vert, 3 * sizeof(double));
+	int32_t collapsed[3] = {0, 8, 1};
+	memcpy(m.tri + 36, collapsed, sizeof collapsed);
+	m.nvert = 9;
+	m.ntri = 13;
+	refused(&m, "mesh: the boundary has 1 degenerate triangle (two corners at one point)");
+	/* The projective plane: 10 triangles, every edge shared by two, no
+	 * consistent orientation (Euler characteristic 6 - 15 + 10 = 1). */
+	static const int32_t rp2[10][3] = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}, {0, 5, 1},
+	                                   {1, 2, 4}, {2, 3, 5}, {3, 4, 1}, {4, 5, 2}, {5, 1, 3}};
+	static const double corners[6][3] = {{0, 0, 1},  {1, 0, 0},  {0, 1, 0},
+	                                     {-1, 0, 0}, {0, -1, 0}, {0.3, 0.2, -1}};
+	m = (trimesh){6, 10, malloc(sizeof corners), malloc(sizeof rp2)};
+	memcpy(m.vert, corners, sizeof corners);
+	memcpy(m.tri, rp2, sizeof rp2);
+	refused(&m, "mesh: the boundary surface is not orientable");
+	/* Two cubes that touch at a corner. */
+	add_cube(&m, 0, 0, 0, 1, 0);
+	add_cube(&m, 1, 1, 1, 1, 0);
+	refused(&m, "mesh: the boundary is not a manifold surface: 1 vertex is shared by "
+	            "surfaces that meet only there");
+	/* Two cubes that overlap. */
+	add_cube(&m, 0, 0, 0, 1, 0);
+	add_cube(&m, 0.5, 0.5, 0.5, 1, 0);
+	refused(&m, "mesh: the boundary surface intersects itself (triangles that cross, or of "
+	            "zero area): its inside is not defined");
 }
 
 /* A built-in shape's extent, known before meshing (pack makes its periodic
@@ -254,5 +339,7 @@ int main(void)
 	test_files();
 	test_bad_files();
 	test_orientation();
+	test_weld();
+	test_defects();
 	return check_done();
 }
