@@ -130,7 +130,11 @@ static void build(design *d, const double a[3])
 
 static const run_column columns[] = {{"t", "s"}, {"strain_axial", ""}, {"stress_axial", "Pa"}};
 
-static void write_run(const char *path, const design *d, const double a[3], double stress)
+/* The run: three history rows of stress 0, stress / 2, stress (or, when
+ * falling, 0, stress, stress / 2) and one snapshot at the last, ended with
+ * the given status. */
+static void write_run_as(const char *path, const design *d, const double a[3], double stress,
+                         const char *status, int falling)
 {
 	size_t n = 2 * d->nb;
 	dem_assembly as;
@@ -160,7 +164,9 @@ static void write_run(const char *path, const design *d, const double a[3], doub
 	               .ks = calloc(d->nb, sizeof(double))};
 	CHECK(run_write_bonds(w, &b) == 0);
 	for (int r = 0; r < 3; r++) {
-		double row[3] = {1e-3 * r, 1e-3 * r, stress * r / 2};
+		double row[3] = {1e-3 * r, 1e-3 * r, stress * (falling && r == 2 ? 1 : r) / 2};
+		if (falling && r == 1)
+			row[2] = stress;
 		CHECK(run_history(w, row) == 0);
 	}
 	double *zero = calloc(3 * n, sizeof *zero), *dmg = calloc(d->nb, sizeof *dmg);
@@ -179,10 +185,44 @@ static void write_run(const char *path, const design *d, const double a[3], doub
 	                  .fn = (double *)d->fn,
 	                  .fs = (double *)d->fs};
 	CHECK(run_snapshot(w, &s) == 0);
-	CHECK(run_finish(w, "complete") == 0);
+	CHECK(run_finish(w, status) == 0);
 	free(zero), free(dmg), free(b.d0), free(b.kn), free(b.ks);
 	prov_free(&prov);
 	assembly_free(&as);
+}
+
+static void write_run(const char *path, const design *d, const double a[3], double stress)
+{
+	write_run_as(path, d, a, stress, "complete", 0);
+}
+
+/* Fig. 11 at the peak of a run that a strain stop ended while its stress
+ * still rose: the "peak" is flagged as the stop's plateau, in a warning and
+ * in the legend; not when the stress fell before the stop, nor when
+ * another rule ended the run. */
+static void check_plateau(const design *d, const double a[3])
+{
+	static const struct {
+		const char *status;
+		int falling, flagged;
+	} runs[] = {{"stopped: axial strain reached 0.002", 0, 1},
+	            {"stopped: axial strain reached 0.002", 1, 0},
+	            {"complete", 0, 0}};
+	for (int k = 0; k < 3; k++) {
+		char dir[1024], run[1100], gp[1100];
+		harness_dir(dir, sizeof dir, "ratios_plateau");
+		snprintf(run, sizeof run, "%s/run%d.h5", dir, k);
+		snprintf(gp, sizeof gp, "%s/ratios.gp", dir);
+		write_run_as(run, d, a, 2.5e6, runs[k].status, runs[k].falling);
+		post_result r = harness_post("ratios --out %s %s", dir, run);
+		CHECK(r.status == 0);
+		CHECK(!!strstr(r.err, "the strain stop's plateau, not a limit stress") ==
+		      runs[k].flagged);
+		harness_free(&r);
+		char *text = harness_slurp(gp);
+		CHECK(text && !!strstr(text, "no peak: strain stop") == runs[k].flagged);
+		free(text);
+	}
 }
 
 static void mean_std(const double *v, int n, double *mean, double *sd)
@@ -377,5 +417,7 @@ int main(void)
 	char dir[1024];
 	harness_dir(dir, sizeof dir, "ratios_two");
 	check_two_runs(dir, runs[0], runs[1]);
+	build(&d, axes[0]);
+	check_plateau(&d, axes[0]);
 	return check_done();
 }
