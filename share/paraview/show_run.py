@@ -2,7 +2,8 @@
 
     pvbatch share/paraview/show_run.py VTK_DIR [OUT.png] [--time T] [--size W H] [--bonds]
                                        [--ranges-at-end]
-    paraview --script=share/paraview/show_run.py    (then VTK_DIR from $DEM_VTK_DIR)
+    paraview --script=share/paraview/show_run.py    (then VTK_DIR from $DEM_VTK_DIR; the
+                                                     left view only, in the window's)
 
 VTK_DIR is the directory `post vtk` wrote (particles.pvd, cracks.pvd,
 platens.pvd, geometry.vtp). Two views side by side, at the last snapshot
@@ -36,8 +37,8 @@ import sys
 
 from paraview import servermanager
 from paraview.simple import (
-    AssignViewToLayout, Calculator, Clip, ColorBy, CreateLayout, CreateView, GetAnimationScene,
-    GetColorTransferFunction, GetOpacityTransferFunction, GetScalarBar, Glyph, PVDReader,
+    AssignViewToLayout, Calculator, Clip, ColorBy, CreateLayout, CreateView,
+    GetActiveView, GetColorTransferFunction, GetLayouts, GetOpacityTransferFunction, GetScalarBar, Glyph, PVDReader,
     Render, SaveScreenshot, Show, Text, Threshold, XMLPolyDataReader)
 
 DAMAGE_MAP = "Inferno (matplotlib)"  # inverted: intact pale, broken dark
@@ -282,14 +283,11 @@ def main(argv):
     particles = PVDReader(FileName=path("particles.pvd"))
     cracks = PVDReader(FileName=path("cracks.pvd"))
     platens = PVDReader(FileName=path("platens.pvd"))
-    scene = GetAnimationScene()
-    scene.UpdateAnimationUsingDataTimeSteps()
     times = particles.TimestepValues
     times = list(times) if hasattr(times, "__len__") else [times]
     t = args["time"] if args["time"] is not None else times[-1]
     _, _, length0, _ = platen_axis(platens, times[0])
     centre, axis, length, stress = platen_axis(platens, t)
-    scene.AnimationTime = t
     for src in (particles, cracks, platens):
         src.UpdatePipeline(t)
     towards = across(axis)
@@ -305,7 +303,11 @@ def main(argv):
     if stress is not None:
         title += ", axial stress %.3g MPa" % (stress / 1e6)
 
-    left = CreateView("RenderView")
+    # The GUI's window has a layout with a view already: draw the left
+    # picture in it (registering a new layout from a start-up script would
+    # wait on the GUI, which waits on the script).
+    window = list(GetLayouts().values())
+    left = GetActiveView() if window else CreateView("RenderView")
     left.ViewTime = t
     half = Clip(Input=particles)
     half.ClipType = "Plane"
@@ -359,16 +361,18 @@ def main(argv):
     if args["bonds"]:
         views.append(bond_view(path, t, platens, centre, axis, towards, length))
 
-    layout = CreateLayout("run")
-    AssignViewToLayout(view=left, layout=layout, hint=0)
-    if len(views) == 2:
-        layout.SplitHorizontal(0, 0.5)
-        AssignViewToLayout(view=right, layout=layout, hint=2)
-    else:
-        layout.SplitHorizontal(0, 1.0 / 3)
-        AssignViewToLayout(view=right, layout=layout, hint=2)
-        layout.SplitHorizontal(2, 0.5)
-        AssignViewToLayout(view=views[2], layout=layout, hint=6)
+    layout = None
+    if not window:  # in the GUI, the layout cannot change from here either
+        layout = CreateLayout("run")
+        AssignViewToLayout(view=left, layout=layout, hint=0)
+        if len(views) == 2:
+            layout.SplitHorizontal(0, 0.5)
+            AssignViewToLayout(view=right, layout=layout, hint=2)
+        else:
+            layout.SplitHorizontal(0, 1.0 / 3)
+            AssignViewToLayout(view=right, layout=layout, hint=2)
+            layout.SplitHorizontal(2, 0.5)
+            AssignViewToLayout(view=views[2], layout=layout, hint=6)
     for view in views:
         Render(view)
         camera(view, centre, axis, towards, length)
