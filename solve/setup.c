@@ -253,6 +253,11 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 	double team = e->team;
 	par_max(&team, 1);
 	bonds_split(e, (int)team * par_size());
+	if (e->pairs.split.n < par_size())
+		return err_set("%d ranks for %zu particles: a rank takes whole blocks of %d "
+		               "particles, so this specimen runs on at most %d rank%s",
+		               par_size(), e->p.n, BLOCK, e->pairs.split.n,
+		               e->pairs.split.n > 1 ? "s" : "");
 	ranks_split(e);
 	e->prog.peak = e->prog.stage_peak = -INFINITY;
 	boundary_begin_stage(e);

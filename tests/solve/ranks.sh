@@ -3,9 +3,10 @@
 # the threads inside each rank, and a run interrupted on K ranks continues
 # on K' (share/doc/solve.md, "Several machines"): a UCS of the paper's
 # cement to its stress drop (end layers, cracks, snapshots, checkpoints)
-# and a triaxial start (platens, the confining pressure on tributary
-# areas). same_run.py compares every dataset and attribute but the
-# creation time and the wall-clock rate.
+# on 1, 2 x 2 threads, and 3 ranks continued on 2; a confined triaxial
+# with an unload-reload cycle on 4; a Brazilian test on 7. same_run.py
+# compares every dataset and attribute but the creation time and the
+# wall-clock rate.
 # Usage: ranks.sh BIN_DIR TMP_DIR MPIEXEC
 set -eu
 bin=$1 tmp=$2 mpiexec=$3
@@ -44,15 +45,52 @@ same ucs1.h5 ucs2.h5
 ranks 3 --threads 1 --max-steps 800 --output ucs3.h5 ucs.json
 ranks 2 --threads 1 --restart ucs3.h5
 same ucs1.h5 ucs3.h5
+# A confined triaxial with an unload-reload cycle (hydrostatic ramp on the
+# platens, confinement on tributary areas, then the end layers) on 4 ranks.
 cat > tri.json <<JSON
 {"test": "triaxial", "assembly": "a.h5", "material": "$share/materials/cement-500psi.json",
  "damping": {"translational": 0.1, "rotational": 0.1},
  "output": {"history_every": 50, "snapshot_every": 400},
- "loading": [{"ramp": 0.0002,
-              "axial": {"mode": "stress", "stress": 3447379, "rate": 20.0},
-              "lateral": {"mode": "pressure", "pressure": 3447379, "method": "tributary"}}],
- "stop": {"steps": 800}}
+ "loading": [
+  {"name": "hydrostatic", "ramp": 0.0001,
+   "axial": {"mode": "stress", "stress": 3447379, "rate": 20.0},
+   "lateral": {"mode": "pressure", "pressure": 3447379, "method": "tributary"},
+   "until": {"steps": 500}},
+  {"name": "load", "axial": {"mode": "layers", "move": "top", "rate": 60.0},
+   "lateral": {"mode": "pressure", "pressure": 3447379, "method": "tributary"},
+   "until": {"steps": 500}},
+  {"name": "unload", "axial": {"mode": "layers", "move": "top", "rate": -60.0},
+   "lateral": {"mode": "pressure", "pressure": 3447379, "method": "tributary"},
+   "until": {"steps": 200}},
+  {"name": "reload", "axial": {"mode": "layers", "move": "top", "rate": 60.0},
+   "lateral": {"mode": "pressure", "pressure": 3447379, "method": "tributary"}}],
+ "stop": {"steps": 1500}}
 JSON
 "$bin/solve" --quiet --threads 1 --output tri1.h5 tri.json
-ranks 2 --threads 1 --output tri2.h5 tri.json
-same tri1.h5 tri2.h5
+ranks 4 --threads 1 --output tri4.h5 tri.json
+same tri1.h5 tri4.h5
+# A Brazilian test (a disc of about 1 700 spheres between platens, to
+# its first cracks) on 7 ranks.
+"$bin/pack" --quiet --shape disc --diameter 0.016 --thickness 0.008 --radius 0.0005 \
+	--dist fuzz --fuzz 0.3 disc.h5
+cat > bts.json <<JSON
+{"test": "bts", "assembly": "disc.h5", "material": "$share/materials/cement.json",
+ "damping": {"translational": 0.1, "rotational": 0.1},
+ "output": {"history_every": 50, "snapshot_every": 200},
+ "loading": [{"axial": {"mode": "strain_rate", "rate": 200.0}}], "axis": [1, 0, 0],
+ "stop": {"steps": 800}}
+JSON
+"$bin/solve" --quiet --threads 1 --output bts1.h5 bts.json
+ranks 7 --threads 1 --output bts7.h5 bts.json
+same bts1.h5 bts7.h5
+# More ranks than the specimen has blocks of particles: one clear message
+# on each rank, a failed run, no run file.
+"$bin/pack" --quiet --diameter 0.006 --height 0.012 --radius 0.0005 --dist fuzz small.h5
+sed 's/"a.h5"/"small.h5"/' ucs.json > small.json
+if "$mpiexec" -np 3 --oversubscribe "$bin/solve" --quiet --output small.h5.run small.json \
+	2> small.err; then
+	echo "3 ranks on 2 blocks: expected a failure" >&2
+	exit 1
+fi
+grep -q "3 ranks for [0-9]* particles: a rank takes whole blocks of 256 particles, so this specimen runs on at most 2 ranks" small.err
+[ ! -e small.h5.run ]
