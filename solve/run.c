@@ -117,9 +117,9 @@ static int checkpoint(loop_state *L)
 	engine *e = L->e;
 	L->last_checkpoint = timer_now();
 	ranks_sync_pairs(e);
-	if (write_cracks(L) || !L->w)
-		return 0;
-	return run_flush(L->w) || checkpoint_write(e, run_hid(L->w));
+	if (write_cracks(L))
+		return -1;
+	return L->w && (run_flush(L->w) || checkpoint_write(e, run_hid(L->w)));
 }
 
 /* Whether a checkpoint is due by the step count (agreed) or by rank 0's
