@@ -11,7 +11,7 @@
 typedef struct {
 	const char *shape, *geometry;
 	double diameter, height, thickness, length, width, scale;
-	const char *dist, *grading;
+	const char *dist, *grading, *arrangement;
 	double rmin, rmax, radius, fuzz, sigma, mean_radius;
 	long count;
 	long seed, threads, cell;
@@ -29,8 +29,11 @@ void options_parse(pack_options *o, int argc, char **argv);
 void options_free(pack_options *o);
 
 int options_geometry(const pack_options *o, geometry_spec *g);
-/* The size distribution as given (before --count / --mean-radius). */
+/* The size distribution as given (before --count / --mean-radius); with
+ * --arrangement hcp, equal spheres of --radius. */
 int options_psd(const pack_options *o, psd *d);
+/* --arrangement hcp (else random). */
+int options_hcp(const pack_options *o);
 /* Every setting as one JSON object (caller frees), for provenance. */
 char *options_json(const pack_options *o);
 
