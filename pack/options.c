@@ -138,13 +138,10 @@ static void resolve_names(pack_options *o, const char *path)
 		}
 }
 
-/* Settings from the --config file, checked against the same bounds as the
- * options. */
-static int apply_file(pack_options *o, const cli_opt *t, int n, const char *path)
+/* Settings from a configuration (o->file), checked against the same
+ * bounds as the options. */
+static int apply_config(pack_options *o, const cli_opt *t, int n)
 {
-	o->file = cfg_load(path);
-	if (!o->file)
-		return -1;
 	cfg *c = o->file;
 	if (cfg_has(c, "grading")) {
 		o->inline_grading = cfg_object_opt(c, "grading");
@@ -183,7 +180,14 @@ static int apply_file(pack_options *o, const cli_opt *t, int n, const char *path
 		if (rc)
 			return -1;
 	}
-	if (cfg_check_unused(c))
+	return cfg_check_unused(c);
+}
+
+/* The --config file, its file names relative to its directory. */
+static int apply_file(pack_options *o, const cli_opt *t, int n, const char *path)
+{
+	o->file = cfg_load(path);
+	if (!o->file || apply_config(o, t, n))
 		return -1;
 	resolve_names(o, path);
 	return 0;
@@ -230,6 +234,41 @@ static void warn_ignored(const pack_options *o)
 			warn("--%s does not apply %s: ignored", rules[k].name, rules[k].why);
 }
 
+/* --arrangement is a word pack knows, and hcp makes its own spheres. */
+static int check_arrangement(const pack_options *o)
+{
+	if (strcmp(o->arrangement, "random") && strcmp(o->arrangement, "hcp"))
+		return err_set("--arrangement %s: expected random or hcp", o->arrangement);
+	if (options_hcp(o) && o->import_path)
+		return err_set("--arrangement hcp and --import %s: expected one of them (imported "
+		               "spheres are taken as listed)",
+		               o->import_path);
+	return 0;
+}
+
+int options_check_config(const char *text, const char *source)
+{
+	pack_options o;
+	defaults(&o);
+	cli_opt t[NOPT];
+	int n = table(&o, t);
+	o.file = cfg_parse(text, source);
+	if (!o.file || apply_config(&o, t, n)) {
+		options_free(&o);
+		return -1;
+	}
+	/* The shape, the arrangement and the sizes (a grading curve in a file
+	 * is read by pack itself). */
+	geometry_spec g;
+	psd d = {0};
+	int rc =
+	    check_arrangement(&o) || options_geometry(&o, &g) ||
+	    (!o.import_path && !(o.grading && !strcmp(o.dist, "grading")) && options_psd(&o, &d));
+	psd_free(&d);
+	options_free(&o);
+	return rc ? err_wrap("%s", source) : 0;
+}
+
 void options_parse(pack_options *o, int argc, char **argv)
 {
 	defaults(o);
@@ -270,13 +309,8 @@ void options_parse(pack_options *o, int argc, char **argv)
 	char *pos[1];
 	cli_parse(&spec, argc, argv, pos);
 	o->output = pos[0];
-	if (strcmp(o->arrangement, "random") && strcmp(o->arrangement, "hcp"))
-		cli_usage_error(&spec, "--arrangement %s: expected random or hcp", o->arrangement);
-	if (options_hcp(o) && o->import_path)
-		cli_usage_error(&spec,
-		                "--arrangement hcp and --import %s: expected one of them (imported "
-		                "spheres are taken as listed)",
-		                o->import_path);
+	if (check_arrangement(o))
+		cli_usage_error(&spec, "%s", err_msg());
 	warn_ignored(o);
 	path_role outs[] = {
 	    {"OUTPUT", o->output}, {"--export", o->export_path}, {"--depfile", o->depfile}};

@@ -26,6 +26,11 @@ typedef struct {
 
 /* Parse argv (exits with a message on a bad option or config file). */
 void options_parse(pack_options *o, int argc, char **argv);
+/* Check a configuration given as JSON text (what a --config file holds;
+ * source names it in messages) as pack reads one: every key known, every
+ * value within its bounds, the shape, arrangement and sizes consistent.
+ * Files it names are not opened. 0, or -1 with err_set(). */
+int options_check_config(const char *text, const char *source);
 void options_free(pack_options *o);
 
 int options_geometry(const pack_options *o, geometry_spec *g);

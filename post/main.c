@@ -20,6 +20,7 @@ static const struct {
     {"vtk", post_vtk, "ParaView files: particles, bonds, cracks, platens (.pvd series)"},
     {"curve", post_curve, "stress-strain, volumetric strain, broken bonds, energies"},
     {"summary", post_summary, "summary.json: peak, modulus, strengths, bonds broken, timing"},
+    {"study", post_study, "a parametric study's points, and their table and figures"},
 };
 enum { NCOMMANDS = sizeof commands / sizeof commands[0] };
 
@@ -71,7 +72,8 @@ int main(int argc, char **argv)
 	static const cli_spec spec = {
 	    .usage = "post COMMAND [options] RUN.h5",
 	    .summary = "Post-process a run file: micro-macro stress ratios, crack maps,\n"
-	               "ParaView files and stress-strain curves.",
+	               "ParaView files and stress-strain curves; and the points and table of\n"
+	               "a parametric study.",
 	    .epilog = epilog,
 	    .min_pos = 1,
 	    .max_pos = 1,
@@ -88,10 +90,10 @@ int main(int argc, char **argv)
 			argv[1] = argv[0]; /* the command sees "post [options] FILE" */
 			return commands[k].run(argc - 1, argv + 1);
 		}
-	fprintf(
-	    stderr,
-	    "%s: unknown command '%s': expected ratios, cracks, vtk, curve or summary (see post "
-	    "--help)\n",
-	    err_program_name(), argv[1]);
+	fprintf(stderr,
+	        "%s: unknown command '%s': expected ratios, cracks, vtk, curve, summary or study "
+	        "(see post "
+	        "--help)\n",
+	        err_program_name(), argv[1]);
 	return 2;
 }
