@@ -71,8 +71,9 @@ static int file_or_object(cfg *c, const char *key, const char *beside, cJSON **j
 /* ---- keys inside a JSON tree ----------------------------------------------- */
 
 /* Set the member at a dotted path ("damping.translational", "loading.0.axial.rate":
- * a number indexes an array) to a copy of v; every object or array on the
- * way must exist. 0, or -1 with err_set() naming what is missing. */
+ * a number indexes an array) to a copy of v, making the objects on the way
+ * that are missing (the file's reader then says whether it knows them).
+ * 0, or -1 with err_set(). */
 static int set_path(cJSON *root, const char *path, const cJSON *v)
 {
 	char buf[256];
@@ -107,7 +108,7 @@ static int set_path(cJSON *root, const char *path, const cJSON *v)
 			return 0;
 		}
 		if (!child)
-			return err_set("there is no '%s' to hold '%s'", part, next);
+			cJSON_AddItemToObject(node, part, child = cJSON_CreateObject());
 		node = child;
 		part = next;
 	}
@@ -220,43 +221,51 @@ static int list_values(cfg *c, study_param *p)
 	return 0;
 }
 
-/* "material.<key>", "case.<key>" or "specimen.<key>": which file, and the
- * key within it. */
-static int parse_key(cfg *c, study_param *p)
+/* "material.<key>", "case.<key>" or "specimen.<key>" (key, as given under
+ * ckey of c): which file, and the key within it (*path points into key). */
+static int where_of(cfg *c, const char *ckey, const char *key, study_where *where,
+                    const char **path)
 {
 	static const struct {
 		const char *prefix;
 		study_where where;
 	} kinds[] = {{"material.", IN_MATERIAL}, {"case.", IN_CASE}, {"specimen.", IN_SPECIMEN}};
+	*path = NULL;
+	for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
+		size_t n = strlen(kinds[k].prefix);
+		if (strncmp(key, kinds[k].prefix, n) == 0 && key[n] && strlen(key) < 200) {
+			*where = kinds[k].where;
+			*path = key + n;
+			break;
+		}
+	}
+	if (!*path)
+		return cfg_error(c, ckey,
+		                 "value \"%s\": expected material.<key>, case.<key> or "
+		                 "specimen.<key> (share/doc/studies.md)",
+		                 key);
+	if (*where == IN_CASE && (!strcmp(*path, "material") || !strncmp(*path, "material.", 9) ||
+	                          !strcmp(*path, "assembly")))
+		return cfg_error(c, ckey,
+		                 "value \"%s\": the study sets the case's material and assembly: "
+		                 "expected material.<key> for the material",
+		                 key);
+	if (*where == IN_SPECIMEN && strchr(*path, '.'))
+		return cfg_error(c, ckey,
+		                 "value \"%s\": a specimen key is one of pack's settings (radius, "
+		                 "fuzz, dist, arrangement, count, seed, ...), not a nested key",
+		                 key);
+	return 0;
+}
+
+static int parse_key(cfg *c, study_param *p)
+{
 	const char *key;
 	if (cfg_string(c, "key", &key))
 		return -1;
 	p->key = xstrdup(key);
-	for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
-		size_t n = strlen(kinds[k].prefix);
-		if (strncmp(key, kinds[k].prefix, n) == 0 && key[n] && strlen(key) < 200) {
-			p->where = kinds[k].where;
-			p->path = p->key + n;
-			break;
-		}
-	}
-	if (!p->path)
-		return cfg_error(c, "key",
-		                 "value \"%s\": expected material.<key>, case.<key> or "
-		                 "specimen.<key> (share/doc/studies.md)",
-		                 key);
-	if (p->where == IN_CASE &&
-	    (!strcmp(p->path, "material") || !strncmp(p->path, "material.", 9) ||
-	     !strcmp(p->path, "assembly")))
-		return cfg_error(c, "key",
-		                 "value \"%s\": the study sets the case's material and assembly: "
-		                 "expected material.<key> for the material",
-		                 key);
-	if (p->where == IN_SPECIMEN && strchr(p->path, '.'))
-		return cfg_error(c, "key",
-		                 "value \"%s\": a specimen key is one of pack's settings (radius, "
-		                 "fuzz, dist, arrangement, count, seed, ...), not a nested key",
-		                 key);
+	if (where_of(c, "key", p->key, &p->where, &p->path))
+		return -1;
 	const char *dot = strrchr(p->path, '.');
 	p->name = xstrdup(dot ? dot + 1 : p->path);
 	return 0;
@@ -436,6 +445,9 @@ int study_point_files(const study *s, int k, study_files *f)
 	f->kase = cJSON_Duplicate(s->kase, 1);
 	cJSON *sp = f->specimen = cJSON_Duplicate(s->specimen, 1);
 	cJSON *files[] = {f->material, f->kase, sp};
+	for (int i = 0; i < s->nset; i++)
+		if (set_path(files[s->set[i].where], s->set[i].path, s->set[i].value))
+			return err_wrap("%s: key 'set': '%s'", s->source, s->set[i].key);
 	for (int i = 0; i < s->np; i++)
 		if (set_path(files[s->p[i].where], s->p[i].path, s->p[i].value[pt->v[i]]))
 			return err_wrap("%s: point %s: key '%s'", s->source, pt->name, s->p[i].key);
@@ -584,11 +596,50 @@ static int check_specimen_keys(cfg *c, const study *s)
 			    "which no specimen key changes: expected a specimen that "
 			    "packs",
 			    s->p[i].key);
+	for (int i = 0; i < s->nset; i++)
+		if (s->set[i].where == IN_SPECIMEN)
+			return cfg_error(
+			    c, "set",
+			    "value \"%s\": the specimen imports its spheres (\"import\"), "
+			    "which no specimen key changes: expected a specimen that packs",
+			    s->set[i].key);
 	if (s->nseeds)
 		return cfg_error(c, "seeds",
 		                 "the specimen imports its spheres (\"import\"): "
 		                 "expected a specimen that packs");
 	return 0;
+}
+
+/* "set": {key: value}, keys of the same kinds set to one value at every
+ * point. */
+static int load_set(cfg *c, study *s)
+{
+	char *text = cfg_member_text(c, "set");
+	if (!text)
+		return 0;
+	cJSON *o = cJSON_Parse(text);
+	free(text);
+	int rc =
+	    cJSON_IsObject(o) ? 0 : cfg_error(c, "set", "expected an object of keys and values");
+	for (cJSON *m = o ? o->child : NULL; !rc && m; m = m->next) {
+		if (s->nset == STUDY_MAX_SETS) {
+			rc = cfg_error(c, "set", "expected at most %d keys", STUDY_MAX_SETS);
+			break;
+		}
+		study_set *e = &s->set[s->nset++];
+		e->key = xstrdup(m->string);
+		e->value = cJSON_Duplicate(m, 1);
+		rc = where_of(c, "set", e->key, &e->where, &e->path);
+		for (int i = 0; !rc && i < s->np; i++)
+			if (!strcmp(s->p[i].key, e->key))
+				rc = cfg_error(
+				    c, "set",
+				    "value \"%s\": also varied: expected it in one of \"set\" "
+				    "and \"vary\"",
+				    e->key);
+	}
+	cJSON_Delete(o);
+	return rc;
 }
 
 static int load_vary(cfg *c, study *s)
@@ -634,7 +685,8 @@ int study_load(const char *path, study *s)
 		return -1;
 	const char *title;
 	int rc = cfg_string_or(c, "title", &title, path) || load_base(c, s) || load_vary(c, s) ||
-	         load_seeds(c, s) || check_specimen_keys(c, s) || cfg_check_unused(c);
+	         load_set(c, s) || load_seeds(c, s) || check_specimen_keys(c, s) ||
+	         cfg_check_unused(c);
 	if (!rc)
 		s->title = xstrdup(title);
 	rc = rc || make_points(s, c);
@@ -651,6 +703,8 @@ void study_free(study *s)
 		for (int k = 0; k < s->p[i].n; k++)
 			cJSON_Delete(s->p[i].value[k]);
 	}
+	for (int i = 0; i < s->nset; i++)
+		free(s->set[i].key), cJSON_Delete(s->set[i].value);
 	free(s->source), free(s->title), free(s->case_file), free(s->material_file);
 	free(s->specimen_file);
 	cJSON_Delete(s->kase), cJSON_Delete(s->material), cJSON_Delete(s->specimen);

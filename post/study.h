@@ -1,8 +1,8 @@
 /* A parametric study (share/doc/studies.md): one case run on one specimen
  * with one or two parameters varied over lists or ranges of values (keys
- * of the material, the case or the specimen), optionally repeated over
- * packing seeds. study_load reads the study file and checks it and every
- * point it makes as pack and solve will read them, so that a bad key or
+ * of the material, the case or the specimen; others may be set to one
+ * value at every point), optionally repeated over packing seeds. study_load reads the study file
+ * and checks it and every point it makes as pack and solve will read them, so that a bad key or
  * value is one message before anything runs. post study writes the points'
  * files (study_cmd.c) and collects their results (study_table.c). */
 #ifndef DEM_POST_STUDY_H
@@ -15,6 +15,7 @@ enum {
 	STUDY_MAX_VALUES = 64,
 	STUDY_MAX_SEEDS = 64,
 	STUDY_MAX_POINTS = 1000,
+	STUDY_MAX_SETS = 32,
 	STUDY_NAME = 160
 };
 
@@ -33,6 +34,14 @@ typedef struct {
 	char text[STUDY_MAX_VALUES][40]; /* each value as in point names */
 } study_param;
 
+/* A key set to one value at every point ("set"). */
+typedef struct {
+	char *key;
+	study_where where;
+	const char *path; /* into key */
+	cJSON *value;
+} study_set;
+
 typedef struct {
 	char name[STUDY_NAME];   /* its directory under the study's */
 	int v[STUDY_MAX_PARAMS]; /* the value of each parameter (index) */
@@ -46,6 +55,8 @@ typedef struct {
 	char *material_file;               /* absolute; NULL when inline */
 	char *specimen_file;               /* absolute; NULL when inline */
 	cJSON *kase, *material, *specimen; /* the base files */
+	study_set set[STUDY_MAX_SETS];
+	int nset;
 	study_param p[STUDY_MAX_PARAMS];
 	int np;
 	long seed[STUDY_MAX_SEEDS];

@@ -2,8 +2,9 @@
  * study.csv (a row per point of the parameters: mean and standard
  * deviation over the packing seeds), response.png (the response against
  * the parameter) and curves.png (every stress-strain curve). A point
- * without summary.json is marked: failed when solve left run.failed.h5,
- * else missing. */
+ * without summary.json is marked: failed, with the stage that failed,
+ * when its stage.failed names one (workflows/study.mk), else missing (not
+ * run yet, or interrupted). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -39,6 +40,7 @@ static const char *const status_word[] = {"ok", "failed", "missing"};
 
 typedef struct {
 	run_status status;
+	char stage[32]; /* the stage that failed */
 	double q[NQ];
 } run_result;
 
@@ -81,9 +83,15 @@ static int read_result(const char *dir, const study_point *pt, run_result *r)
 		cfg_free(c);
 		r->status = RUN_OK;
 	} else {
-		char *failed = point_file(dir, pt, "run.failed.h5");
-		if (access(failed, F_OK) == 0)
+		char *failed = point_file(dir, pt, "stage.failed");
+		FILE *f = fopen(failed, "r");
+		if (f) {
 			r->status = RUN_FAILED;
+			if (!fgets(r->stage, sizeof r->stage, f))
+				r->stage[0] = '\0';
+			r->stage[strcspn(r->stage, "\r\n")] = '\0';
+			fclose(f);
+		}
 		free(failed);
 	}
 	free(path);
@@ -120,7 +128,7 @@ static void write_runs(const study *s, const run_result *res, const char *dir)
 	fputs("point", o.f);
 	for (int i = 0; i < s->np; i++)
 		fprintf(o.f, ",%s", s->p[i].name);
-	fputs(",seed,status", o.f);
+	fputs(",seed,status,failed_stage", o.f);
 	for (int q = 0; q < NQ; q++)
 		fprintf(o.f, ",%s", quantities[q].column);
 	fputc('\n', o.f);
@@ -131,7 +139,8 @@ static void write_runs(const study *s, const run_result *res, const char *dir)
 			fputc(',', o.f);
 			value_field(o.f, s->p[i].value[pt->v[i]], s->p[i].text[pt->v[i]]);
 		}
-		fprintf(o.f, ",%.0f,%s", point_seed(s, k), status_word[res[k].status]);
+		fprintf(o.f, ",%.0f,%s,", point_seed(s, k), status_word[res[k].status]);
+		out_csv_str(o.f, res[k].stage);
 		for (int q = 0; q < NQ; q++) {
 			fputc(',', o.f);
 			out_csv_num(o.f, res[k].q[q]);
