@@ -228,8 +228,6 @@ static void write_study(const study *s, const group *g, const char *dir)
 	free(path);
 }
 
-/* ---- figures ------------------------------------------------------------------- */
-
 /* The columns of the response figure: quantity, factor to its unit. */
 static const struct {
 	int q;
