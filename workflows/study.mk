@@ -23,6 +23,10 @@ STUDIES := $(OUT)/studies
 
 ifneq ($(STUDY),)
 STUDY_FILE := $(if $(filter /%,$(STUDY)),$(STUDY),$(SHARE)/studies/$(STUDY).json)
+ifeq ($(wildcard $(STUDY_FILE)),)
+$(error STUDY=$(STUDY): no study file $(STUDY_FILE): expected one of $(basename $(notdir \
+	$(wildcard $(SHARE)/studies/*.json))) or an absolute path)
+endif
 STUDY_NAME := $(basename $(notdir $(STUDY_FILE)))
 STUDY_DIR := $(STUDIES)/$(STUDY_NAME)
 STUDY_POINTS :=

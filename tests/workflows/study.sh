@@ -5,7 +5,8 @@
 # value runs only its point, a changed material only solve and post; a
 # point that fails (here pack: spheres too big for the cylinder) is
 # reported, the other point still runs, make fails and the table marks it;
-# a bad study file stops make with post's message before anything runs.
+# a bad study file stops make with post's message before anything runs,
+# and a missing one with make's.
 # Usage: study.sh BIN_DIR SOURCE_DIR TMP_DIR   (KEEP=1 keeps TMP_DIR)
 set -eu
 bin=$1 src=$2 tmp=$3
@@ -98,5 +99,8 @@ if ran STUDY=t > /dev/null; then fail "make study with a bad value succeeded"; f
 grep -q "t.json: point interaction_range-2.5: case: key 'material.interaction_range': value 2.5: expected a number in \[1, 2\]" "$tmp/log" ||
 	{ cat "$tmp/log" >&2; fail "no message naming the value"; }
 [ -s "$out/interaction_range-1.3/run.h5" ] || fail "a computed point was lost"
+if ran STUDY=nope > /dev/null; then fail "make study with no study file succeeded"; fi
+grep -q "STUDY=nope: no study file .*/share/studies/nope.json: expected one of t tfail" "$tmp/log" ||
+	{ cat "$tmp/log" >&2; fail "no message naming the missing study file"; }
 [ -n "${KEEP:-}" ] || rm -rf "$tmp"
 echo "study: points side by side, the table, incremental re-runs, failures as expected"
