@@ -21,6 +21,19 @@ char *path_beside(const char *file, const char *name)
 	return out;
 }
 
+char *path_absolute(const char *name)
+{
+	char real[PATH_MAX], cwd[PATH_MAX];
+	if (realpath(name, real))
+		return xstrdup(real);
+	if (name[0] == '/' || !getcwd(cwd, sizeof cwd))
+		return xstrdup(name);
+	size_t n = strlen(cwd) + strlen(name) + 2;
+	char *out = xmalloc(n);
+	snprintf(out, n, "%s/%s", cwd, name);
+	return out;
+}
+
 /* The directory part of name ("." for none); returns what follows it. */
 static const char *dir_of(const char *name, char *dir, size_t n)
 {

@@ -12,6 +12,10 @@
  * Returns a new string (caller frees). */
 char *path_beside(const char *file, const char *name);
 
+/* name as an absolute path: resolved (symbolic links, "..") when it
+ * exists, else joined to the current directory. A new string. */
+char *path_absolute(const char *name);
+
 /* Whether a and b name the same file: the same inode when both exist, else
  * the same name once the directory part is resolved. */
 int path_same(const char *a, const char *b);

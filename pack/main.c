@@ -14,6 +14,7 @@
 #include "lib/err.h"
 #include "lib/progress.h"
 #include "lib/timer.h"
+#include "pack/lattice.h"
 #include "pack/options.h"
 #include "pack/packer.h"
 #include "pack/report.h"
@@ -52,7 +53,9 @@ static void size_spheres(const pack_options *o, psd *d, const dem_geometry *g)
 	if (o->count > 0 && o->mean_radius > 0)
 		fatal("--count %ld and --mean-radius %g: expected one of them, not both", o->count,
 		      o->mean_radius);
-	if (o->count > 0)
+	if (o->count > 0 && options_hcp(o))
+		psd_scale(d, lattice_hcp_radius(g->volume, o->count) / d->rmax);
+	else if (o->count > 0)
 		psd_scale(d, packer_count_scale(d, g->volume, o->count));
 	else if (o->mean_radius > 0)
 		psd_scale(d, o->mean_radius / psd_moment(d, 1));
@@ -267,16 +270,53 @@ static void boundary_and_cell(pack_run *r)
 #pragma omp section
 		build_boundary(r, &mesh, depth);
 #pragma omp section
-		if (!o->import_path)
+		if (!o->import_path && !options_hcp(o))
 			packer_cell(&r->cell, &r->d, &r->a.geom, &r->pp, &r->st);
 	}
 	r->a.geom = mesh;
 }
 
-/* The spheres in the specimen: the imported ones, checked, or the cell
- * tiled over it and repaired along the boundary. */
+/* The lattice of --arrangement hcp. With --count, the radius is found by
+ * bisection on the number of spheres kept, which the layers make a step
+ * function of it: the radius giving the count closest to the target in at
+ * most 30 fills (each a few hundredths of a second per 10^4 spheres). */
+static size_t fill_lattice(pack_run *r, double rad)
+{
+	r->S.n = 0;
+	return lattice_hcp(&r->S, rad, &r->a.geom, r->surf, &r->z);
+}
+
+static void place_lattice(pack_run *r)
+{
+	double t = timer_now(), rad = r->d.rmax;
+	if (r->o.count > 0) {
+		double lo = 0.8 * rad, hi = 1.25 * rad, best = rad, miss = INFINITY;
+		for (int k = 0; k < 30 && miss > 0; k++) {
+			double mid = 0.5 * (lo + hi);
+			double n = (double)fill_lattice(r, mid), m = fabs(n - (double)r->o.count);
+			if (m < miss)
+				miss = m, best = mid;
+			*(n > (double)r->o.count ? &lo : &hi) = mid;
+		}
+		rad = best;
+	}
+	if (fill_lattice(r, rad) == 0)
+		fatal(
+		    "--arrangement hcp: no sphere of radius %g m fits in the specimen: expected a "
+		    "smaller --radius",
+		    rad);
+	psd_uniform(&r->d, rad, rad);
+	r->a.report.time_fill = timer_now() - t;
+}
+
+/* The spheres in the specimen: the imported ones, checked, the lattice, or
+ * the cell tiled over it and repaired along the boundary. */
 static void place_spheres(pack_run *r)
 {
+	if (options_hcp(&r->o)) {
+		place_lattice(r);
+		return;
+	}
 	if (r->o.import_path) {
 		import_spheres(&r->o, r->xi, r->ri, r->ni, &r->S, r->surf, &r->z, &r->a.geom);
 		return;
@@ -321,7 +361,12 @@ static void write_output(pack_run *r)
 static void print_summary(const pack_run *r)
 {
 	pack_report_print(&r->a, stdout);
-	if (!r->o.import_path)
+	if (options_hcp(&r->o))
+		printf(
+		    "  arrangement      hexagonal close packing of radius %.6g m, c axis along z "
+		    "(--arrangement hcp)\n",
+		    r->d.rmax);
+	else if (!r->o.import_path)
 		packer_print(&r->st, stdout);
 	if (r->o.grow_to > 0)
 		printf("  grown            radii x %.4f to solid fraction %.4f (--grow-to)\n",

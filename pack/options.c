@@ -49,6 +49,11 @@ static int table(pack_options *o, cli_opt *t)
 	    {"grading", CLI_STR, &o->grading, "FILE", "",
 	     "grading curve (JSON: \"sieve\" sizes in m, cumulative mass fraction \"passing\")", 0,
 	     0},
+	    {"arrangement", CLI_STR, &o->arrangement, "NAME", "",
+	     "how the spheres are placed: random (a jammed periodic cell tiled over the "
+	     "specimen) or hcp (hexagonal close packing of equal spheres of --radius, cut to "
+	     "the specimen)",
+	     0, 0},
 	    {"count", CLI_INT, &o->count, "N", "",
 	     "scale the sizes so that about N spheres fill the specimen (0: sizes as given)", 0,
 	     1e9},
@@ -100,6 +105,7 @@ static void defaults(pack_options *o)
 	o->width = 0.025;
 	o->scale = 1;
 	o->dist = "uniform";
+	o->arrangement = "random";
 	o->rmin = 0.0005;
 	o->rmax = 0.0015;
 	o->radius = 0.001;
@@ -132,13 +138,10 @@ static void resolve_names(pack_options *o, const char *path)
 		}
 }
 
-/* Settings from the --config file, checked against the same bounds as the
- * options. */
-static int apply_file(pack_options *o, const cli_opt *t, int n, const char *path)
+/* Settings from a configuration (o->file), checked against the same
+ * bounds as the options. */
+static int apply_config(pack_options *o, const cli_opt *t, int n)
 {
-	o->file = cfg_load(path);
-	if (!o->file)
-		return -1;
 	cfg *c = o->file;
 	if (cfg_has(c, "grading")) {
 		o->inline_grading = cfg_object_opt(c, "grading");
@@ -177,7 +180,14 @@ static int apply_file(pack_options *o, const cli_opt *t, int n, const char *path
 		if (rc)
 			return -1;
 	}
-	if (cfg_check_unused(c))
+	return cfg_check_unused(c);
+}
+
+/* The --config file, its file names relative to its directory. */
+static int apply_file(pack_options *o, const cli_opt *t, int n, const char *path)
+{
+	o->file = cfg_load(path);
+	if (!o->file || apply_config(o, t, n))
 		return -1;
 	resolve_names(o, path);
 	return 0;
@@ -191,6 +201,7 @@ static void warn_ignored(const pack_options *o)
 	defaults(&d);
 	int file = o->geometry != NULL, disc = !strcmp(o->shape, "disc");
 	int box = !strcmp(o->shape, "box"), cyl = !strcmp(o->shape, "cylinder");
+	int hcp = options_hcp(o);
 	const char *dist = o->dist;
 	char shape[64], sizes[64];
 	snprintf(shape, sizeof shape, file ? "with --geometry" : "to --shape %s", o->shape);
@@ -209,15 +220,53 @@ static void warn_ignored(const pack_options *o)
 	    {"scale", o->scale != d.scale, file, "without --geometry"},
 	    {"rmin", o->rmin != d.rmin, !strcmp(dist, "uniform"), sizes},
 	    {"rmax", o->rmax != d.rmax, !strcmp(dist, "uniform"), sizes},
-	    {"radius", o->radius != d.radius, !strcmp(dist, "fuzz") || !strcmp(dist, "lognormal"),
-	     sizes},
+	    {"radius", o->radius != d.radius,
+	     hcp || !strcmp(dist, "fuzz") || !strcmp(dist, "lognormal"), sizes},
 	    {"fuzz", o->fuzz != d.fuzz, !strcmp(dist, "fuzz"), sizes},
 	    {"sigma", o->sigma != d.sigma, !strcmp(dist, "lognormal"), sizes},
 	    {"grading", o->grading || o->inline_grading, !strcmp(dist, "grading"), sizes},
+	    {"cell", o->cell != d.cell, !hcp, "to --arrangement hcp"},
+	    {"keep", o->keep != d.keep, !hcp, "to --arrangement hcp"},
+	    {"band", o->band != d.band, !hcp, "to --arrangement hcp"},
 	};
 	for (size_t k = 0; k < sizeof rules / sizeof *rules; k++)
 		if (rules[k].changed && !rules[k].applies)
 			warn("--%s does not apply %s: ignored", rules[k].name, rules[k].why);
+}
+
+/* --arrangement is a word pack knows, and hcp makes its own spheres. */
+static int check_arrangement(const pack_options *o)
+{
+	if (strcmp(o->arrangement, "random") && strcmp(o->arrangement, "hcp"))
+		return err_set("--arrangement %s: expected random or hcp", o->arrangement);
+	if (options_hcp(o) && o->import_path)
+		return err_set("--arrangement hcp and --import %s: expected one of them (imported "
+		               "spheres are taken as listed)",
+		               o->import_path);
+	return 0;
+}
+
+int options_check_config(const char *text, const char *source)
+{
+	pack_options o;
+	defaults(&o);
+	cli_opt t[NOPT];
+	int n = table(&o, t);
+	o.file = cfg_parse(text, source);
+	if (!o.file || apply_config(&o, t, n)) {
+		options_free(&o);
+		return -1;
+	}
+	/* The shape, the arrangement and the sizes (a grading curve in a file
+	 * is read by pack itself). */
+	geometry_spec g;
+	psd d = {0};
+	int rc =
+	    check_arrangement(&o) || options_geometry(&o, &g) ||
+	    (!o.import_path && !(o.grading && !strcmp(o.dist, "grading")) && options_psd(&o, &d));
+	psd_free(&d);
+	options_free(&o);
+	return rc ? err_wrap("%s", source) : 0;
 }
 
 void options_parse(pack_options *o, int argc, char **argv)
@@ -260,6 +309,8 @@ void options_parse(pack_options *o, int argc, char **argv)
 	char *pos[1];
 	cli_parse(&spec, argc, argv, pos);
 	o->output = pos[0];
+	if (check_arrangement(o))
+		cli_usage_error(&spec, "%s", err_msg());
 	warn_ignored(o);
 	path_role outs[] = {
 	    {"OUTPUT", o->output}, {"--export", o->export_path}, {"--depfile", o->depfile}};
@@ -322,8 +373,34 @@ int options_geometry(const pack_options *o, geometry_spec *g)
 	return err_set("--shape %s: expected cylinder, disc or box (or --geometry FILE)", o->shape);
 }
 
+int options_hcp(const pack_options *o) { return strcmp(o->arrangement, "hcp") == 0; }
+
+/* The equal spheres of --arrangement hcp: of --radius, with no other size
+ * setting, or with --dist fuzz and --fuzz 0 (monodisperse spheres in Yade's
+ * terms). */
+static int hcp_psd(const pack_options *o, psd *d)
+{
+	pack_options def;
+	defaults(&def);
+	int fuzz = !strcmp(o->dist, "fuzz");
+	int plain = !strcmp(o->dist, "uniform") && o->rmin == def.rmin && o->rmax == def.rmax;
+	if (fuzz && o->fuzz != 0)
+		return err_set("--arrangement hcp places equal spheres: --fuzz %g: expected 0",
+		               o->fuzz);
+	if (!fuzz && !plain)
+		return err_set(
+		    "--arrangement hcp places equal spheres of --radius: --dist %s with "
+		    "its sizes does not apply: expected --dist fuzz with --fuzz 0, or no "
+		    "size setting but --radius",
+		    o->dist);
+	psd_uniform(d, o->radius, o->radius);
+	return 0;
+}
+
 int options_psd(const pack_options *o, psd *d)
 {
+	if (options_hcp(o))
+		return hcp_psd(o, d);
 	if (strcmp(o->dist, "uniform") == 0) {
 		if (o->rmin > o->rmax)
 			return err_set(

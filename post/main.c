@@ -21,6 +21,7 @@ static const struct {
     {"curve", post_curve, "stress-strain, volumetric strain, broken bonds, energies"},
     {"summary", post_summary, "summary.json: peak, modulus, strengths, bonds broken, timing"},
     {"lammps", post_lammps, "a LAMMPS data file of the bonded spheres, and their bond table"},
+    {"study", post_study, "a parametric study's points, and their table and figures"},
 };
 enum { NCOMMANDS = sizeof commands / sizeof commands[0] };
 
@@ -72,7 +73,8 @@ int main(int argc, char **argv)
 	static const cli_spec spec = {
 	    .usage = "post COMMAND [options] RUN.h5",
 	    .summary = "Post-process a run file: micro-macro stress ratios, crack maps,\n"
-	               "ParaView files, stress-strain curves and LAMMPS data files.",
+	               "ParaView files, stress-strain curves and LAMMPS data files; and the\n"
+	               "points and table of a parametric study.",
 	    .epilog = epilog,
 	    .min_pos = 1,
 	    .max_pos = 1,
@@ -90,8 +92,8 @@ int main(int argc, char **argv)
 			return commands[k].run(argc - 1, argv + 1);
 		}
 	fprintf(stderr,
-	        "%s: unknown command '%s': expected ratios, cracks, vtk, curve, summary or lammps "
-	        "(see post --help)\n",
+	        "%s: unknown command '%s': expected ratios, cracks, vtk, curve, summary, lammps "
+	        "or study (see post --help)\n",
 	        err_program_name(), argv[1]);
 	return 2;
 }

@@ -12,6 +12,7 @@ int post_vtk(int argc, char **argv);
 int post_curve(int argc, char **argv);
 int post_summary(int argc, char **argv);
 int post_lammps(int argc, char **argv);
+int post_study(int argc, char **argv);
 
 /* Parse the options of a command that takes one file (usage and summary
  * as in lib/cli.h's cli_spec); returns that file's name. */

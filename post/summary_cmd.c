@@ -61,6 +61,7 @@ static void write_json(const char *path, const char *label, const dem_run *r, co
 	json_str(j, "status", r->status);
 	json_num(j, "spheres", (double)r->assembly.n);
 	json_num(j, "bonds", (double)r->bonds.n);
+	json_num(j, "solid_fraction", r->assembly.report.solid_fraction);
 	json_num(j, "peak_stress", s->peak_stress);
 	json_num(j, "strain_at_peak", s->strain_at_peak);
 	json_num(j, "peak_deviator", s->peak_deviator);

@@ -130,10 +130,8 @@ int main(void)
 	/* commands */
 	post_result res = harness_post("nonsense %s", run);
 	CHECK(res.status == 2);
-	CHECK_STR(
-	    res.err,
-	    "post: unknown command 'nonsense': expected ratios, cracks, vtk, curve, summary or "
-	    "lammps (see post --help)\n");
+	CHECK_STR(res.err, "post: unknown command 'nonsense': expected ratios, cracks, vtk, curve, "
+	                   "summary, lammps or study (see post --help)\n");
 	harness_free(&res);
 	res = harness_post("--help");
 	CHECK(res.status == 0);

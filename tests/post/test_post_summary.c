@@ -71,6 +71,7 @@ static void write_run(const char *path, kind kd, double ke_fraction)
 	a.geom.axis[2] = 1;
 	a.geom.diameter = D;
 	a.geom.height = T;
+	a.report.solid_fraction = 0.55;
 	static const char *config[] = {
 	    "{\"test\":\"triaxial\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}",
 	    "{\"test\":\"bts\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}",
@@ -151,6 +152,7 @@ int main(void)
 	CHECK_REL(num(c, "bonds_broken_tension"), (ROWS - 1) / 2, 1e-12);
 	CHECK_REL(num(c, "bonds_broken_shear"), ROWS - 1 - (ROWS - 1) / 2, 1e-12);
 	CHECK_REL(num(c, "spheres"), 2, 0);
+	CHECK_REL(num(c, "solid_fraction"), 0.55, 0);
 	double wall = 0;
 	for (int k = 1; k < ROWS; k++)
 		wall += 100 / (1000.0 + k);
