@@ -300,7 +300,7 @@ static void test_ignored_options(void)
 	                          "ignored\n"},
 	    {SMALL " --scale 2", "pack: warning: --scale does not apply without --geometry: "
 	                         "ignored\n"},
-	    {"--geometry share/geometry/cylinder_50x100.geo --count 300 --diameter 0.03",
+	    {"--geometry share/geometry/box_20mm.brep --count 300 --diameter 0.03",
 	     "pack: warning: --diameter does not apply with --geometry: ignored\n"},
 	    {SMALL " --dist fuzz --radius 0.0008 --fuzz 0.2", ""},
 	};

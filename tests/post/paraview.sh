@@ -5,8 +5,9 @@
 # blank, each crack disc in the colour of the strain at which it formed and
 # each sphere behind the cut in the colour of its damage, where they are),
 # then again with --bonds (each broken bond in the colour of its mode too);
-# then tools/render-series: one numbered picture per frame kept, the first
-# and the last different.
+# then tools/render-series --every 4: one numbered picture per frame kept
+# (of the run's five, the first and the last: each is a pvbatch start of
+# seconds), the first and the last different.
 # Skipped (exit status 77) with the reason when pvbatch cannot run here;
 # with DEM_REQUIRE_PARAVIEW=1 (tools/check, which installs ParaView) that is
 # a failure instead.
@@ -62,15 +63,16 @@ fi
 (cd "$src" && run_pvbatch share/paraview/show_run.py "$tmp/vtk" "$tmp/bonds.png" --bonds)
 /usr/bin/python3 "$src/tests/post/paraview_check.py" "$tmp/bonds.png" "$tmp/vtk" 1920 640 --bonds
 
-# The series: every other frame and the last, numbered from 0.
+# The series: every fourth frame and the last, numbered from 0.
+every=4
 nt=$(grep -c 'timestep=' "$tmp/vtk/particles.pvd")
-want=$(((nt - 1) / 2 + 1))
-[ $(((nt - 1) % 2)) -eq 0 ] || want=$((want + 1))
+want=$(((nt - 1) / every + 1))
+[ $(((nt - 1) % every)) -eq 0 ] || want=$((want + 1))
 if [ $xvfb = yes ]; then
 	xvfb-run -a -s "-screen 0 1920x1200x24 -noreset" sh "$src/tools/render-series" \
-		"$tmp/vtk" "$tmp/frames" --every 2
+		"$tmp/vtk" "$tmp/frames" --every $every
 else
-	PATH=$(dirname "$pv"):$PATH sh "$src/tools/render-series" "$tmp/vtk" "$tmp/frames" --every 2
+	PATH=$(dirname "$pv"):$PATH sh "$src/tools/render-series" "$tmp/vtk" "$tmp/frames" --every $every
 fi
 got=$(ls "$tmp/frames" | grep -c '^frame_[0-9][0-9][0-9][0-9]\.png$')
 last=$(printf 'frame_%04d.png' $((want - 1)))

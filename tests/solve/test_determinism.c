@@ -2,13 +2,14 @@
  * often it is interrupted and restarted: a short UCS past the peak (bonds
  * breaking, the crack log filling) is run
  *   A  on one thread,
- *   B  on two threads,
  *   C  on two threads with a step budget, then restarted on one thread,
- *   D  interrupted by SIGINT at an arbitrary moment, then restarted;
- * B, C and D must equal A in every history column (but the wall-clock rate),
- * every crack and every snapshot. The interrupted files must be valid run
- * files with status "interrupted"; one whose checkpoint is corrupt is
- * refused. */
+ *   D  on two threads, interrupted by SIGINT at an arbitrary moment, then
+ *      restarted on two threads (its report must say two threads ran);
+ * C and D must equal A in every history column (but the wall-clock rate),
+ * every crack and every snapshot. D runs on two threads from start to end,
+ * so a result that depended on the threads would differ from A there. The
+ * interrupted files must be valid run files with status "interrupted"; one
+ * whose checkpoint is corrupt is refused. */
 #include <hdf5.h>
 #include <signal.h>
 #include <stdint.h>
@@ -84,9 +85,6 @@ int main(void)
 
 	snprintf(args, sizeof args, "--threads 1 --output %s %s", path("det-A.h5"), cpath);
 	CHECK(solve(args) == 0);
-	snprintf(args, sizeof args, "--threads 2 --report %s --output %s %s", path("det-B.json"),
-	         path("det-B.h5"), cpath);
-	CHECK(solve(args) == 0);
 	snprintf(args, sizeof args, "--threads 2 --max-steps 1333 --output %s %s", path("det-C.h5"),
 	         cpath);
 	CHECK(solve(args) == 3);
@@ -114,11 +112,12 @@ int main(void)
 	CHECK_STR(d.status, "interrupted");
 	fprintf(stderr, "SIGINT after %zu history rows\n", d.nrows);
 	run_free(&d);
-	snprintf(args, sizeof args, "--restart %s --threads 2", path("det-D.h5"));
+	snprintf(args, sizeof args, "--restart %s --threads 2 --report %s", path("det-D.h5"),
+	         path("det-D.json"));
 	CHECK(solve(args) == 0);
 
 	/* The two-thread run did use two threads. */
-	cfg *report = cfg_load(path("det-B.json"));
+	cfg *report = cfg_load(path("det-D.json"));
 	long threads = 0;
 	CHECK(report && cfg_integer(report, "threads", &threads, 1, 1024) == 0 && threads == 2);
 	cfg_free(report);
@@ -137,7 +136,6 @@ int main(void)
 	CHECK_CONTAINS(message, "det-A.h5: the run has status 'stopped: ");
 	CHECK_CONTAINS(message, "': only an interrupted run continues");
 	free(message);
-	CHECK(harness_same_runs(path("det-A.h5"), path("det-B.h5")) == 0);
 	CHECK(harness_same_runs(path("det-A.h5"), path("det-C.h5")) == 0);
 	CHECK(harness_same_runs(path("det-A.h5"), path("det-D.h5")) == 0);
 	assembly_free(&a);
