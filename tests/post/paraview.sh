@@ -7,7 +7,8 @@
 # then again with --bonds (each broken bond in the colour of its mode too);
 # then tools/render-series --every 4: one numbered picture per frame kept
 # (of the run's five, the first and the last: each is a pvbatch start of
-# seconds), the first and the last different.
+# seconds), the first and the last different; with ffmpeg, the video of
+# them.
 # Skipped (exit status 77) with the reason when pvbatch cannot run here;
 # with DEM_REQUIRE_PARAVIEW=1 (tools/check, which installs ParaView) that is
 # a failure instead.
@@ -81,3 +82,12 @@ echo "series: $nt frames in the run, $got pictures, $want expected"
 	{ echo "FAIL: render-series wrote $got pictures, expected $want"; exit 1; }
 ! cmp -s "$tmp/frames/frame_0000.png" "$tmp/frames/$last" ||
 	{ echo "FAIL: the first and last pictures of the series are the same"; exit 1; }
+# With ffmpeg (tools/deps --optional installs it), the video: H.264, one
+# video frame per picture.
+if command -v ffprobe > /dev/null; then
+	frames=$(ffprobe -v error -select_streams v:0 -show_entries stream=codec_name,nb_frames \
+		-of csv=p=0 "$tmp/frames/fracture.mp4")
+	echo "video: $frames"
+	[ "$frames" = "h264,$want" ] ||
+		{ echo "FAIL: fracture.mp4 is '$frames', expected h264 with $want frames"; exit 1; }
+fi
