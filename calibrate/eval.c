@@ -34,13 +34,9 @@ static char *join(const char *dir, const char *name)
  * first and the last (solve always writes those). */
 static cJSON *case_as_run(const cal_test *t)
 {
-	cfg *c = cfg_load(t->case_file);
-	if (!c)
+	cJSON *j = cfg_load_json(t->case_file);
+	if (!j)
 		return NULL;
-	char *text = cfg_text(c);
-	cfg_free(c);
-	cJSON *j = cJSON_Parse(text);
-	free(text);
 	cJSON_DeleteItemFromObjectCaseSensitive(j, "material");
 	cJSON *out = cJSON_GetObjectItemCaseSensitive(j, "output");
 	if (cJSON_IsObject(out)) {
@@ -213,13 +209,9 @@ static long asked_seq(evaluator *e, const char *key, int *fresh)
 /* The quantities of summary.json, NaN where null. */
 static int read_summary(const char *path, double *q)
 {
-	cfg *c = cfg_load(path);
-	if (!c)
+	cJSON *j = cfg_load_json(path);
+	if (!j)
 		return -1;
-	char *text = cfg_text(c);
-	cfg_free(c);
-	cJSON *j = cJSON_Parse(text);
-	free(text);
 	for (int k = 0; k < nquantities; k++) {
 		cJSON *v = cJSON_GetObjectItemCaseSensitive(j, quantities[k].name);
 		q[k] = cJSON_IsNumber(v) ? v->valuedouble : NAN;

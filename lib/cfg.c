@@ -119,6 +119,16 @@ const char *cfg_source(const cfg *c) { return c->source; }
 const char *cfg_path(const cfg *c) { return c->path; }
 char *cfg_text(const cfg *c) { return cJSON_PrintUnformatted(c->json); }
 
+cJSON *cfg_load_json(const char *path)
+{
+	cfg *c = cfg_load(path);
+	if (!c)
+		return NULL;
+	cJSON *j = cJSON_Duplicate(c->json, 1);
+	cfg_free(c);
+	return j;
+}
+
 static void full_key(const cfg *c, const char *key, char *buf, size_t n)
 {
 	if (c->path[0])

@@ -31,6 +31,9 @@ const char *cfg_source(const cfg *c);
 const char *cfg_path(const cfg *c);
 /* The whole object as compact JSON text (caller frees). */
 char *cfg_text(const cfg *c);
+/* The JSON file at path as a cJSON tree (caller cJSON_Deletes it), read
+ * as cfg_load reads it; NULL with the message set (lib/err.h). */
+struct cJSON *cfg_load_json(const char *path);
 
 int cfg_has(const cfg *c, const char *key);
 

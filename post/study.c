@@ -13,19 +13,6 @@
 #include "post/study.h"
 #include "solve/case.h"
 
-/* The JSON object in a file, or NULL with err_set(). */
-static cJSON *read_json(const char *path)
-{
-	cfg *c = cfg_load(path);
-	if (!c)
-		return NULL;
-	char *text = cfg_text(c);
-	cfg_free(c);
-	cJSON *j = cJSON_Parse(text);
-	free(text);
-	return j;
-}
-
 /* A file name or an inline object under key of the study: *json the
  * object, *file the file's absolute name (NULL when inline). */
 static int file_or_object(cfg *c, const char *key, const char *beside, cJSON **json, char **file)
@@ -47,7 +34,7 @@ static int file_or_object(cfg *c, const char *key, const char *beside, cJSON **j
 	cJSON_Delete(v);
 	*file = path_absolute(name);
 	free(name);
-	*json = read_json(*file);
+	*json = cfg_load_json(*file);
 	return *json ? 0 : cfg_error(c, key, "%s", err_msg());
 }
 
@@ -307,7 +294,7 @@ static int load_base(cfg *c, study *s)
 	char *p = path_beside(s->source, name);
 	s->case_file = path_absolute(p);
 	free(p);
-	s->kase = read_json(s->case_file);
+	s->kase = cfg_load_json(s->case_file);
 	if (!s->kase)
 		return cfg_error(c, "case", "%s", err_msg());
 	if (cfg_has(c, "material")) {
@@ -321,7 +308,7 @@ static int load_base(cfg *c, study *s)
 			p = path_beside(s->case_file, m->valuestring);
 			s->material_file = path_absolute(p);
 			free(p);
-			s->material = read_json(s->material_file);
+			s->material = cfg_load_json(s->material_file);
 			if (!s->material)
 				return cfg_error(c, "case", "%s: its material: %s", s->case_file,
 				                 err_msg());

@@ -66,21 +66,17 @@ static int read_result(const char *dir, const study_point *pt, run_result *r)
 		r->q[q] = NAN;
 	r->status = RUN_MISSING;
 	if (access(path, F_OK) == 0) {
-		cfg *c = cfg_load(path);
-		if (!c) {
+		cJSON *j = cfg_load_json(path);
+		if (!j) {
 			free(path);
 			return -1;
 		}
-		char *text = cfg_text(c);
-		cJSON *j = cJSON_Parse(text);
 		for (int q = 0; q < NQ; q++) {
 			r->q[q] = number(j, quantities[q].key[0]);
 			if (quantities[q].key[1])
 				r->q[q] += number(j, quantities[q].key[1]);
 		}
 		cJSON_Delete(j);
-		free(text);
-		cfg_free(c);
 		r->status = RUN_OK;
 	} else {
 		char *failed = point_file(dir, pt, "stage.failed");
