@@ -23,39 +23,20 @@
  * with an interaction range), in (i, j) order, d0 the distance. */
 static void form_bonds(const char *file, const dem_assembly *a, double beta, dem_bonds *b)
 {
-	enum { CAP = 4096 };
 	double rmax = 0;
 	for (size_t i = 0; i < a->n; i++)
 		rmax = fmax(rmax, a->r[i]);
-	cells g = {0};
-	cells_build(&g, a->x, a->n, 2 * (1 + beta) * rmax);
-	int32_t js[CAP];
-	size_t cap = 0;
+	cells_pairs cp;
+	size_t crowded;
+	if (cells_pairs_within(a->x, a->r, a->n, 1 + beta, 2 * (1 + beta) * rmax, &cp, &crowded))
+		fatal("%s: particle %zu has more than %d neighbours within the bond range: "
+		      "overlapping spheres?",
+		      file, crowded, CELLS_CAP);
 	memset(b, 0, sizeof *b);
-	for (size_t i = 0; i < a->n; i++) {
-		int nj = cells_partners(&g, a->x, a->r, i, 1 + beta, 0, js, CAP);
-		if (nj < 0)
-			fatal("%s: particle %zu has more than %d neighbours within the bond range: "
-			      "overlapping spheres?",
-			      file, i, CAP);
-		for (int q = 0; q < nj; q++) {
-			if (b->n == cap) {
-				cap = cap ? 2 * cap : 1024;
-				b->i = xrealloc(b->i, cap * sizeof *b->i);
-				b->j = xrealloc(b->j, cap * sizeof *b->j);
-				b->d0 = xrealloc(b->d0, cap * sizeof *b->d0);
-			}
-			double d2 = 0;
-			for (int k = 0; k < 3; k++) {
-				double dx = a->x[3 * (size_t)js[q] + k] - a->x[3 * i + k];
-				d2 += dx * dx;
-			}
-			b->i[b->n] = (int32_t)i;
-			b->j[b->n] = js[q];
-			b->d0[b->n++] = sqrt(d2);
-		}
-	}
-	cells_free(&g);
+	b->n = cp.n;
+	b->i = cp.i;
+	b->j = cp.j;
+	b->d0 = cp.d;
 }
 
 /* The material's density (kg/m^3) in the run's configuration, or 0. */

@@ -33,53 +33,35 @@ int bonds_form(engine *e)
 {
 	particles *P = &e->p;
 	double range = e->law->bond_range(e->lp);
-	cells g = {0};
-	cells_build(&g, P->x, P->n, range * 2 * e->frame.r_max);
+	cells_pairs cp;
+	size_t crowded;
+	if (cells_pairs_within(P->x, P->r, P->n, range, range * 2 * e->frame.r_max, &cp, &crowded))
+		return err_set("particle %d has more than %d neighbours within the bond range: "
+		               "overlapping spheres?",
+		               P->orig[crowded], CELLS_CAP);
+	for (size_t b = 0; b < cp.n; b++)
+		if (nested(P, (size_t)cp.i[b], cp.j[b])) {
+			size_t i = (size_t)cp.i[b];
+			int32_t j = cp.j[b];
+			const double *xi = P->x + 3 * i;
+			int rc = err_set(
+			    "particles %d and %d (radii %g and %g m, at (%g, %g, %g) m): the "
+			    "centre of one lies inside the other: expected the spheres of a "
+			    "packing (a damaged assembly?)",
+			    P->orig[i], P->orig[j], P->r[i], P->r[j], xi[0], xi[1], xi[2]);
+			free(cp.i), free(cp.j), free(cp.d);
+			return rc;
+		}
 	pairlist *L = &e->pairs.bonds;
-	enum { CAP = 4096 };
-	int32_t js[CAP];
-	/* Count first, so the bond array is allocated once at its size. */
-	size_t count = 0;
-	for (size_t i = 0; i < P->n; i++) {
-		int nj = cells_partners(&g, P->x, P->r, i, range, 0, js, CAP);
-		if (nj < 0) {
-			cells_free(&g);
-			return err_set(
-			    "particle %d has more than %d neighbours within the bond range: "
-			    "overlapping spheres?",
-			    P->orig[i], CAP);
-		}
-		for (int q = 0; q < nj; q++)
-			if (nested(P, i, js[q])) {
-				cells_free(&g);
-				const double *xi = P->x + 3 * i;
-				return err_set(
-				    "particles %d and %d (radii %g and %g m, at (%g, %g, "
-				    "%g) m): the centre of one lies inside the other: "
-				    "expected the spheres of a packing (a damaged "
-				    "assembly?)",
-				    P->orig[i], P->orig[js[q]], P->r[i], P->r[js[q]], xi[0], xi[1],
-				    xi[2]);
-			}
-		count += (size_t)nj;
+	L->rec = xmalloc((cp.n + 1) * sizeof *L->rec);
+	for (size_t b = 0; b < cp.n; b++) {
+		bond *bd = &L->rec[L->n++];
+		memset(bd, 0, sizeof *bd);
+		bd->i = cp.i[b];
+		bd->j = cp.j[b];
+		bd->d0 = cp.d[b];
 	}
-	L->rec = xmalloc((count + 1) * sizeof *L->rec);
-	for (size_t i = 0; i < P->n; i++) {
-		int nj = cells_partners(&g, P->x, P->r, i, range, 0, js, CAP);
-		for (int q = 0; q < nj; q++) {
-			bond *b = &L->rec[L->n++];
-			memset(b, 0, sizeof *b);
-			b->i = (int32_t)i;
-			b->j = js[q];
-			double d2 = 0;
-			for (int k = 0; k < 3; k++) {
-				double dx = P->x[3 * js[q] + k] - P->x[3 * i + k];
-				d2 += dx * dx;
-			}
-			b->d0 = sqrt(d2);
-		}
-	}
-	cells_free(&g);
+	free(cp.i), free(cp.j), free(cp.d);
 	L->cap = L->n;
 	L->f = xcalloc(6 * L->n + 1, sizeof *L->f);
 	return 0;

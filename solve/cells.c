@@ -85,6 +85,44 @@ static int cmp_i32(const void *a, const void *b)
 	return (x > y) - (x < y);
 }
 
+int cells_pairs_within(const double *x, const double *r, size_t n, double scale, double h,
+                       cells_pairs *p, size_t *crowded)
+{
+	cells g = {0};
+	cells_build(&g, x, n, h);
+	int32_t js[CELLS_CAP];
+	/* Count first, so the arrays are allocated once at their size. */
+	size_t count = 0;
+	for (size_t i = 0; i < n; i++) {
+		int nj = cells_partners(&g, x, r, i, scale, 0, js, CELLS_CAP);
+		if (nj < 0) {
+			cells_free(&g);
+			*crowded = i;
+			return -1;
+		}
+		count += (size_t)nj;
+	}
+	p->n = 0;
+	p->i = xmalloc((count + 1) * sizeof *p->i);
+	p->j = xmalloc((count + 1) * sizeof *p->j);
+	p->d = xmalloc((count + 1) * sizeof *p->d);
+	for (size_t i = 0; i < n; i++) {
+		int nj = cells_partners(&g, x, r, i, scale, 0, js, CELLS_CAP);
+		for (int q = 0; q < nj; q++) {
+			double d2 = 0;
+			for (int k = 0; k < 3; k++) {
+				double dx = x[3 * (size_t)js[q] + k] - x[3 * i + k];
+				d2 += dx * dx;
+			}
+			p->i[p->n] = (int32_t)i;
+			p->j[p->n] = js[q];
+			p->d[p->n++] = sqrt(d2);
+		}
+	}
+	cells_free(&g);
+	return 0;
+}
+
 int cells_partners(const cells *g, const double *x, const double *r, size_t i, double scale,
                    double add, int32_t *js, int cap)
 {

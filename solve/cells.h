@@ -35,4 +35,18 @@ int cells_around(const cells *g, int32_t c, int32_t out[27]);
 int cells_partners(const cells *g, const double *x, const double *r, size_t i, double scale,
                    double add, int32_t *js, int cap);
 
+/* The pairs a bond is formed between: every i < j whose centres lie within
+ * scale (r_i + r_j) (Eq. 16), in (i, j) order, in cells of size h (at
+ * least 2 scale r_max), with their centre distance: p->n pairs in arrays
+ * the caller frees. -1 when a particle has more than CELLS_CAP partners
+ * (overlapping spheres?), its index in *crowded, nothing allocated. */
+enum { CELLS_CAP = 4096 };
+typedef struct {
+	size_t n;
+	int32_t *i, *j;
+	double *d;
+} cells_pairs;
+int cells_pairs_within(const double *x, const double *r, size_t n, double scale, double h,
+                       cells_pairs *p, size_t *crowded);
+
 #endif
