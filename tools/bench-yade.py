@@ -24,7 +24,9 @@ from yade import O  # noqa: E402
 
 case_path, specimen_path, steps, dt, out_path = sys.argv[1:6]
 steps, dt = int(steps), float(dt)
-case, material, alpha, axial = yj.read_case(case_path)
+case, material, alpha, axial, ax = yj.read_case(case_path)
+if axial["mode"] != "layers":
+    yj.fail("%s: expected end layers (axial.mode layers)" % case_path)
 with open(specimen_path) as f:
     specimen = json.load(f)
 spheres = yj.read_spheres(yj.relative(specimen_path, specimen["import"]))

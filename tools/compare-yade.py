@@ -1,5 +1,5 @@
-# The Yade side of tools/compare-yade: the JCFPM UCS of a solve case file,
-# in Yade, on a sphere list, with solve's time step, to the case's stop
+# The Yade side of tools/compare-yade: the JCFPM test of a solve case file
+# (a UCS with end layers, or platens: a Brazilian test), in Yade, on a sphere list, with solve's time step, to the case's stop
 # (its strain_axial and stress_drop, checked on the history rows, the drop
 # once bonds have broken) or STEPS
 # loading steps, writing a history row every EVERY steps. Run by
@@ -10,10 +10,10 @@
 # default) or contact (tools/yade_jcfpm.py, build).
 # (tools/yade_jcfpm.py maps the parameters and sets up the bonds and end
 # layers). Writes OUT.csv, the rows at steps 0, EVERY, 2 EVERY, ... and the
-# last: step, axial strain (the layers' relative displacement over the
-# initial height, from their positions), axial force (what the bonds and
-# contacts exert on the layers, the mean of the two ends, compression
-# positive; the forces of the step, on the positions before its move, as
+# last: step, axial strain (the layers' or walls' relative displacement
+# over the initial height or gap, from their positions), axial force (what
+# the bonds and contacts exert on the layers or walls, the mean of the two
+# ends, compression positive; the forces of the step, on the positions before its move, as
 # solve's history rows), and the bonds broken in tension and in shear so
 # far (Law2's nbTensCracks, nbShearCracks); and OUT.json: spheres, bonds at
 # start, end-layer sizes.
@@ -29,7 +29,8 @@ from yade.wrapper import PyRunner  # noqa: E402
 case_path, spheres_path, dt, steps, every, out = sys.argv[1:7]
 dt, steps, every = float(dt), int(steps), int(every)
 branch = sys.argv[7] if len(sys.argv) > 7 else "radius"
-case, material, alpha, axial = yj.read_case(case_path)
+case, material, alpha, axial, ax = yj.read_case(case_path)
+layers = axial["mode"] == "layers"
 spheres = yj.read_spheres(spheres_path)
 
 stop = case.get("stop", {})
@@ -43,9 +44,9 @@ def record():
     k = O.iter - state["iter0"]
     if k % every and k != steps - 1:
         return
-    zb, zt = O.bodies[state["b"]].state.pos[2], O.bodies[state["t"]].state.pos[2]
+    zb, zt = O.bodies[state["b"]].state.pos[ax], O.bodies[state["t"]].state.pos[ax]
     strain = ((zb - state["zb0"]) - (zt - state["zt0"])) / state["height"]
-    load = yj.axial_load(state["bottom"], state["top"])
+    load = yj.axial_load(state["bottom"], state["top"], ax)
     rows.append((k, strain, load, state["law"].nbTensCracks, state["law"].nbShearCracks))
     state["peak"] = max(state["peak"], load)
     # The drop is armed once bonds break (solve arms it once the loading's
@@ -56,10 +57,14 @@ def record():
 
 
 ids, bonds, law = yj.build(material, spheres, alpha, dt,
-                           [PyRunner(command="record()", iterPeriod=1)], branch)
-bottom, top, v_bottom, v_top, height = yj.end_layers(spheres, ids, axial)
+                           [PyRunner(command="record()", iterPeriod=1)], branch,
+                           walls=not layers)
+if layers:
+    bottom, top, v_bottom, v_top, height = yj.end_layers(spheres, ids, axial)
+else:
+    bottom, top, v_bottom, v_top, height = yj.platens(spheres, material, axial, ax, branch)
 state.update(iter0=O.iter, b=bottom[0], t=top[0], height=height, bottom=bottom, top=top,
-             law=law, zb0=O.bodies[bottom[0]].state.pos[2], zt0=O.bodies[top[0]].state.pos[2])
+             law=law, zb0=O.bodies[bottom[0]].state.pos[ax], zt0=O.bodies[top[0]].state.pos[ax])
 O.run(steps, True)
 O.wait()
 
@@ -68,6 +73,7 @@ with open(out + ".csv", "w") as f:
     for r in rows:
         f.write("%d,%.12g,%.12g,%d,%d\n" % r)
 with open(out + ".json", "w") as f:
-    json.dump({"spheres": len(ids), "bonds": bonds, "layers": [len(bottom), len(top)],
+    json.dump({"spheres": len(ids), "bonds": bonds,
+               "layers": [len(bottom), len(top)] if layers else None,
                "height": height, "dt": dt, "steps": rows[-1][0], "branch": branch}, f)
     f.write("\n")
