@@ -127,7 +127,8 @@ int main(void)
 	    "good.json",
 	    "{\"assembly\": \"sub/a.h5\", " MAT ", \"test\": \"triaxial\", \"threads\": 3,"
 	    "\"axis\": [1, 0, 0],"
-	    "\"time_step\": {\"safety\": 0.5}, \"damping\": {\"translational\": 0.2, \"form\": \"components\"},"
+	    "\"time_step\": {\"safety\": 0.5}, \"damping\": {\"translational\": 0.2, \"form\": "
+	    "\"components\"},"
 	    "\"output\": {\"history_every\": 7, \"snapshot_strains\": [0.001, 0.002]},"
 	    "\"loading\": [{\"name\": \"confine\", \"ramp\": 0.01, \"axial\": {\"mode\": "
 	    "\"stress\", \"stress\": 1e6}, \"lateral\": {\"mode\": \"pressure\", \"pressure\": "
