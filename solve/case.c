@@ -14,6 +14,7 @@ static const char *const axial_words[] = {"none",   "hold",  "velocity", "strain
 static const char *const lateral_words[] = {"free", "pressure", "constraint", NULL};
 static const char *const method_words[] = {"tributary", "paper", NULL};
 static const char *const move_words[] = {"both", "top", NULL};
+static const char *const damping_words[] = {"vector", "components", NULL};
 
 static int parse_stop(cfg *c, stop_rule *s, int with_stress)
 {
@@ -154,6 +155,12 @@ static int parse_numerics(cfg *c, dem_case *k)
 	    sub_number(c, "surface", "bin", &k->surface_bin, 0, "m", CFG_POS, INFINITY))
 		return -1;
 	k->surface_every = (long)every;
+	cfg *d = cfg_object_opt(c, "damping");
+	if (!d && err_msg()[0])
+		return -1;
+	k->damping_form = DAMPING_VECTOR;
+	if (d && cfg_choice_or(d, "form", &k->damping_form, damping_words, DAMPING_VECTOR))
+		return -1;
 	long threads;
 	if (cfg_integer_or(c, "threads", &threads, 0, 0, 1024))
 		return -1;

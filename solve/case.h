@@ -22,6 +22,11 @@ enum {
 enum { LATERAL_FREE, LATERAL_PRESSURE, LATERAL_CONSTRAINT };
 /* How a confining pressure becomes forces on surface particles. */
 enum { PRESSURE_TRIBUTARY, PRESSURE_PAPER };
+/* How the global non-viscous damping acts on a particle's force and torque. */
+enum {
+	DAMPING_VECTOR,    /* the vector, along the velocity (Eq. 39-40) */
+	DAMPING_COMPONENTS /* each Cartesian component on its own (Yade's NewtonIntegrator) */
+};
 
 /* Conditions that end a stage or the run; unset ones are NaN / 0. */
 typedef struct {
@@ -59,6 +64,7 @@ typedef struct {
 	double dt;                    /* s, fixed time step; 0: from the critical estimate */
 	double safety;                /* fraction of the critical time step */
 	double alpha_t, alpha_r;      /* global non-viscous damping (Eq. 39-40) */
+	int damping_form;             /* DAMPING_* */
 	double skin;                  /* m, Verlet skin; 0: a quarter of the mean radius */
 	double servo_gain;            /* fraction of the force error corrected per step */
 	long surface_every;           /* steps between updates of the lateral surface */

@@ -9,7 +9,9 @@
  *   (Δθ = ω Δt, Eq. 10, enters the next step's shear increments)
  *
  * with the global non-viscous damping (Eq. 39-40)
- *   F_damp = -α^t |F| v/|v|,  T_damp = -α^r |T| ω/|ω|   (velocities at t - Δt/2).
+ *   F_damp = -α^t |F| v/|v|,  T_damp = -α^r |T| ω/|ω|   (velocities at t - Δt/2),
+ * or, with the case's damping.form "components", Yade's per-component rule
+ * (damp below).
  *
  * Energies use the central-difference "shadow" kinetic energy
  * ½ m v(t - Δt/2)·v(t + Δt/2), which with the elastic energy at t is exactly
@@ -112,23 +114,45 @@ static inline void move_layer(const engine *e, int32_t i, int k, const double F[
 	    0.5 * dt * (R[0] * (v[0] + vn[0]) + R[1] * (v[1] + vn[1]) + R[2] * (v[2] + vn[2]));
 }
 
+/* The global non-viscous damping force fd of a force F on a velocity v
+ * (at t - Δt/2), h = Δt / mass (or Δt / inertia for a torque).
+ * DAMPING_VECTOR, Eq. 39-40: fd = -α |F| v/|v|.
+ * DAMPING_COMPONENTS, Yade's NewtonIntegrator (yade/trunk
+ * pkg/dem/NewtonIntegrator.cpp, cundallDamp2nd, as in Debian's 2023.02a):
+ * each component on its own, against the sign of the velocity it is
+ * predicted to have at t,
+ *   fd_k = -α F_k sign(F_k (v_k + ½ h F_k)),
+ * i.e. -α |F_k| in the direction opposing v_k + ½ h F_k, zero when F_k or
+ * that velocity is zero. */
+static inline void damp(int form, double alpha, const double F[3], const double v[3], double h,
+                        double fd[3])
+{
+	if (form == DAMPING_COMPONENTS) {
+		for (int c = 0; c < 3; c++) {
+			double s = F[c] * (v[c] + 0.5 * h * F[c]);
+			fd[c] = s > 0 ? -alpha * F[c] : s < 0 ? alpha * F[c] : 0;
+		}
+		return;
+	}
+	double fa = sqrt(dot3(F, F)), va = sqrt(dot3(v, v));
+	double cf = va > 0 ? -alpha * fa / va : 0;
+	for (int c = 0; c < 3; c++)
+		fd[c] = cf * v[c];
+}
+
 /* Central differences with the global non-viscous damping (Eq. 5-6, 8-9,
- * 39-40) for a free particle. */
+ * 39-40, or Yade's form: damp above) for a free particle. */
 static inline void move_free(const engine *e, int32_t i, const double F[3], const double T[3],
                              double vn[3], double wn[3], particle_sums *s)
 {
 	const particles *P = &e->p;
 	const double *v = P->v + 3 * i, *w = P->w + 3 * i;
 	double dt = e->clock.dt;
-	double fa = sqrt(dot3(F, F)), ta = sqrt(dot3(T, T));
-	double va = sqrt(dot3(v, v)), wa = sqrt(dot3(w, w));
-	double cf = va > 0 ? -e->cs->alpha_t * fa / va : 0;
-	double ct = wa > 0 ? -e->cs->alpha_r * ta / wa : 0;
 	double im = P->inv_m[i], ii = P->inv_i[i];
 	double fd[3], td[3];
+	damp(e->cs->damping_form, e->cs->alpha_t, F, v, dt * im, fd);
+	damp(e->cs->damping_form, e->cs->alpha_r, T, w, dt * ii, td);
 	for (int c = 0; c < 3; c++) {
-		fd[c] = cf * v[c];
-		td[c] = ct * w[c];
 		vn[c] = v[c] + dt * im * (F[c] + fd[c]);
 		wn[c] = w[c] + dt * ii * (T[c] + td[c]);
 	}

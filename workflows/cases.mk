@@ -71,3 +71,8 @@ jcfpm-concrete-ucs.count := 0
 CASES += jcfpm-concrete-ucs-dense
 jcfpm-concrete-ucs-dense.specimen := jcfpm-50x100
 jcfpm-concrete-ucs-dense.case := jcfpm-concrete-ucs
+
+# The same material in a Brazilian test between platens (no source value:
+# the Brazilian test of tools/compare-yade, validation.md section 8).
+CASES += jcfpm-concrete-bts
+jcfpm-concrete-bts.specimen := jcfpm-disc-50x25

@@ -111,6 +111,10 @@ int main(void)
 	       ", \"stop\": {\"steps\": 10}, \"time_step\": {\"safety\": 1.5}}",
 	       "bad.json: key 'time_step.safety': value 1.5: expected a number in (0, 1]");
 	expect("{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE
+	       ", \"stop\": {\"steps\": 10}, \"damping\": {\"form\": \"yade\"}}",
+	       "bad.json: key 'damping.form': value \"yade\": expected one of 'vector', "
+	       "'components'");
+	expect("{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE
 	       ", \"stop\": {\"steps\": 10}, \"axis\": [0, 0, 0]}",
 	       "bad.json: key 'axis': value [0, 0, 0]: expected a non-zero direction");
 	expect("{\"assembly\": 3, " MAT ", " ONE_STAGE ", \"stop\": {\"steps\": 10}}",
@@ -123,7 +127,8 @@ int main(void)
 	    "good.json",
 	    "{\"assembly\": \"sub/a.h5\", " MAT ", \"test\": \"triaxial\", \"threads\": 3,"
 	    "\"axis\": [1, 0, 0],"
-	    "\"time_step\": {\"safety\": 0.5}, \"damping\": {\"translational\": 0.2},"
+	    "\"time_step\": {\"safety\": 0.5}, \"damping\": {\"translational\": 0.2, \"form\": "
+	    "\"components\"},"
 	    "\"output\": {\"history_every\": 7, \"snapshot_strains\": [0.001, 0.002]},"
 	    "\"loading\": [{\"name\": \"confine\", \"ramp\": 0.01, \"axial\": {\"mode\": "
 	    "\"stress\", \"stress\": 1e6}, \"lateral\": {\"mode\": \"pressure\", \"pressure\": "
@@ -137,7 +142,8 @@ int main(void)
 	CHECK(case_load(path, NULL, &c) == 0);
 	CHECK_CONTAINS(c.assembly, "/sub/a.h5");
 	CHECK_STR(c.test, "triaxial");
-	CHECK(c.threads == 3 && c.safety == 0.5 && c.alpha_t == 0.2 && c.alpha_r == 0.1);
+	CHECK(c.threads == 3 && c.safety == 0.5 && c.alpha_t == 0.2 && c.alpha_r == 0.1 &&
+	      c.damping_form == DAMPING_COMPONENTS);
 	CHECK(c.axis[0] == 1 && c.axis[1] == 0 && c.axis[2] == 0);
 	CHECK(c.history_every == 7 && c.nsnapshot_strains == 2 && c.snapshot_strains[1] == 0.002);
 	CHECK(c.nstages == 2);
