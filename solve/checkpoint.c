@@ -103,7 +103,7 @@ static uLong pairs_crc(uLong c, const pairlist *l, int contacts)
 		}
 	}
 	return contacts ? crc(c, l->k, 3 * l->n * sizeof *l->k)
-	                : crc(c, l->f, 6 * l->n * sizeof *l->f);
+	                : crc(c, l->f, (size_t)l->fcols * l->n * sizeof *l->f);
 }
 
 static int64_t state_crc(engine *e)
@@ -318,7 +318,7 @@ int checkpoint_write(engine *e, hid_t file)
 	     put(g, "surface_particle", H5T_NATIVE_INT32, e->bc.surf.idx, e->bc.surf.n, 0) ||
 	     put(g, "surface_area", H5T_NATIVE_DOUBLE, e->bc.surf.area, e->bc.surf.n, 0) ||
 	     put_fields(g, bond_fields, 3, &e->pairs.bonds) ||
-	     put(g, "bond_force", H5T_NATIVE_DOUBLE, e->pairs.bonds.f, e->pairs.bonds.n, 6) ||
+	     put(g, "bond_force", H5T_NATIVE_DOUBLE, e->pairs.bonds.f, e->pairs.bonds.n, 3) ||
 	     put_fields(g, contact_fields, 3, &e->pairs.contacts) ||
 	     put(g, "contact_k", H5T_NATIVE_DOUBLE, e->pairs.contacts.k, e->pairs.contacts.n, 3) ||
 	     write_platens(g, e) || h5_attr_i64(g, "checksum", state_crc(e)) ||
@@ -351,6 +351,7 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 	if (nc > L->cap) {
 		L->cap = nc;
 		L->rec = xrealloc(L->rec, nc * sizeof *L->rec);
+		L->fcols = 6;
 		L->f = xrealloc(L->f, 6 * nc * sizeof *L->f);
 		L->k = xrealloc(L->k, 3 * nc * sizeof *L->k);
 		L->ref = xrealloc(L->ref, 2 * nc * sizeof *L->ref);
@@ -500,7 +501,7 @@ int checkpoint_read_file(engine *e, hid_t f)
 	     get_field(g, &bond_fields[0], e->pairs.bonds.rec, nb) ||
 	     get_field(g, &bond_fields[1], e->pairs.bonds.rec, nb) ||
 	     get_field(g, &bond_fields[2], e->pairs.bonds.rec, nb) ||
-	     get(g, "bond_force", H5T_NATIVE_DOUBLE, e->pairs.bonds.f, nb, 6) ||
+	     get(g, "bond_force", H5T_NATIVE_DOUBLE, e->pairs.bonds.f, nb, 3) ||
 	     read_surface(g, e) || read_pairs(g, e, e->pairs.contacts.n) || read_platens(g, e);
 	for (size_t b = 0; !rc && b < nb; b++)
 		if (e->pairs.bonds.rec[b].state > BOND_BROKEN_SHEAR)

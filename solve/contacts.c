@@ -42,6 +42,7 @@ static void reserve(pairlist *l, size_t n, size_t np)
 		return;
 	size_t cap = l->cap > n ? l->cap : n + n / 2 + 64;
 	l->rec = xrealloc(l->rec, cap * sizeof *l->rec);
+	l->fcols = 6;
 	l->f = xrealloc(l->f, 6 * cap * sizeof *l->f);
 	l->k = xrealloc(l->k, 3 * cap * sizeof *l->k);
 	l->ref = xrealloc(l->ref, 2 * cap * sizeof *l->ref);

@@ -22,7 +22,7 @@ size_t engine_bytes(const engine *e)
 	const bond_split *S = &e->pairs.split;
 	bytes += S->cfirst ? S->cfirst[S->n] * (sizeof(int32_t) + sizeof(bond_part)) : 0;
 	/* bonds: record, force; contacts: record, force, gather index, constants */
-	bytes += e->pairs.bonds.cap * (sizeof(bond) + 6 * sizeof(double));
+	bytes += e->pairs.bonds.cap * (sizeof(bond) + 3 * sizeof(double));
 	bytes += e->pairs.contacts.cap * (sizeof(bond) + 6 * sizeof(double) + 2 * sizeof(int32_t) +
 	                                  3 * sizeof(double)) +
 	         (n + 1) * sizeof(int32_t);
