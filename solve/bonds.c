@@ -226,8 +226,9 @@ void bonds_share(engine *e, int k, int measure)
 		}
 	size_t slot = S->cfirst[k];
 	for (size_t blk = p0 / BLOCK; blk * BLOCK < p1; blk++) {
-		pair_sums *s = &e->scratch.bblock[blk];
-		memset(s, 0, sizeof *s);
+		/* Summed in a local, which no store to the particles' sums can
+		 * alias, so its members stay in registers. */
+		pair_sums sums = {0}, *s = &sums;
 		size_t hi = S->bfirst[blk + 1];
 		for (size_t b0 = S->bfirst[blk]; b0 < hi; b0 += BATCH) {
 			size_t b1 = hi - b0 < BATCH ? hi : b0 + BATCH;
@@ -245,6 +246,7 @@ void bonds_share(engine *e, int k, int measure)
 				         own);
 			}
 		}
+		e->scratch.bblock[blk] = sums;
 	}
 }
 
