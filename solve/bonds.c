@@ -151,7 +151,7 @@ DEM_VECTOR_CLONES static void bonds_compute(engine *e, const int32_t *idx, int n
 		o->e_viscous = B.fn_viscous[q] * B.vn[q] * e->clock.dt;
 		if (measure) {
 			law_pair pair = law_lane_pair(&B, q);
-			o->e_elastic = e->law->energy(e->lp, &pair, &rec[idx[q]]);
+			o->e_elastic = e->law->energy(e->lp, &pair, &rec[idx[q]], B.un[q]);
 			memset(o->love, 0, sizeof o->love);
 			love_add(o->love, &g, q, o->f);
 			o->state = rec[idx[q]].state;

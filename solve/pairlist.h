@@ -17,10 +17,10 @@
 typedef struct {
 	size_t n, cap;
 	bond *rec;
-	double *f;    /* [n][fcols]: force on i (N); contacts (fcols 6) then the
-	                 torque per unit radius (N): the torque on i is r_i times
-	                 it, on j r_j times it. Bonds keep the force only (fcols
-	                 3): their torques are added as they are computed. */
+	double *f; /* [n][fcols]: force on i (N); contacts (fcols 6) then the
+	              torque per unit radius (N): the torque on i is r_i times
+	              it, on j r_j times it. Bonds keep the force only (fcols
+	              3): their torques are added as they are computed. */
 	int fcols;
 	double *k;    /* [n][3] kn, ks, cn of a contact (contacts only) */
 	int32_t *off; /* [np + 1] (contacts only: bonds add their forces as
