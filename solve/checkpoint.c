@@ -113,8 +113,11 @@ static uLong pairs_crc(uLong c, const pairlist *l, int contacts, const old_bonds
 			c = crc(c, &r->state, sizeof r->state);
 		}
 	}
-	if (contacts)
-		return crc(c, l->k, 3 * l->n * sizeof *l->k);
+	if (contacts) { /* their constants, as the contiguous rows of contact_k */
+		for (size_t b = 0; b < l->n; b++)
+			c = crc(c, l->rec[b].h, 3 * sizeof *l->rec[b].h);
+		return c;
+	}
 	return old ? crc(c, old->f, OLD_FCOLS * l->n * sizeof *old->f)
 	           : crc(c, l->f, (size_t)l->fcols * l->n * sizeof *l->f);
 }
@@ -275,6 +278,7 @@ static const field contact_fields[] = {
     FIELD("contact_i", T_I32, i, 1),
     FIELD("contact_j", T_I32, j, 1),
     FIELD("contact_t", T_F64, t, 3),
+    FIELD("contact_k", T_F64, h, 3),
 };
 
 static int put_fields(hid_t g, const field *f, int nf, const pairlist *l)
@@ -332,10 +336,8 @@ int checkpoint_write(engine *e, hid_t file)
 	     put(g, "surface_area", H5T_NATIVE_DOUBLE, e->bc.surf.area, e->bc.surf.n, 0) ||
 	     put_fields(g, bond_fields, 3, &e->pairs.bonds) ||
 	     put(g, "bond_force", H5T_NATIVE_DOUBLE, e->pairs.bonds.f, e->pairs.bonds.n, 3) ||
-	     put_fields(g, contact_fields, 3, &e->pairs.contacts) ||
-	     put(g, "contact_k", H5T_NATIVE_DOUBLE, e->pairs.contacts.k, e->pairs.contacts.n, 3) ||
-	     write_platens(g, e) || h5_attr_i64(g, "checksum", state_crc(e, NULL)) ||
-	     h5_attr_i64(g, "complete", 1);
+	     put_fields(g, contact_fields, 4, &e->pairs.contacts) || write_platens(g, e) ||
+	     h5_attr_i64(g, "checksum", state_crc(e, NULL)) || h5_attr_i64(g, "complete", 1);
 	H5Gclose(g);
 	if (!rc && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
 		rc = h5_write_error(h5_name(file), "the checkpoint");
@@ -406,13 +408,12 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 		L->rec = xrealloc(L->rec, nc * sizeof *L->rec);
 		L->fcols = 6;
 		L->f = xrealloc(L->f, 6 * nc * sizeof *L->f);
-		L->k = xrealloc(L->k, 3 * nc * sizeof *L->k);
 		L->ref = xrealloc(L->ref, 2 * nc * sizeof *L->ref);
 	}
-	if (nc)
-		memcpy(L->k, kk, 3 * nc * sizeof *kk);
-	free(kk);
 	memset(L->rec, 0, nc * sizeof *L->rec);
+	for (size_t q = 0; q < nc; q++)
+		memcpy(L->rec[q].h, kk + 3 * q, 3 * sizeof *kk);
+	free(kk);
 	int rc = 0;
 	for (int k = 0; !rc && k < 3; k++)
 		rc = get_field(g, &contact_fields[k], L->rec, nc);

@@ -76,7 +76,10 @@ void diagnose_nan(const engine *e, size_t i, char *msg, size_t n)
 }
 
 /* Bound on ω of particle i times the time step (2 is the stability limit). */
-static double omega_dt(const engine *e, size_t i) { return sqrt(e->p.omega2[i]) * e->clock.dt; }
+static double omega_dt(const engine *e, size_t i)
+{
+	return sqrt(timestep_bond_omega2(e, i)) * e->clock.dt;
+}
 
 /* The fastest particle at t + dt/2 and its squared speed. */
 static size_t fastest(const particles *P, double *v2)

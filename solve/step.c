@@ -124,7 +124,7 @@ static inline void move_free(const engine *e, int32_t i, const double F[3], cons
 	double va = sqrt(dot3(v, v)), wa = sqrt(dot3(w, w));
 	double cf = va > 0 ? -e->cs->alpha_t * fa / va : 0;
 	double ct = wa > 0 ? -e->cs->alpha_r * ta / wa : 0;
-	double im = P->inv_m[i], ii = P->inv_i[i];
+	double im = particle_inv_m(P, (size_t)i), ii = particle_inv_i(P, (size_t)i);
 	double fd[3], td[3];
 	for (int c = 0; c < 3; c++) {
 		fd[c] = cf * v[c];
