@@ -63,7 +63,8 @@ int bonds_form(engine *e)
 	}
 	free(cp.i), free(cp.j), free(cp.d);
 	L->cap = L->n;
-	L->f = xcalloc(6 * L->n + 1, sizeof *L->f);
+	L->fcols = 3;
+	L->f = xcalloc(3 * L->n + 1, sizeof *L->f);
 	return 0;
 }
 
@@ -105,7 +106,7 @@ static void record_crack(engine *e, crack_buf *cb, size_t b, int mode, const bat
 	}
 	const bond *bd = &e->pairs.bonds.rec[b];
 	const particles *P = &e->p;
-	const double *f = e->pairs.bonds.f + 6 * b;
+	const double *f = e->pairs.bonds.f + 3 * b;
 	double fn = f[0] * n[0] + f[1] * n[1] + f[2] * n[2];
 	double fs[3] = {f[0] - fn * n[0], f[1] - fn * n[1], f[2] - fn * n[2]};
 	int32_t oi = P->orig[bd->i], oj = P->orig[bd->j];
@@ -150,7 +151,7 @@ DEM_VECTOR_CLONES static void bonds_compute(engine *e, const int32_t *idx, int n
 		o->e_viscous = B.fn_viscous[q] * B.vn[q] * e->clock.dt;
 		if (measure) {
 			law_pair pair = law_lane_pair(&B, q);
-			o->e_elastic = e->law->energy(e->lp, &pair, &rec[idx[q]]);
+			o->e_elastic = e->law->energy(e->lp, &pair, &rec[idx[q]], B.un[q]);
 			memset(o->love, 0, sizeof o->love);
 			love_add(o->love, &g, q, o->f);
 			o->state = rec[idx[q]].state;
@@ -169,7 +170,7 @@ static inline void add_to_j(engine *e, int32_t j, const double f[6])
 	}
 }
 
-/* Bond b's part added to its block's sums s, its force kept (L->f), and
+/* Bond b's part added to its block's sums s, its force on i kept (L->f), and
  * its force and torque added to particle i and, when both, to j. */
 static inline void bond_add(engine *e, size_t b, const bond_part *o, int measure, pair_sums *s,
                             int both)
@@ -185,7 +186,7 @@ static inline void bond_add(engine *e, size_t b, const bond_part *o, int measure
 			s->love[c] += o->love[c];
 		s->count[o->state]++;
 	}
-	memcpy(L->f + 6 * b, o->f, sizeof o->f);
+	memcpy(L->f + 3 * b, o->f, 3 * sizeof *o->f);
 	double *ai = e->scratch.acc + 6 * bd->i, ri = e->p.r[bd->i];
 	for (int c = 0; c < 3; c++) {
 		ai[c] += o->f[c];
@@ -225,8 +226,9 @@ void bonds_share(engine *e, int k, int measure)
 		}
 	size_t slot = S->cfirst[k];
 	for (size_t blk = p0 / BLOCK; blk * BLOCK < p1; blk++) {
-		pair_sums *s = &e->scratch.bblock[blk];
-		memset(s, 0, sizeof *s);
+		/* Summed in a local, which no store to the particles' sums can
+		 * alias, so its members stay in registers. */
+		pair_sums sums = {0}, *s = &sums;
 		size_t hi = S->bfirst[blk + 1];
 		for (size_t b0 = S->bfirst[blk]; b0 < hi; b0 += BATCH) {
 			size_t b1 = hi - b0 < BATCH ? hi : b0 + BATCH;
@@ -244,6 +246,7 @@ void bonds_share(engine *e, int k, int measure)
 				         own);
 			}
 		}
+		e->scratch.bblock[blk] = sums;
 	}
 }
 

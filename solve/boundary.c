@@ -12,8 +12,10 @@
  * at the limit. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "lib/err.h"
 #include "solve/boundary.h"
 #include "solve/engine.h"
 #include "solve/measure.h"
@@ -36,7 +38,7 @@ static void select_layers(engine *e, double thickness)
 {
 	particles *P = &e->p;
 	double lo = INFINITY, hi = -INFINITY;
-	double *z = e->scratch.z;
+	double *z = xmalloc((P->n + 1) * sizeof *z);
 	for (size_t i = 0; i < P->n; i++) {
 		z[i] = 0;
 		for (int k = 0; k < 3; k++)
@@ -51,6 +53,7 @@ static void select_layers(engine *e, double thickness)
 		else if (z[i] + P->r[i] >= hi - thickness)
 			P->flag[i] |= PF_LAYER_TOP;
 	}
+	free(z);
 	e->prog.layers_selected = 1;
 }
 

@@ -88,7 +88,17 @@ static int scalars(engine *e, scalar *s)
  * the same function after writing and after reading back. */
 static uLong crc(uLong c, const void *p, size_t bytes) { return crc32_z(c, p, bytes); }
 
-static uLong pairs_crc(uLong c, const pairlist *l, int contacts)
+/* The bonds' histories and forces as checkpoints before this layout held
+ * them (bond_h with a fourth column, the last u_n, and bond_force with the
+ * torque per unit radius), read for their checksum. */
+enum { OLD_NHIST = 4, OLD_FCOLS = 6 };
+typedef struct {
+	double *h; /* [B][OLD_NHIST] */
+	double *f; /* [B][OLD_FCOLS] */
+} old_bonds;
+
+/* old: when not NULL, the bonds' h and f as an old checkpoint held them. */
+static uLong pairs_crc(uLong c, const pairlist *l, int contacts, const old_bonds *old)
 {
 	for (size_t b = 0; b < l->n; b++) {
 		const bond *r = &l->rec[b];
@@ -98,15 +108,21 @@ static uLong pairs_crc(uLong c, const pairlist *l, int contacts)
 		}
 		c = crc(c, r->t, sizeof r->t);
 		if (!contacts) {
-			c = crc(c, r->h, sizeof r->h);
+			c = old ? crc(c, old->h + OLD_NHIST * b, OLD_NHIST * sizeof *old->h)
+			        : crc(c, r->h, sizeof r->h);
 			c = crc(c, &r->state, sizeof r->state);
 		}
 	}
-	return contacts ? crc(c, l->k, 3 * l->n * sizeof *l->k)
-	                : crc(c, l->f, 6 * l->n * sizeof *l->f);
+	if (contacts) { /* their constants, as the contiguous rows of contact_k */
+		for (size_t b = 0; b < l->n; b++)
+			c = crc(c, l->rec[b].h, 3 * sizeof *l->rec[b].h);
+		return c;
+	}
+	return old ? crc(c, old->f, OLD_FCOLS * l->n * sizeof *old->f)
+	           : crc(c, l->f, (size_t)l->fcols * l->n * sizeof *l->f);
 }
 
-static int64_t state_crc(engine *e)
+static int64_t state_crc(engine *e, const old_bonds *old)
 {
 	uLong c = crc32_z(0, Z_NULL, 0);
 	scalar s[64];
@@ -124,8 +140,8 @@ static int64_t state_crc(engine *e)
 	c = crc(c, P->flag, n * sizeof *P->flag);
 	c = crc(c, e->bc.surf.idx, e->bc.surf.n * sizeof *e->bc.surf.idx);
 	c = crc(c, e->bc.surf.area, e->bc.surf.n * sizeof *e->bc.surf.area);
-	c = pairs_crc(c, &e->pairs.bonds, 0);
-	c = pairs_crc(c, &e->pairs.contacts, 1);
+	c = pairs_crc(c, &e->pairs.bonds, 0, old);
+	c = pairs_crc(c, &e->pairs.contacts, 1, NULL);
 	for (int k = 0; k < 2; k++) {
 		const platens *pl = &e->bc.pl;
 		c = crc(c, pl->who[k], pl->ncand[k] * sizeof *pl->who[k]);
@@ -262,6 +278,7 @@ static const field contact_fields[] = {
     FIELD("contact_i", T_I32, i, 1),
     FIELD("contact_j", T_I32, j, 1),
     FIELD("contact_t", T_F64, t, 3),
+    FIELD("contact_k", T_F64, h, 3),
 };
 
 static int put_fields(hid_t g, const field *f, int nf, const pairlist *l)
@@ -318,11 +335,9 @@ int checkpoint_write(engine *e, hid_t file)
 	     put(g, "surface_particle", H5T_NATIVE_INT32, e->bc.surf.idx, e->bc.surf.n, 0) ||
 	     put(g, "surface_area", H5T_NATIVE_DOUBLE, e->bc.surf.area, e->bc.surf.n, 0) ||
 	     put_fields(g, bond_fields, 3, &e->pairs.bonds) ||
-	     put(g, "bond_force", H5T_NATIVE_DOUBLE, e->pairs.bonds.f, e->pairs.bonds.n, 6) ||
-	     put_fields(g, contact_fields, 3, &e->pairs.contacts) ||
-	     put(g, "contact_k", H5T_NATIVE_DOUBLE, e->pairs.contacts.k, e->pairs.contacts.n, 3) ||
-	     write_platens(g, e) || h5_attr_i64(g, "checksum", state_crc(e)) ||
-	     h5_attr_i64(g, "complete", 1);
+	     put(g, "bond_force", H5T_NATIVE_DOUBLE, e->pairs.bonds.f, e->pairs.bonds.n, 3) ||
+	     put_fields(g, contact_fields, 4, &e->pairs.contacts) || write_platens(g, e) ||
+	     h5_attr_i64(g, "checksum", state_crc(e, NULL)) || h5_attr_i64(g, "complete", 1);
 	H5Gclose(g);
 	if (!rc && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
 		rc = h5_write_error(h5_name(file), "the checkpoint");
@@ -340,6 +355,46 @@ static int get(hid_t g, const char *name, hid_t type, void *dst, size_t rows, si
 	return 0;
 }
 
+/* The columns of a two-dimensional dataset, or 0. */
+static size_t columns(hid_t g, const char *name)
+{
+	hsize_t dims[2] = {0, 0};
+	hid_t d = H5Dopen2(g, name, H5P_DEFAULT);
+	if (d < 0)
+		return 0;
+	hid_t s = H5Dget_space(d);
+	int nd = H5Sget_simple_extent_ndims(s);
+	if (nd == 2)
+		H5Sget_simple_extent_dims(s, dims, NULL);
+	H5Sclose(s);
+	H5Dclose(d);
+	return nd == 2 ? (size_t)dims[1] : 0;
+}
+
+/* The bonds' histories (bond_h) and forces on i (bond_force). An older
+ * checkpoint's (*is_old set; its arrays kept in *old for the checksum)
+ * holds a fourth history column, the last u_n, in the slot the law names
+ * (law.h_dropped), and the torque per unit radius after each force. */
+static int read_bond_h_f(hid_t g, engine *e, old_bonds *old, int *is_old)
+{
+	pairlist *L = &e->pairs.bonds;
+	size_t nb = L->n;
+	*is_old = columns(g, "bond_h") == OLD_NHIST;
+	if (!*is_old)
+		return get_field(g, &bond_fields[1], L->rec, nb) ||
+		       get(g, "bond_force", H5T_NATIVE_DOUBLE, L->f, nb, 3);
+	if (h5_read_n(g, "bond_h", H5T_NATIVE_DOUBLE, (void **)&old->h, nb, OLD_NHIST) ||
+	    h5_read_n(g, "bond_force", H5T_NATIVE_DOUBLE, (void **)&old->f, nb, OLD_FCOLS))
+		return -1;
+	for (size_t b = 0; b < nb; b++) {
+		for (int c = 0, k = 0; c < OLD_NHIST; c++)
+			if (c != e->law->h_dropped)
+				L->rec[b].h[k++] = old->h[OLD_NHIST * b + (size_t)c];
+		memcpy(L->f + 3 * b, old->f + OLD_FCOLS * b, 3 * sizeof *L->f);
+	}
+	return 0;
+}
+
 static int read_pairs(hid_t g, engine *e, size_t nc)
 {
 	pairlist *L = &e->pairs.contacts;
@@ -351,14 +406,14 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 	if (nc > L->cap) {
 		L->cap = nc;
 		L->rec = xrealloc(L->rec, nc * sizeof *L->rec);
+		L->fcols = 6;
 		L->f = xrealloc(L->f, 6 * nc * sizeof *L->f);
-		L->k = xrealloc(L->k, 3 * nc * sizeof *L->k);
 		L->ref = xrealloc(L->ref, 2 * nc * sizeof *L->ref);
 	}
-	if (nc)
-		memcpy(L->k, kk, 3 * nc * sizeof *kk);
-	free(kk);
 	memset(L->rec, 0, nc * sizeof *L->rec);
+	for (size_t q = 0; q < nc; q++)
+		memcpy(L->rec[q].h, kk + 3 * q, 3 * sizeof *kk);
+	free(kk);
 	int rc = 0;
 	for (int k = 0; !rc && k < 3; k++)
 		rc = get_field(g, &contact_fields[k], L->rec, nc);
@@ -483,6 +538,8 @@ int checkpoint_read_file(engine *e, hid_t f)
 	}
 	particles *P = &e->p;
 	size_t n = P->n, nb = e->pairs.bonds.n;
+	old_bonds old = {NULL, NULL};
+	int is_old = 0;
 	int32_t *orig = rc ? NULL : xmalloc((n + 1) * sizeof *orig);
 	rc = rc || get(g, "orig", H5T_NATIVE_INT32, orig, n, 0);
 	if (!rc && memcmp(orig, P->orig, n * sizeof *orig))
@@ -498,10 +555,9 @@ int checkpoint_read_file(engine *e, hid_t f)
 	     get(g, "x_ref", H5T_NATIVE_DOUBLE, P->x_ref, n, 3) ||
 	     get(g, "flag", H5T_NATIVE_UINT8, P->flag, n, 0) ||
 	     get_field(g, &bond_fields[0], e->pairs.bonds.rec, nb) ||
-	     get_field(g, &bond_fields[1], e->pairs.bonds.rec, nb) ||
 	     get_field(g, &bond_fields[2], e->pairs.bonds.rec, nb) ||
-	     get(g, "bond_force", H5T_NATIVE_DOUBLE, e->pairs.bonds.f, nb, 6) ||
-	     read_surface(g, e) || read_pairs(g, e, e->pairs.contacts.n) || read_platens(g, e);
+	     read_bond_h_f(g, e, &old, &is_old) || read_surface(g, e) ||
+	     read_pairs(g, e, e->pairs.contacts.n) || read_platens(g, e);
 	for (size_t b = 0; !rc && b < nb; b++)
 		if (e->pairs.bonds.rec[b].state > BOND_BROKEN_SHEAR)
 			rc = err_set("%s: checkpoint dataset 'bond_state': value %d at row %zu: "
@@ -509,10 +565,12 @@ int checkpoint_read_file(engine *e, hid_t f)
 			             path, e->pairs.bonds.rec[b].state, b, BOND_INTACT,
 			             BOND_BROKEN_SHEAR);
 	int64_t sum = 0;
-	if (!rc && (h5_read_attr_i64(g, "checksum", &sum) || sum != state_crc(e)))
+	if (!rc &&
+	    (h5_read_attr_i64(g, "checksum", &sum) || sum != state_crc(e, is_old ? &old : NULL)))
 		rc = err_set("%s: the checkpoint's data do not match its checksum (damaged, or "
 		             "written by an older version): not restartable",
 		             path);
+	free(old.h), free(old.f);
 	H5Gclose(g);
 	return rc ? -1 : 0;
 }

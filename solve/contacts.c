@@ -40,10 +40,10 @@ static void reserve(pairlist *l, size_t n, size_t np)
 {
 	if (n <= l->cap && l->off)
 		return;
-	size_t cap = l->cap > n ? l->cap : n + n / 2 + 64;
+	size_t cap = l->cap > n ? l->cap : n + n / 4 + 64; /* a quarter to grow into */
 	l->rec = xrealloc(l->rec, cap * sizeof *l->rec);
+	l->fcols = 6;
 	l->f = xrealloc(l->f, 6 * cap * sizeof *l->f);
-	l->k = xrealloc(l->k, 3 * cap * sizeof *l->k);
 	l->ref = xrealloc(l->ref, 2 * cap * sizeof *l->ref);
 	if (!l->off)
 		l->off = xcalloc(np + 1, sizeof *l->off);
@@ -65,8 +65,7 @@ static void add_contact(engine *e, pairlist *L, const pairlist *old, size_t *o, 
 		(*o)++;
 	if (*o < old->n && old->rec[*o].i == i && old->rec[*o].j == j)
 		memcpy(c->t, old->rec[*o].t, sizeof c->t);
-	contact_constants(&e->cs->mat, e->lp, P->r[i], P->r[j], P->m[i], P->m[j], c->d0,
-	                  L->k + 3 * L->n);
+	contact_constants(&e->cs->mat, e->lp, P->r[i], P->r[j], P->m[i], P->m[j], c->d0, c->h);
 	L->n++;
 }
 
@@ -131,7 +130,7 @@ DEM_VECTOR_CLONES static void contact_block(engine *e, size_t lo, size_t hi, int
 		batch_kinematics(P->x, P->v, P->w, P->r, P->m, rec, NULL, nq, e->clock.dt, &B, &g);
 		for (int q = 0; q < nq; q++) {
 			size_t c = c0 + q;
-			const double *k = L->k + 3 * c;
+			const double *k = rec[q].h;
 			cundall cd = {.kn = k[0], .ks = k[1], .cn = k[2], .mu = mu};
 			law_out out = {0};
 			double dus[3] = {B.dus[0][q], B.dus[1][q], B.dus[2][q]};

@@ -7,7 +7,14 @@
 #include "solve/diagnose.h"
 #include "solve/timestep.h"
 
-static int finite6(const double *f) { return isfinite(f[0] + f[1] + f[2] + f[3] + f[4] + f[5]); }
+/* Whether the force of pair b of L is finite. */
+static int finite_pair(const pairlist *L, size_t b)
+{
+	double s = 0;
+	for (int c = 0; c < L->fcols; c++)
+		s += L->f[(size_t)L->fcols * b + (size_t)c];
+	return isfinite(s);
+}
 
 /* Count, for each particle, the pairs of L with a non-finite force; the
  * particle in most of them is where the trouble started. Returns the first
@@ -16,7 +23,7 @@ static int64_t worst_pair(const engine *e, const pairlist *L, size_t *who, int *
 {
 	int32_t *n = e->p.n ? xcalloc(e->p.n, sizeof *n) : NULL;
 	for (size_t b = 0; b < L->n; b++)
-		if (!finite6(L->f + 6 * b)) {
+		if (!finite_pair(L, b)) {
 			n[L->rec[b].i]++;
 			n[L->rec[b].j]++;
 		}
@@ -31,7 +38,7 @@ static int64_t worst_pair(const engine *e, const pairlist *L, size_t *who, int *
 		return -1;
 	for (size_t b = 0; b < L->n; b++)
 		if (((size_t)L->rec[b].i == best || (size_t)L->rec[b].j == best) &&
-		    !finite6(L->f + 6 * b))
+		    !finite_pair(L, b))
 			return (int64_t)b;
 	return -1;
 }
@@ -69,7 +76,10 @@ void diagnose_nan(const engine *e, size_t i, char *msg, size_t n)
 }
 
 /* Bound on ω of particle i times the time step (2 is the stability limit). */
-static double omega_dt(const engine *e, size_t i) { return sqrt(e->p.omega2[i]) * e->clock.dt; }
+static double omega_dt(const engine *e, size_t i)
+{
+	return sqrt(timestep_bond_omega2(e, i)) * e->clock.dt;
+}
 
 /* The fastest particle at t + dt/2 and its squared speed. */
 static size_t fastest(const particles *P, double *v2)

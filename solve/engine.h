@@ -41,14 +41,22 @@ enum { PF_LAYER_BOTTOM = 1, PF_LAYER_TOP = 2, PF_CONSTRAINED = 4 };
 typedef struct {
 	size_t n;
 	double *x, *v, *w; /* [n][3] m, m/s (at t - dt/2), rad/s */
-	double *r, *m, *inv_m, *inv_i;
+	double *r, *m;     /* m, kg */
 	int32_t *orig;     /* index in the assembly */
 	double *x_ref;     /* [n][3] positions at the last neighbour rebuild */
 	uint8_t *flag;     /* PF_* */
 	int32_t *surf;     /* slot in the lateral surface list, or -1 */
 	int32_t *pslot[2]; /* contact slot with platen 0 (bottom) / 1 (top), or -1 */
-	double *omega2;    /* 1/s^2, bound on ω² from the bonds (timestep.c) */
 } particles;
+
+/* 1/m and 1/I (I = 2/5 m r², a solid sphere) of particle i, computed where
+ * they are needed rather than stored: one expression, so the same bits
+ * everywhere. */
+static inline double particle_inv_m(const particles *P, size_t i) { return 1 / P->m[i]; }
+static inline double particle_inv_i(const particles *P, size_t i)
+{
+	return 1 / (0.4 * P->m[i] * P->r[i] * P->r[i]);
+}
 
 /* The parts of the engine state. Under a domain decomposition the
  * particles, pairs and scratch are each rank's own; the boundary's sums,
@@ -131,7 +139,6 @@ typedef struct {
 	pair_sums *bblock, *cblock; /* bonds and contacts by the block of their i */
 	size_t *cfirst;             /* [particle blocks + 1] first contact of each */
 	particle_sums *pblock;
-	double *z;   /* [n] */
 	double *acc; /* [n][6] sum of the bond forces and torques per unit radius */
 } engine_scratch;
 

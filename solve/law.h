@@ -34,9 +34,9 @@
 #include "lib/cfg.h"
 #include "solve/clones.h"
 
-enum { LAW_NHIST = 4 };
+enum { LAW_NHIST = 3 };
 
-/* One bond (or contact) as the engine stores it: 80 bytes. */
+/* One bond (or contact) as the engine stores it: 72 bytes. */
 typedef struct {
 	int32_t i, j;        /* particle indices */
 	double d0;           /* m, reference length: centre distance at bonding */
@@ -128,10 +128,14 @@ typedef struct law {
 	              law_out *out);
 	/* The same over a batch, exactly (bit for bit) as force bond by bond. */
 	void (*force_batch)(const law_params *p, law_batch *b);
-	/* Elastic energy stored in the bond (J). */
-	double (*energy)(const law_params *p, const law_pair *pair, const bond *b);
+	/* Elastic energy stored in the bond (J) after the force() call whose
+	 * normal displacement was un (m). */
+	double (*energy)(const law_params *p, const law_pair *pair, const bond *b, double un);
 	/* Damage in tension and in shear, each in [0, 1]. */
 	void (*damage)(const law_params *p, const bond *b, double *dn, double *ds);
+	/* The slot of h in which checkpoints written before h had LAW_NHIST
+	 * slots kept the last u_n: the rest are this layout's, in order. */
+	int h_dropped;
 } law;
 
 /* Lane q of a batch as force() takes it, and back. */

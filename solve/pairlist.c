@@ -7,7 +7,7 @@
 
 void pairlist_free(pairlist *l)
 {
-	free(l->rec), free(l->f), free(l->k), free(l->off), free(l->ref);
+	free(l->rec), free(l->f), free(l->off), free(l->ref);
 	memset(l, 0, sizeof *l);
 }
 

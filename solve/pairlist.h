@@ -16,10 +16,12 @@
 
 typedef struct {
 	size_t n, cap;
-	bond *rec;
-	double *f;    /* [n][6]: force on i (N), then torque per unit radius (N): the
-	                 torque on i is r_i times it, on j r_j times it */
-	double *k;    /* [n][3] kn, ks, cn of a contact (contacts only) */
+	bond *rec; /* a contact keeps its K_n, K_s, C_n in h[0..2] */
+	double *f; /* [n][fcols]: force on i (N); contacts (fcols 6) then the
+	              torque per unit radius (N): the torque on i is r_i times
+	              it, on j r_j times it. Bonds keep the force only (fcols
+	              3): their torques are added as they are computed. */
+	int fcols;
 	int32_t *off; /* [np + 1] (contacts only: bonds add their forces as
 	                 they are computed, bonds.h) */
 	int32_t *ref; /* [2n] pair index * 2 + 1 if the particle is its j */

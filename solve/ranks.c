@@ -272,7 +272,7 @@ static void gather_pairs(pairlist *L, const size_t *blkfirst, const rank_split *
 		first[q] = blkfirst[nblocks(R->pfirst[q])];
 	gather_rows(L->rec, first, sizeof *L->rec, R->size);
 	if (forces)
-		gather_rows(L->f, first, 6 * sizeof *L->f, R->size);
+		gather_rows(L->f, first, (size_t)L->fcols * sizeof *L->f, R->size);
 	free(first);
 }
 #endif

@@ -15,16 +15,16 @@ static const char *const phase_names[] = {"neighbour", "bonds", "contacts", "int
 size_t engine_bytes(const engine *e)
 {
 	size_t n = e->p.n;
-	/* x v w x_ref (3 each), r m inv_m inv_i omega2, orig surf pslot[2], flag,
-	 * and the sum of the bond forces on each (6) */
-	size_t bytes = n * (12 * sizeof(double) + 5 * sizeof(double) + 4 * sizeof(int32_t) + 1 +
+	/* x v w x_ref (3 each), r m, orig surf pslot[2], flag, and the sum of
+	 * the bond forces on each (6) */
+	size_t bytes = n * (12 * sizeof(double) + 2 * sizeof(double) + 4 * sizeof(int32_t) + 1 +
 	                    6 * sizeof(double));
 	const bond_split *S = &e->pairs.split;
 	bytes += S->cfirst ? S->cfirst[S->n] * (sizeof(int32_t) + sizeof(bond_part)) : 0;
-	/* bonds: record, force; contacts: record, force, gather index, constants */
-	bytes += e->pairs.bonds.cap * (sizeof(bond) + 6 * sizeof(double));
-	bytes += e->pairs.contacts.cap * (sizeof(bond) + 6 * sizeof(double) + 2 * sizeof(int32_t) +
-	                                  3 * sizeof(double)) +
+	/* bonds: record, force; contacts: record (with the constants), force,
+	 * gather index */
+	bytes += e->pairs.bonds.cap * (sizeof(bond) + 3 * sizeof(double));
+	bytes += e->pairs.contacts.cap * (sizeof(bond) + 6 * sizeof(double) + 2 * sizeof(int32_t)) +
 	         (n + 1) * sizeof(int32_t);
 	for (int k = 0; k < 2; k++)
 		bytes += e->bc.pl.cap[k] * (2 * sizeof(platen_contact) + sizeof(int32_t));

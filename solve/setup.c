@@ -70,9 +70,6 @@ static int load_particles(engine *e, const dem_assembly *a)
 	P->x_ref = xmalloc((3 * n + 1) * sizeof *P->x_ref);
 	P->r = xmalloc((n + 1) * sizeof *P->r);
 	P->m = xmalloc((n + 1) * sizeof *P->m);
-	P->inv_m = xmalloc((n + 1) * sizeof *P->inv_m);
-	P->inv_i = xmalloc((n + 1) * sizeof *P->inv_i);
-	P->omega2 = xcalloc(n + 1, sizeof *P->omega2);
 	P->flag = xcalloc(n + 1, 1);
 	P->surf = xmalloc((n + 1) * sizeof *P->surf);
 	for (int k = 0; k < 2; k++) {
@@ -93,9 +90,8 @@ static int load_particles(engine *e, const dem_assembly *a)
 		memcpy(P->x + 3 * i, a->x + 3 * o, 3 * sizeof *P->x);
 		P->r[i] = r;
 		P->m[i] = rho * 4.0 / 3.0 * DEM_PI * r * r * r;
-		P->inv_m[i] = 1 / P->m[i];
-		P->inv_i[i] = 1 / (0.4 * P->m[i] * r * r);
-		if (!(P->inv_m[i] > 0 && P->inv_i[i] > 0 && isfinite(P->inv_i[i])))
+		double inv_m = particle_inv_m(P, i), inv_i = particle_inv_i(P, i);
+		if (!(inv_m > 0 && inv_i > 0 && isfinite(inv_i)))
 			return err_set(
 			    "particle %d: mass %g kg from the density %g kg/m^3: expected a "
 			    "finite positive mass and moment of inertia (check the "
@@ -167,8 +163,8 @@ static law_packing packing_of(const engine *e, const dem_assembly *a)
 	                     .coordination = 2.0 * (double)e->pairs.bonds.n / (double)e->p.n};
 }
 
-/* Each particle's share of the bound on ω² from its bonds (timestep.c). */
-static void bond_bounds(engine *e)
+/* The largest fraction of critical damping of the bonds (Eq. 13). */
+static void bond_damping(engine *e)
 {
 	particles *P = &e->p;
 	double xi = e->cs->mat.damping;
@@ -179,11 +175,6 @@ static void bond_bounds(engine *e)
 		    .ri = P->r[i], .rj = P->r[j], .mi = P->m[i], .mj = P->m[j], .d0 = bd->d0};
 		law_const c;
 		e->law->constants(e->lp, &q, &c);
-		double ai = bd->d0 * P->r[i] / (P->r[i] + P->r[j]), aj = bd->d0 - ai;
-		double w2 = pair_omega2(c.kn, c.ks, P->m[i], P->m[j], 1 / P->inv_i[i],
-		                        1 / P->inv_i[j], ai, aj);
-		P->omega2[i] += w2;
-		P->omega2[j] += w2;
 		double mij = P->m[i] * P->m[j] / (P->m[i] + P->m[j]);
 		xi = fmax(xi, c.cn / (2 * sqrt(mij * c.kn)));
 	}
@@ -215,7 +206,6 @@ static void scratch_alloc(engine *e, int threads)
 	e->scratch.cfirst = xcalloc(nblocks(n) + 1, sizeof *e->scratch.cfirst);
 	e->scratch.acc = xmalloc((6 * n + 1) * sizeof *e->scratch.acc);
 	e->out.thread_cracks = xcalloc((size_t)e->nthreads, sizeof *e->out.thread_cracks);
-	e->scratch.z = xmalloc((n + 1) * sizeof *e->scratch.z);
 }
 
 int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const engine_opts *o)
@@ -238,7 +228,7 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 	law_packing pk = packing_of(e, a);
 	e->law->setup(e->lp, &pk);
 	bonds_init_history(e);
-	bond_bounds(e);
+	bond_damping(e);
 	platens_init(e);
 	if (cs->surface_bin > 0 && cs->surface_bin < 0.2 * e->frame.r_mean)
 		return err_set("surface.bin %g m: expected at least a tenth of the mean sphere "
@@ -305,7 +295,7 @@ void engine_free(engine *e)
 {
 	particles *P = &e->p;
 	free(P->x), free(P->v), free(P->w), free(P->x_ref), free(P->r), free(P->m);
-	free(P->inv_m), free(P->inv_i), free(P->omega2), free(P->flag), free(P->surf);
+	free(P->flag), free(P->surf);
 	free(P->orig), free(P->pslot[0]), free(P->pslot[1]);
 	pairlist_free(&e->pairs.bonds);
 	pairlist_free(&e->pairs.contacts);
@@ -315,7 +305,7 @@ void engine_free(engine *e)
 	surface_free(&e->bc.surf);
 	gauge_free(&e->bc.gauge);
 	free(e->scratch.pblock), free(e->scratch.bblock), free(e->scratch.cblock),
-	    free(e->scratch.cfirst), free(e->scratch.z), free(e->scratch.acc);
+	    free(e->scratch.cfirst), free(e->scratch.acc);
 	bonds_split_free(&e->pairs.split);
 	ranks_free(&e->ranks);
 	for (int t = 0; t < e->nthreads; t++)

@@ -148,7 +148,7 @@ static inline void move_free(const engine *e, int32_t i, const double F[3], cons
 	const particles *P = &e->p;
 	const double *v = P->v + 3 * i, *w = P->w + 3 * i;
 	double dt = e->clock.dt;
-	double im = P->inv_m[i], ii = P->inv_i[i];
+	double im = particle_inv_m(P, (size_t)i), ii = particle_inv_i(P, (size_t)i);
 	double fd[3], td[3];
 	damp(e->cs->damping_form, e->cs->alpha_t, F, v, dt * im, fd);
 	damp(e->cs->damping_form, e->cs->alpha_r, T, w, dt * ii, td);

@@ -17,7 +17,9 @@
  * both spheres). A platen contact is the same with one body. Because the
  * bound is rigorous, a safety factor near 1 is stable. */
 #include <math.h>
+#include <stdlib.h>
 
+#include "lib/err.h"
 #include "solve/engine.h"
 #include "solve/timestep.h"
 
@@ -46,19 +48,45 @@ static double contact_omega2(const engine *e, size_t i)
 		}
 		if (d2 >= c->d0 * c->d0)
 			continue;
-		const double *kk = C->k + 3 * (C->ref[q] >> 1);
-		sum += pair_omega2(kk[0], kk[1], P->m[c->i], P->m[c->j], 1 / P->inv_i[c->i],
-		                   1 / P->inv_i[c->j], P->r[c->i], P->r[c->j]);
+		const double *kk = c->h;
+		sum += pair_omega2(kk[0], kk[1], P->m[c->i], P->m[c->j],
+		                   1 / particle_inv_i(P, (size_t)c->i),
+		                   1 / particle_inv_i(P, (size_t)c->j), P->r[c->i], P->r[c->j]);
 	}
 	for (int k = 0; k < 2; k++) {
 		int32_t s = P->pslot[k][i];
 		if (s < 0)
 			continue;
 		const platen_contact *pc = &e->bc.pl.pc[k][s];
-		double lin = P->inv_m[i];
+		double lin = particle_inv_m(P, i);
 		double normal = pc->kn * lin,
-		       shear = pc->ks * (lin + P->r[i] * P->r[i] * P->inv_i[i]);
+		       shear = pc->ks * (lin + P->r[i] * P->r[i] * particle_inv_i(P, i));
 		sum += normal > shear ? normal : shear;
+	}
+	return sum;
+}
+
+/* The bound on ω² of bond b, the share of each of its particles. */
+static double bond_omega2(const engine *e, size_t b)
+{
+	const particles *P = &e->p;
+	const bond *bd = &e->pairs.bonds.rec[b];
+	int32_t i = bd->i, j = bd->j;
+	law_pair q = {.ri = P->r[i], .rj = P->r[j], .mi = P->m[i], .mj = P->m[j], .d0 = bd->d0};
+	law_const c;
+	e->law->constants(e->lp, &q, &c);
+	double ai = bd->d0 * P->r[i] / (P->r[i] + P->r[j]), aj = bd->d0 - ai;
+	return pair_omega2(c.kn, c.ks, P->m[i], P->m[j], 1 / particle_inv_i(P, (size_t)i),
+	                   1 / particle_inv_i(P, (size_t)j), ai, aj);
+}
+
+double timestep_bond_omega2(const engine *e, size_t i)
+{
+	double sum = 0;
+	for (size_t b = 0; b < e->pairs.bonds.n; b++) {
+		const bond *bd = &e->pairs.bonds.rec[b];
+		if ((size_t)bd->i == i || (size_t)bd->j == i)
+			sum += bond_omega2(e, b);
 	}
 	return sum;
 }
@@ -68,13 +96,21 @@ double timestep_critical(const engine *e, int with_contacts, size_t *worst)
 	const particles *P = &e->p;
 	double top = 0;
 	*worst = 0;
+	/* Each particle's bound from its bonds, summed in bond order. */
+	double *bw2 = xcalloc(P->n + 1, sizeof *bw2);
+	for (size_t b = 0; b < e->pairs.bonds.n; b++) {
+		double w2 = bond_omega2(e, b);
+		bw2[e->pairs.bonds.rec[b].i] += w2;
+		bw2[e->pairs.bonds.rec[b].j] += w2;
+	}
 	for (size_t i = 0; i < P->n; i++) {
-		double w2 = P->omega2[i] + (with_contacts ? contact_omega2(e, i) : 0);
+		double w2 = bw2[i] + (with_contacts ? contact_omega2(e, i) : 0);
 		if (w2 > top) {
 			top = w2;
 			*worst = i;
 		}
 	}
+	free(bw2);
 	if (top <= 0)
 		return INFINITY;
 	return 2 / sqrt(top) * damping_factor(e->clock.xi_max);

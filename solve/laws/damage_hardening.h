@@ -41,7 +41,6 @@
  *   h[0]  d_n, tension damage in [0, 1]
  *   h[1]  d_s, shear damage in [0, 1]
  *   h[2]  c_max, the largest compressive strain reached (>= 0)
- *   h[3]  u_n of the last force() call (m), so energy() can be evaluated
  * c_p is recomputed from c_max, so the plastic state costs one slot.
  */
 #ifndef DEM_LAWS_DAMAGE_HARDENING_H
@@ -124,15 +123,17 @@ static inline double dh_normal(const dh_params *q, dh_curve curve, const void *l
 	return q->E0 * e * dh_secant(d, q->delta_n);
 }
 
-/* Elastic energy of the normal spring in the state stored in h (changing
- * nothing): 1/2 F^2 / K with the current stiffness, K_n0 in compression and
+/* Elastic energy of the normal spring in the state stored in h at the
+ * normal displacement un of the last force() call (changing nothing):
+ * 1/2 F^2 / K with the current stiffness, K_n0 in compression and
  * the damaged secant in tension, i.e. 1/2 A d sigma^2 / E. */
 static inline double dh_normal_energy(const dh_params *q, dh_curve curve, const void *law,
-                                      double area, double d0, const double h[LAW_NHIST], int broken)
+                                      double area, double d0, const double h[LAW_NHIST], int broken,
+                                      double un)
 {
-	double copy[LAW_NHIST] = {h[0], h[1], h[2], h[3]}, open, w = 0;
+	double copy[LAW_NHIST] = {h[0], h[1], h[2]}, open, w = 0;
 	int broke = 0;
-	double s = dh_normal(q, curve, law, h[3] * (1 / d0), copy, broken, &open, &broke, &w);
+	double s = dh_normal(q, curve, law, un * (1 / d0), copy, broken, &open, &broke, &w);
 	if (s == 0)
 		return 0;
 	double e = q->E0 * (s < 0 ? 1 : dh_secant(h[0], q->delta_n));

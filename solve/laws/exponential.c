@@ -28,7 +28,7 @@
  * broken bonds (in either mode) are purely frictional, F_n tan(phi_c).
  *
  * History as in damage_hardening.h: h[0] d_n, h[1] d_s (0, or 1 once broken in
- * shear), h[2] historical maximum compressive strain, h[3] last u_n.
+ * shear), h[2] historical maximum compressive strain.
  */
 #include <stdlib.h>
 
@@ -111,7 +111,6 @@ static inline void exp_force(const law_params *lp, const law_pair *pair, bond *b
 	int intact = b->state < BOND_BROKEN_TENSION, broke = 0;
 	double open, w = 0;
 	out->failed = 0;
-	b->h[3] = k->un;
 	double fn =
 	    A * dh_normal(&p->q, exp_curve, p, k->un * inv_d, b->h, !intact, &open, &broke, &w);
 	out->e_damage += A * pair->d0 * w;
@@ -138,12 +137,12 @@ static inline void exp_force(const law_params *lp, const law_pair *pair, bond *b
 
 LAW_BATCH(exp, exp_force)
 
-static double exp_energy(const law_params *lp, const law_pair *pair, const bond *b)
+static double exp_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)
 {
 	const exp_params *p = (const exp_params *)lp;
 	int intact = b->state < BOND_BROKEN_TENSION;
 	double A = area_of(1, pair), ks = A * p->q.E0 / pair->d0 * p->ks_over_kn;
-	return dh_normal_energy(&p->q, exp_curve, p, A, pair->d0, b->h, !intact) +
+	return dh_normal_energy(&p->q, exp_curve, p, A, pair->d0, b->h, !intact, un) +
 	       0.5 * ks * v3_dot(b->t, b->t);
 }
 
@@ -162,4 +161,5 @@ const law law_exponential = {
     .force_batch = exp_batch,
     .energy = exp_energy,
     .damage = dh_damage,
+    .h_dropped = 3,
 };

@@ -28,8 +28,8 @@
  *
  * No contact damping (Yade uses its global damping only): C_n = 0.
  *
- * History: h[0] the shift of the reference distance from d (m), h[1] the
- * last u_n (m) for energy(), h[2..3] unused; t the elastic shear
+ * History: h[0] the shift of the reference distance from d (m), h[1..2]
+ * unused; t the elastic shear
  * displacement, F_s = k_s t. A JCFPM bond is intact or broken, never
  * damaged.
  */
@@ -118,7 +118,6 @@ static inline void jcfpm_force(const law_params *lp, const law_pair *pair, bond 
 	double u = k->un - b->h[0];
 	int intact = b->state == BOND_INTACT;
 	out->failed = 0;
-	b->h[1] = k->un;
 	if (intact && u > p->sigma_t * A / kn) { /* its stored energy is released */
 		out->e_damage += 0.5 * kn * u * u + 0.5 * ks * v3_dot(b->t, b->t);
 		shear_break(b, out, BOND_BROKEN_TENSION, CRACK_TENSION);
@@ -174,15 +173,14 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void jcfpm_batch(const law_par
 		B->t[0][q] = ok ? t0 : B->t[0][q];
 		B->t[1][q] = ok ? t1 : B->t[1][q];
 		B->t[2][q] = ok ? t2 : B->t[2][q];
-		B->h[1][q] = ok ? B->un[q] : B->h[1][q];
 	}
 	LAW_BATCH_REST(jcfpm_force, lp, B, elastic);
 }
 
-static double jcfpm_energy(const law_params *lp, const law_pair *pair, const bond *b)
+static double jcfpm_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)
 {
 	const jcfpm_params *p = (const jcfpm_params *)lp;
-	double kn = stiffness(p, pair), u = b->h[1] - b->h[0];
+	double kn = stiffness(p, pair), u = un - b->h[0];
 	if (b->state != BOND_INTACT && u > 0)
 		u = 0;
 	return 0.5 * kn * u * u + 0.5 * p->ks_over_kn * kn * v3_dot(b->t, b->t);
@@ -210,4 +208,5 @@ const law law_jcfpm = {
     .force_batch = jcfpm_batch,
     .energy = jcfpm_energy,
     .damage = jcfpm_damage,
+    .h_dropped = 1,
 };

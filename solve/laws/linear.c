@@ -22,7 +22,7 @@
  * the elastic shear force at failure (clipped by the Coulomb limit).
  *
  * History: t = shear displacement (intact) or shear force (broken);
- * h[0] = u_n of the last call (for the energy), h[1..3] = K_n, K_s, C_n. */
+ * h[0..2] = K_n, K_s, C_n. */
 #include <math.h>
 #include <stdlib.h>
 
@@ -100,24 +100,22 @@ static void linear_init(const law_params *p, const law_pair *q, bond *b)
 	linear_constants(p, q, &c);
 	for (int k = 0; k < 3; k++)
 		b->t[k] = 0;
-	b->h[0] = 0;
-	b->h[1] = c.kn;
-	b->h[2] = c.ks;
-	b->h[3] = c.cn;
+	b->h[0] = c.kn;
+	b->h[1] = c.ks;
+	b->h[2] = c.cn;
 	b->state = BOND_INTACT;
 }
 
 static inline double intact_energy(const bond *b, double un)
 {
 	double tt = b->t[0] * b->t[0] + b->t[1] * b->t[1] + b->t[2] * b->t[2];
-	return 0.5 * b->h[1] * un * un + 0.5 * b->h[2] * tt;
+	return 0.5 * b->h[0] * un * un + 0.5 * b->h[1] * tt;
 }
 
 static inline void linear_force_one(const law_params *p, const law_pair *q, bond *b,
                                     const law_kin *k, law_out *out)
 {
-	cundall c = {.kn = b->h[1], .ks = b->h[2], .cn = b->h[3], .mu = p->mu};
-	b->h[0] = k->un;
+	cundall c = {.kn = b->h[0], .ks = b->h[1], .cn = b->h[2], .mu = p->mu};
 	out->failed = 0;
 	if (b->state >= BOND_BROKEN_TENSION) {
 		cundall_force(&c, k->un, k->vn, k->dus, b->t, out);
@@ -169,7 +167,7 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void linear_batch(const law_pa
 	int32_t elastic[LAW_LANES];
 	int n = B->n;
 	for (int q = 0; q < n; q++) {
-		double kn = B->h[1][q], ks = B->h[2][q], cn = B->h[3][q], un = B->un[q];
+		double kn = B->h[0][q], ks = B->h[1][q], cn = B->h[2][q], un = B->un[q];
 		double t0 = B->t[0][q] + B->dus[0][q], t1 = B->t[1][q] + B->dus[1][q],
 		       t2 = B->t[2][q] + B->dus[2][q];
 		double area = area_of_radii(p->area.alpha, B->ri[q], B->rj[q]);
@@ -189,18 +187,17 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void linear_batch(const law_pa
 		B->t[0][q] = ok ? t0 : B->t[0][q];
 		B->t[1][q] = ok ? t1 : B->t[1][q];
 		B->t[2][q] = ok ? t2 : B->t[2][q];
-		B->h[0][q] = ok ? un : B->h[0][q];
 	}
 	LAW_BATCH_REST(linear_force_one, p, B, elastic);
 }
 
-static double linear_energy(const law_params *p, const law_pair *q, const bond *b)
+static double linear_energy(const law_params *p, const law_pair *q, const bond *b, double un)
 {
 	(void)q;
 	if (b->state < BOND_BROKEN_TENSION)
-		return intact_energy(b, b->h[0]);
-	cundall c = {.kn = b->h[1], .ks = b->h[2], .cn = b->h[3], .mu = p->mu};
-	return cundall_energy(&c, b->h[0], b->t);
+		return intact_energy(b, un);
+	cundall c = {.kn = b->h[0], .ks = b->h[1], .cn = b->h[2], .mu = p->mu};
+	return cundall_energy(&c, un, b->t);
 }
 
 static void linear_damage(const law_params *p, const bond *b, double *dn, double *ds)
@@ -225,4 +222,5 @@ const law law_linear = {
     .force_batch = linear_batch,
     .energy = linear_energy,
     .damage = linear_damage,
+    .h_dropped = 0,
 };

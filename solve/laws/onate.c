@@ -39,7 +39,7 @@
  * the softening branch ends at zero force.
  *
  * History: h[0] d_n, h[1] d_s, h[2] historical maximum compressive strain,
- * h[3] last u_n (damage_hardening.h); t the accumulated shear displacement u_s while
+ * (damage_hardening.h); t the accumulated shear displacement u_s while
  * bonded, the elastic shear displacement of the frictional contact after.
  * A bond is BOND_DAMAGED once d_n or d_s > 0.
  */
@@ -157,7 +157,6 @@ static inline void onate_force(const law_params *lp, const law_pair *pair, bond 
 	int intact = b->state < BOND_BROKEN_TENSION, broke = 0;
 	double open, w = 0;
 	out->failed = 0;
-	b->h[3] = k->un;
 	double fn =
 	    A * dh_normal(&p->q, onate_curve, p, k->un * inv_d, b->h, !intact, &open, &broke, &w);
 	out->e_damage += A * pair->d0 * w;
@@ -253,7 +252,6 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void onate_batch(const law_par
 		B->t[0][q] = ok ? t0 : B->t[0][q];
 		B->t[1][q] = ok ? t1 : B->t[1][q];
 		B->t[2][q] = ok ? t2 : B->t[2][q];
-		B->h[3][q] = ok ? B->un[q] : B->h[3][q];
 	}
 	for (int q = 0; q < n; q++)
 		if (elastic[q])
@@ -261,14 +259,14 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void onate_batch(const law_par
 	LAW_BATCH_REST(onate_force, lp, B, elastic);
 }
 
-static double onate_energy(const law_params *lp, const law_pair *pair, const bond *b)
+static double onate_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)
 {
 	const onate_params *p = (const onate_params *)lp;
 	int intact = b->state < BOND_BROKEN_TENSION;
 	double A = area_of(p->area.alpha, pair), kn = A * p->q.E0 / pair->d0,
 	       ks = kn * p->ks_over_kn;
 	double ss = intact ? dh_secant(b->h[1], p->delta_s) : 1;
-	return dh_normal_energy(&p->q, onate_curve, p, A, pair->d0, b->h, !intact) +
+	return dh_normal_energy(&p->q, onate_curve, p, A, pair->d0, b->h, !intact, un) +
 	       0.5 * ks * ss * v3_dot(b->t, b->t);
 }
 
@@ -287,4 +285,5 @@ const law law_onate = {
     .force_batch = onate_batch,
     .energy = onate_energy,
     .damage = dh_damage,
+    .h_dropped = 3,
 };

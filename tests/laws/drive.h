@@ -49,6 +49,10 @@ static inline const char *drive_error(const law *L, const char *json, const char
 	return err_msg();
 }
 
+/* The normal displacement of the last force() call (0 for a new bond), for
+ * energy(). */
+static double drive_last_un;
+
 /* A new bond between the two spheres of pair. */
 static inline bond drive_bond(const law *L, const law_params *p, const law_pair *pair)
 {
@@ -58,6 +62,7 @@ static inline bond drive_bond(const law *L, const law_params *p, const law_pair 
 	b.j = 1;
 	b.d0 = pair->d0;
 	L->init(p, pair, &b);
+	drive_last_un = 0;
 	return b;
 }
 
@@ -71,7 +76,15 @@ static inline law_out drive_step(const law *L, const law_params *p, const law_pa
 	memset(&o, 0x55, sizeof o);
 	o.fn_viscous = o.e_damage = o.e_friction = 0; /* as the engine does */
 	L->force(p, pair, b, &k, &o);
+	drive_last_un = un;
 	return o;
+}
+
+/* The elastic energy stored in the bond after the last drive_step. */
+static inline double drive_energy(const law *L, const law_params *p, const law_pair *pair,
+                                  const bond *b)
+{
+	return L->energy(p, pair, b, drive_last_un);
 }
 
 /* Normal path from un0 to un1 in n equal steps with no shear. Returns the
@@ -122,9 +135,9 @@ static inline law_out drive_booked(const law *L, const law_params *p, const law_
 static inline double drive_balance(const law *L, const law_params *p, const law_pair *pair, bond *b,
                                    drive_books *k, double un, double dx, double dy, double dz)
 {
-	double e0 = L->energy(p, pair, b), w0 = k->work, d0 = k->dissipated;
+	double e0 = drive_energy(L, p, pair, b), w0 = k->work, d0 = k->dissipated;
 	drive_booked(L, p, pair, b, k, un, dx, dy, dz);
-	return (k->work - w0) - (L->energy(p, pair, b) - e0) - (k->dissipated - d0);
+	return (k->work - w0) - (drive_energy(L, p, pair, b) - e0) - (k->dissipated - d0);
 }
 
 static inline double drive_fs(const law_out *o)
