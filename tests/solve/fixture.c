@@ -22,6 +22,16 @@ void fixture_cylinder(dem_assembly *a, uint64_t seed)
 	fixture_lattice(a, &l);
 }
 
+void fixture_spheres(dem_assembly *a, size_t n)
+{
+	memset(a, 0, sizeof *a);
+	prov_init(&a->prov, "test", "{}", 0);
+	a->n = n;
+	a->x = xcalloc(3 * n, sizeof *a->x);
+	a->r = xcalloc(n, sizeof *a->r);
+	a->material = xcalloc(n, sizeof *a->material);
+}
+
 void fixture_lattice(dem_assembly *a, const lattice *l)
 {
 	memset(a, 0, sizeof *a);

@@ -21,6 +21,10 @@ typedef struct {
 	uint64_t seed;
 } lattice;
 
+/* n spheres for a test to place (caller frees with assembly_free):
+ * positions and radii zero, every sphere of the first material, no
+ * geometry. */
+void fixture_spheres(dem_assembly *a, size_t n);
 /* Fill a (caller frees with assembly_free). Geometry: a box or a cylinder
  * along z, centred at the origin, sized to the sphere extents. */
 void fixture_lattice(dem_assembly *a, const lattice *l);

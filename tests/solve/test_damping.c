@@ -23,6 +23,7 @@
 
 #include "lib/vec3.h"
 #include "tests/check.h"
+#include "tests/solve/fixture.h"
 #include "tests/solve/harness.h"
 
 static const char *case_json =
@@ -36,12 +37,7 @@ static const char *case_json =
 
 static void one_sphere(dem_assembly *a, double r)
 {
-	memset(a, 0, sizeof *a);
-	prov_init(&a->prov, "test", "{}", 0);
-	a->n = 3;
-	a->x = calloc(9, sizeof *a->x);
-	a->r = malloc(3 * sizeof *a->r);
-	a->material = calloc(3, sizeof *a->material);
+	fixture_spheres(a, 3);
 	a->x[0] = 5e-3; /* on the x axis, 5 mm from the loading axis z */
 	a->x[5] = -3e-3;
 	a->x[8] = -3e-3 - 2 * r;

@@ -15,6 +15,7 @@
 
 #include "lib/vec3.h"
 #include "tests/check.h"
+#include "tests/solve/fixture.h"
 #include "tests/solve/harness.h"
 
 static const char *case_json =
@@ -27,12 +28,7 @@ static const char *case_json =
 
 static void pair_assembly(dem_assembly *a, const double n[3], double ri, double rj, double d)
 {
-	memset(a, 0, sizeof *a);
-	prov_init(&a->prov, "test", "{}", 0);
-	a->n = 2;
-	a->x = calloc(6, sizeof *a->x);
-	a->r = malloc(2 * sizeof *a->r);
-	a->material = calloc(2, sizeof *a->material);
+	fixture_spheres(a, 2);
 	for (int k = 0; k < 3; k++)
 		a->x[3 + k] = d * n[k];
 	a->r[0] = ri;
