@@ -73,17 +73,17 @@ static void identifiability(report *rp)
 	for (int k = 0; k < sp->nfree; k++)
 		if (!(s->sigma[k] <= SENS_UNIDENTIFIED))
 			note(rp,
-			     "%s is not identified by these targets: their tolerances leave it "
-			     "uncertain by %s",
+			     "%s is not identified by these targets: their tolerances and noise "
+			     "leave it uncertain by %s",
 			     sp->key[k].name,
 			     isfinite(s->sigma[k]) ? "more than 25 %"
 			                           : "any amount (a direction they "
 			                             "do not see)");
 		else if (s->sigma[k] > SENS_LOOSE)
 			note(rp,
-			     "%s is loosely identified: the targets' tolerances leave it uncertain "
-			     "by "
-			     "±%.3g %% (tighter tolerances on the targets it moves would fix it "
+			     "%s is loosely identified: the targets' tolerances and noise leave it "
+			     "uncertain by ±%.3g %% (tighter tolerances on the targets it moves, "
+			     "or less noise in them from a larger search specimen, would fix it "
 			     "better)",
 			     sp->key[k].name, 100 * s->sigma[k]);
 	for (int k = 0; k < sp->nfree; k++)

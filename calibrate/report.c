@@ -90,7 +90,7 @@ static void params_md(FILE *f, const report *rp)
 	const path_point *b = best_point(rp);
 	fprintf(f,
 	        "## Parameters\n\n| key | start | calibrated | bounds | uncertainty from the "
-	        "tolerances |%s\n|---|---|---|---|---|%s\n",
+	        "tolerances and noise |%s\n|---|---|---|---|---|%s\n",
 	        rp->truth ? " truth | error |" : "", rp->truth ? "---|---|" : "");
 	for (int k = 0; k < sp->nkey; k++) {
 		const cal_key *p = &sp->key[k];

@@ -60,14 +60,19 @@ static double cosine(int n, const double *x, int sx, const double *y, int sy)
 	return xx > 0 && yy > 0 ? xy / sqrt(xx * yy) : 0;
 }
 
-/* Uncertainties and cosines from the elasticities. */
-static void analyse(const cal_spec *sp, sensitivity *s)
+void sensitivity_analyse(const cal_spec *sp, sensitivity *s)
 {
 	int n = sp->nfree, m = sp->ntarget;
+	/* A target fixes the keys no better than its tolerance and its noise
+	 * together: a match within 2 % of a quantity that moves by 10 % between
+	 * neighbouring points says little about the keys only it sees. */
 	double jw[CAL_MAX_TARGETS][CAL_MAX_FREE];
-	for (int i = 0; i < m; i++)
+	for (int i = 0; i < m; i++) {
+		double tol = sp->target[i].tol;
+		double width = isfinite(s->noise[i]) ? hypot(tol, s->noise[i]) : tol;
 		for (int k = 0; k < n; k++)
-			jw[i][k] = s->J[i][k] * sqrt(sp->target[i].weight) / sp->target[i].tol;
+			jw[i][k] = s->J[i][k] * sqrt(sp->target[i].weight) / width;
+	}
 	double f[CAL_MAX_FREE][CAL_MAX_FREE], v[CAL_MAX_FREE][CAL_MAX_FREE];
 	for (int k = 0; k < n; k++)
 		for (int l = 0; l < n; l++) {
@@ -144,6 +149,6 @@ int sensitivity_run(evaluator *e, const double *v, const outcome *at, sensitivit
 		s->noise[i] = sqrt(sum / n);
 	}
 	s->ran = 1;
-	analyse(sp, s);
+	sensitivity_analyse(sp, s);
 	return 0;
 }

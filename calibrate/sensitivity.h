@@ -4,8 +4,9 @@
  *   J_ik = (dq_i / |T_i|) / (dp_k / p_k)
  * (the relative change of the quantity, as a fraction of its target, per
  * relative change of the key); from them, with the residuals' weights
- * W_i = w_i / tol_i^2 (calibrate/objective.h), the uncertainty of each key
- * that the targets' tolerances leave, sqrt of the diagonal of
+ * W_i = w_i / (tol_i^2 + noise_i^2) (calibrate/objective.h's, widened by
+ * each target's measured noise), the uncertainty of each key that the
+ * targets' tolerances and noise leave, sqrt of the diagonal of
  * (J^T W J)^-1 (the pseudo-inverse: a key along a direction the targets
  * do not see is not identifiable), the cosines between keys' columns (two
  * keys trade off when their columns are nearly parallel) and between
@@ -34,6 +35,9 @@ typedef struct {
 /* The sensitivities at the key values v, whose outcome is at. 0; -1 when
  * a signal stopped it or with err_set() on an error of the calibration. */
 int sensitivity_run(evaluator *e, const double *v, const outcome *at, sensitivity *s);
+
+/* The uncertainties and cosines from s->J and s->noise (NaN: none measured). */
+void sensitivity_analyse(const cal_spec *sp, sensitivity *s);
 
 /* Above this |cosine| two keys trade off, or two targets move together. */
 #define SENS_PARALLEL 0.95

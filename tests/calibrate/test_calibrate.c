@@ -1,6 +1,7 @@
 /* calibrate's pieces without a run: the projection on the scales, the search
  * space (values and coordinates, the keys that follow the scales), the run
- * log read back as written, and the calibration file's checks. */
+ * log read back as written, the calibration file's checks, and the
+ * uncertainties the sensitivities leave. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,6 +10,7 @@
 #include "calibrate/quantity.h"
 #include "calibrate/runlog.h"
 #include "calibrate/scaling.h"
+#include "calibrate/sensitivity.h"
 #include "calibrate/space.h"
 #include "calibrate/spec.h"
 #include "lib/err.h"
@@ -123,10 +125,35 @@ static void test_runlog(const cal_spec *sp, const char *dir)
 	remove(path);
 }
 
+/* Two keys, two targets within 2 %: each target seen by one key gives it
+ * the tolerance as its uncertainty, widened by the target's noise; seen by
+ * both (sum and difference), tol / sqrt(2) each. */
+static void test_uncertainty(void)
+{
+	static cal_spec sp;
+	sp.nfree = 2, sp.ntarget = 2;
+	for (int i = 0; i < 2; i++)
+		sp.target[i].tol = 0.02, sp.target[i].weight = 1;
+	sensitivity s = {.J = {{1, 0}, {0, 2}}, .noise = {NAN, 0.1}};
+	sensitivity_analyse(&sp, &s);
+	CHECK_NEAR(s.sigma[0], 0.02, 1e-12);
+	CHECK_NEAR(s.sigma[1], hypot(0.02, 0.1) / 2, 1e-12);
+	CHECK_NEAR(s.key_cos[0][1], 0, 1e-12);
+	s = (sensitivity){.J = {{1, 1}, {1, -1}}, .noise = {0, 0}};
+	sensitivity_analyse(&sp, &s);
+	CHECK_NEAR(s.sigma[0], 0.02 / sqrt(2), 1e-12);
+	CHECK_NEAR(s.sigma[1], 0.02 / sqrt(2), 1e-12);
+	/* A key no target sees is not identified. */
+	s = (sensitivity){.J = {{1, 0}, {2, 0}}, .noise = {0, 0}};
+	sensitivity_analyse(&sp, &s);
+	CHECK(isinf(s.sigma[1]));
+}
+
 int main(void)
 {
 	const char *tmp = getenv("TEST_TMPDIR");
 	test_project();
+	test_uncertainty();
 	cal_spec sp;
 	int rc = spec_load("tests/calibrate/data/recovery.json", &sp);
 	CHECK(rc == 0);
