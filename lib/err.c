@@ -50,8 +50,14 @@ void err_program(const char *argv0)
 
 const char *err_program_name(void) { return program; }
 
+static void (*fatal_hook)(void);
+
+void err_fatal_hook(void (*hook)(void)) { fatal_hook = hook; }
+
 _Noreturn void fatal(const char *fmt, ...)
 {
+	if (fatal_hook)
+		fatal_hook();
 	fflush(stdout);
 	if (fmt) {
 		va_list ap;

@@ -29,6 +29,8 @@ void err_clear(void);
 void err_program(const char *argv0);
 const char *err_program_name(void);
 
+/* A function fatal() calls before it prints (solve's ranks: par.c). */
+void err_fatal_hook(void (*hook)(void));
 /* Print "<program>: <message>" on stderr and exit with status 1. With fmt ==
  * NULL the current error message is printed; err_msg() may be an argument. */
 void fatal(const char *fmt, ...) __attribute__((noreturn, format(printf, 1, 2)));

@@ -1,5 +1,7 @@
 /* The ranks of a run (par.h). */
+#include <stdio.h>
 #include <stdlib.h>
+#include <time.h>
 
 #ifdef DEM_MPI
 #include <mpi.h>
@@ -18,6 +20,21 @@ static void abort_unfinished(void)
 {
 	if (mpi_ && size_ > 1)
 		MPI_Abort(MPI_COMM_WORLD, 1);
+}
+
+/* Before a rank's error message: an error every rank finds alike (a bad
+ * input) is printed once, by rank 0, whose exit stops the others while
+ * they wait here; an error of one rank alone is printed after the wait,
+ * naming the rank. */
+static void fatal_on_rank(void)
+{
+	static char name[64];
+	if (rank_ == 0)
+		return;
+	struct timespec wait = {.tv_sec = 2};
+	nanosleep(&wait, NULL);
+	snprintf(name, sizeof name, "%s (rank %d of %d)", err_program_name(), rank_, size_);
+	err_program(name);
 }
 #endif
 
@@ -45,6 +62,8 @@ int par_init(int *argc, char ***argv)
 		MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
 		MPI_Comm_size(MPI_COMM_WORLD, &size_);
 		atexit(abort_unfinished);
+		if (size_ > 1)
+			err_fatal_hook(fatal_on_rank);
 	}
 	return 0;
 #else

@@ -1,0 +1,63 @@
+#!/bin/sh
+# Failures of a run on several ranks (share/doc/solve.md, "Several
+# machines"): a restart file of another format version gives one message
+# and a non-zero exit on 2 ranks, and leaves the file as it was; a rank
+# killed with SIGKILL ends the run (the other rank does not wait forever)
+# without a finished-looking run file, and the run then continues on 2
+# ranks from its recovery copy to the same bits as the uninterrupted run
+# of one process.
+# Usage: ranks_failures.sh BIN_DIR TMP_DIR MPIEXEC
+set -eu
+bin=$1 tmp=$2 mpiexec=$3
+here=$(cd "$(dirname "$0")" && pwd)
+share=$(cd "$here/../../share" && pwd)
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_yield_when_idle=1
+rm -rf "$tmp"
+mkdir -p "$tmp"
+cd "$tmp"
+fail() {
+	echo "$*" >&2
+	exit 1
+}
+"$bin/pack" --quiet --diameter 0.011 --height 0.022 --radius 0.0005 --dist fuzz --fuzz 0.3 a.h5
+cat > ucs.json <<JSON
+{"test": "ucs", "assembly": "a.h5", "material": "$share/materials/cement.json",
+ "damping": {"translational": 0.1, "rotational": 0.1},
+ "output": {"history_every": 50, "snapshot_every": 250, "checkpoint_every": 100},
+ "loading": [{"axial": {"mode": "strain_rate", "rate": 120.0}}],
+ "stop": {"strain_axial": 0.03, "stress_drop": 0.7}}
+JSON
+"$bin/solve" --quiet --threads 1 --output ref.h5 ucs.json
+
+# A restart file of another version: one message, status 1, the file kept.
+"$mpiexec" -np 2 --oversubscribe "$bin/solve" --quiet --max-steps 300 --output s.h5 ucs.json ||
+	[ $? -eq 3 ] || fail "2 ranks, --max-steps 300: expected status 3"
+/usr/bin/python3 -c '
+import h5py
+with h5py.File("s.h5", "r+") as f:
+    f.attrs["format_version"] = 99'
+sum0=$(cksum < s.h5)
+if "$mpiexec" -np 2 --oversubscribe "$bin/solve" --quiet --restart s.h5 2> bad.err; then
+	fail "restart of a format_version 99 file on 2 ranks: expected a failure"
+fi
+n=$(grep -c "^solve.*s.h5: attribute 'format_version': value 99: expected 1 to 3" bad.err || true)
+[ "$n" -eq 1 ] || { cat bad.err >&2; fail "expected the version message once, got $n"; }
+[ "$(cksum < s.h5)" = "$sum0" ] || fail "s.h5 changed by a refused restart"
+
+# A rank killed with SIGKILL after the first checkpoint.
+"$mpiexec" -np 2 --oversubscribe "$bin/solve" --quiet --output k.h5 ucs.json 2> kill.err &
+job=$!
+i=0
+while [ ! -e k.h5.ckpt ]; do
+	i=$((i + 1))
+	[ $i -lt 6000 ] || fail "no recovery copy k.h5.ckpt after 600 s"
+	sleep 0.1
+done
+victim=$(pgrep -f -- "--output k.h5 ucs.json" | grep -vx "$job" | tail -n 1)
+kill -9 "$victim"
+if wait "$job"; then
+	fail "a rank killed: expected the run to fail"
+fi
+[ ! -e k.h5 ] || fail "a rank killed: k.h5 looks finished"
+"$mpiexec" -np 2 --oversubscribe "$bin/solve" --quiet --restart k.h5
+/usr/bin/python3 "$here/same_run.py" ref.h5 k.h5
