@@ -20,6 +20,7 @@
 #include "solve/engine.h"
 #include "solve/measure.h"
 #include "solve/platens.h"
+#include "solve/ranks.h"
 #include "solve/surface.h"
 
 static const stage *current(const engine *e) { return &e->cs->stages[e->prog.stage]; }
@@ -60,6 +61,7 @@ static void select_layers(engine *e, double thickness)
 void boundary_begin_stage(engine *e)
 {
 	const stage *s = current(e);
+	ranks_gather_state(e); /* the end layers and the surface read every particle */
 	int was = e->bc.pl.active;
 	e->bc.pl.active = uses_platens(s->axial);
 	if (e->bc.pl.active != was)

@@ -83,6 +83,7 @@ void contacts_index_blocks(engine *e)
 void contacts_rebuild(engine *e)
 {
 	particles *P = &e->p;
+	ranks_gather_state(e); /* the search reads every particle */
 	pairlist tmp = e->pairs.contacts_old;
 	e->pairs.contacts_old = e->pairs.contacts;
 	e->pairs.contacts = tmp;

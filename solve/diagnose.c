@@ -5,6 +5,7 @@
 
 #include "lib/err.h"
 #include "solve/diagnose.h"
+#include "solve/ranks.h"
 #include "solve/timestep.h"
 
 /* Whether the force of pair b of L is finite. */
@@ -97,11 +98,12 @@ static size_t fastest(const particles *P, double *v2)
 	return worst;
 }
 
-int diagnose_speed(const engine *e, char *msg, size_t n)
+int diagnose_speed(engine *e, char *msg, size_t n)
 {
 	double dt = e->clock.dt, limit = 0.5 * e->pairs.skin;
 	if (!(sqrt(e->sums.particles.v2max) * dt > limit))
 		return 0;
+	ranks_gather_state(e);
 	double v2;
 	size_t i = fastest(&e->p, &v2);
 	snprintf(msg, n,
@@ -114,7 +116,7 @@ int diagnose_speed(const engine *e, char *msg, size_t n)
 	return 1;
 }
 
-int diagnose_runaway(const engine *e, char *msg, size_t n)
+int diagnose_runaway(engine *e, char *msg, size_t n)
 {
 	/* The shadow energy v- · v+ turns negative in a diverging oscillation:
 	 * use the kinetic energy at t + dt/2. Below energy.noise, motion is the
@@ -123,6 +125,7 @@ int diagnose_runaway(const engine *e, char *msg, size_t n)
 	double input = e->energy.initial + fabs(e->energy.work), ke = e->sums.particles.ke_new;
 	if (!(ke > 2 * input + e->energy.noise))
 		return 0;
+	ranks_gather_state(e);
 	const particles *P = &e->p;
 	size_t worst = 0;
 	double top = -1;
@@ -143,9 +146,10 @@ int diagnose_runaway(const engine *e, char *msg, size_t n)
 	return 1;
 }
 
-int diagnose_timestep(const engine *e, char *msg, size_t n)
+int diagnose_timestep(engine *e, char *msg, size_t n)
 {
 	size_t worst;
+	ranks_gather_state(e); /* the contacts touching now */
 	double crit = timestep_critical(e, 1, &worst);
 	if (e->clock.dt <= crit)
 		return 0;

@@ -1,5 +1,7 @@
 /* Diagnoses of a failing simulation, each a one-line message naming the
- * particle or bond at fault (assembly indices). */
+ * particle or bond at fault (assembly indices). Those that look at every
+ * particle first gather the particles of other ranks (ranks.h), on every
+ * rank alike: collective. */
 #ifndef DEM_DIAGNOSE_H
 #define DEM_DIAGNOSE_H
 
@@ -11,12 +13,12 @@
 void diagnose_nan(const engine *e, size_t i, char *msg, size_t n);
 /* 1 (and a message) if the kinetic energy exceeds twice the energy the run
  * has received (initial plus external work): the integration is unstable. */
-int diagnose_runaway(const engine *e, char *msg, size_t n);
+int diagnose_runaway(engine *e, char *msg, size_t n);
 /* 1 (and a message) if a particle moved more than half the Verlet skin in
  * the last step: contacts could pass unseen between neighbour rebuilds. */
-int diagnose_speed(const engine *e, char *msg, size_t n);
+int diagnose_speed(engine *e, char *msg, size_t n);
 /* 1 (and a message) if the time step exceeds the critical bound with the
  * current contacts (checked after each neighbour rebuild). */
-int diagnose_timestep(const engine *e, char *msg, size_t n);
+int diagnose_timestep(engine *e, char *msg, size_t n);
 
 #endif

@@ -1,5 +1,6 @@
 /* The particles split among the ranks, and what crosses between them
  * (ranks.h). With one rank, everything here but the split is a no-op. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -62,10 +63,44 @@ static void links_clear(rank_links *ls)
 		ls->l[k].n = 0;
 }
 
-static void links_buffers(rank_links *ls)
+/* Buffers of `width` doubles per entry. */
+static void links_buffers(rank_links *ls, size_t width)
 {
 	for (int k = 0; k < ls->n; k++)
-		ls->l[k].buf = xrealloc(ls->l[k].buf, (6 * ls->l[k].n + 1) * sizeof *ls->l[k].buf);
+		ls->l[k].buf =
+		    xrealloc(ls->l[k].buf, (width * ls->l[k].n + 1) * sizeof *ls->l[k].buf);
+}
+
+static int cmp_size(const void *a, const void *b)
+{
+	size_t x = *(const size_t *)a, y = *(const size_t *)b;
+	return (x > y) - (x < y);
+}
+
+/* The halo links h from the crossing bonds' links b and contacts' links c:
+ * for each peer, the particles j of those pairs, each once, in increasing
+ * order (so the sender's list and the receiver's match). */
+static void halo_links(const engine *e, const rank_links *b, const rank_links *c, rank_links *h)
+{
+	const bond *brec = e->pairs.bonds.rec, *crec = e->pairs.contacts.rec;
+	const int32_t *cross = e->pairs.split.cross;
+	links_clear(h);
+	for (int k = 0; k < b->n; k++)
+		for (size_t q = 0; q < b->l[k].n; q++)
+			link_add(h, b->l[k].peer, (size_t)brec[cross[b->l[k].idx[q]]].j);
+	for (int k = 0; k < c->n; k++)
+		for (size_t q = 0; q < c->l[k].n; q++)
+			link_add(h, c->l[k].peer, (size_t)crec[c->l[k].idx[q]].j);
+	for (int k = 0; k < h->n; k++) {
+		rank_link *l = &h->l[k];
+		qsort(l->idx, l->n, sizeof *l->idx, cmp_size);
+		size_t m = 0;
+		for (size_t q = 0; q < l->n; q++)
+			if (!m || l->idx[q] != l->idx[m - 1])
+				l->idx[m++] = l->idx[q];
+		l->n = m;
+	}
+	links_buffers(h, 9);
 }
 
 void ranks_split(engine *e)
@@ -76,6 +111,8 @@ void ranks_split(engine *e)
 	ranks_free(R);
 	R->size = par_size();
 	R->rank = par_rank();
+	const char *poison = getenv("DEM_RANKS_POISON");
+	R->poison = poison && *poison && strcmp(poison, "0") != 0;
 	R->pfirst = xmalloc(((size_t)R->size + 1) * sizeof *R->pfirst);
 	for (int q = 0; q <= R->size; q++)
 		R->pfirst[q] = S->pfirst[(size_t)q * (size_t)S->n / (size_t)R->size];
@@ -98,8 +135,8 @@ void ranks_split(engine *e)
 				link_add(&R->brecv, src, c);
 		}
 	}
-	links_buffers(&R->bsend);
-	links_buffers(&R->brecv);
+	links_buffers(&R->bsend, 6);
+	links_buffers(&R->brecv, 6);
 }
 
 void ranks_contacts(engine *e)
@@ -119,12 +156,16 @@ void ranks_contacts(engine *e)
 		else if (rj == R->rank)
 			link_add(&R->crecv, ri, c);
 	}
-	links_buffers(&R->csend);
-	links_buffers(&R->crecv);
+	links_buffers(&R->csend, 6);
+	links_buffers(&R->crecv, 6);
+	/* The state this rank reads of the others' particles comes with its
+	 * crossing pairs; that of its own the others read, with theirs. */
+	halo_links(e, &R->bsend, &R->csend, &R->hrecv);
+	halo_links(e, &R->brecv, &R->crecv, &R->hsend);
 }
 
 #ifdef DEM_MPI
-enum { TAG_BONDS = 1, TAG_CONTACTS = 2 };
+enum { TAG_BONDS = 1, TAG_CONTACTS = 2, TAG_STATE = 3 };
 
 /* Post the receives (or pack and post the sends) of links ls. */
 static void post(rank_links *ls, int send, int tag, double *src, size_t stride, MPI_Request *req,
@@ -201,12 +242,60 @@ static void gather_rows(void *base, const size_t *first, size_t row, int size)
 }
 #endif
 
-void ranks_share_state(engine *e)
-{
+/* The bytes of state (x, v, ω) of n particles. */
+static double state_bytes(size_t n) { return 9.0 * sizeof(double) * (double)n; }
+
 #ifdef DEM_MPI
+/* The halo's state from its ranks, point to point; the others' particles
+ * beyond it are stale (NaN when poisoned). */
+static void share_halo(engine *e)
+{
 	rank_split *R = &e->ranks;
-	if (R->size == 1)
-		return;
+	particles *P = &e->p;
+	double *const arr[3] = {P->x, P->v, P->w};
+	MPI_Request *req = xmalloc((size_t)(R->hsend.n + R->hrecv.n + 1) * sizeof *req);
+	int nreq = 0;
+	/* A peer with an empty list on one side has one on the other. */
+	for (int k = 0; k < R->hrecv.n; k++) {
+		rank_link *l = &R->hrecv.l[k];
+		if (l->n)
+			MPI_Irecv(l->buf, (int)(9 * l->n), MPI_DOUBLE, l->peer, TAG_STATE,
+			          MPI_COMM_WORLD, &req[nreq++]);
+	}
+	for (int k = 0; k < R->hsend.n; k++) {
+		rank_link *l = &R->hsend.l[k];
+		if (!l->n)
+			continue;
+		for (size_t q = 0; q < l->n; q++)
+			for (int a = 0; a < 3; a++)
+				memcpy(l->buf + 9 * q + 3 * a, arr[a] + 3 * l->idx[q],
+				       3 * sizeof *l->buf);
+		MPI_Isend(l->buf, (int)(9 * l->n), MPI_DOUBLE, l->peer, TAG_STATE, MPI_COMM_WORLD,
+		          &req[nreq++]);
+	}
+	MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE);
+	free(req);
+	if (R->poison)
+		for (size_t i = 0; i < P->n; i++)
+			if (i < R->p0 || i >= R->p1)
+				for (int a = 0; a < 3; a++)
+					for (int c = 0; c < 3; c++)
+						arr[a][3 * i + c] = NAN;
+	for (int k = 0; k < R->hrecv.n; k++) {
+		const rank_link *l = &R->hrecv.l[k];
+		for (size_t q = 0; q < l->n; q++)
+			for (int a = 0; a < 3; a++)
+				memcpy(arr[a] + 3 * l->idx[q], l->buf + 9 * q + 3 * a,
+				       3 * sizeof *l->buf);
+		R->recv_halo += state_bytes(l->n);
+	}
+	R->stale = 1;
+}
+
+/* Every rank's particles' state on every rank. */
+static void gather_all(engine *e)
+{
+	rank_split *R = &e->ranks;
 	/* x, v and ω in one message: each rank's rows of [n][9]. */
 	particles *P = &e->p;
 	double *const arr[3] = {P->x, P->v, P->w};
@@ -220,6 +309,30 @@ void ranks_share_state(engine *e)
 			for (int a = 0; a < 3; a++)
 				memcpy(arr[a] + 3 * i, R->state + 9 * i + 3 * a,
 				       3 * sizeof *R->state);
+	R->recv_all += state_bytes(P->n - (R->p1 - R->p0));
+	R->stale = 0;
+}
+#endif
+
+void ranks_share_state(engine *e, int all)
+{
+#ifdef DEM_MPI
+	if (e->ranks.size == 1)
+		return;
+	if (all)
+		gather_all(e);
+	else
+		share_halo(e);
+#else
+	(void)e, (void)all;
+#endif
+}
+
+void ranks_gather_state(engine *e)
+{
+#ifdef DEM_MPI
+	if (e->ranks.size > 1 && e->ranks.stale)
+		gather_all(e);
 #else
 	(void)e;
 #endif
@@ -329,9 +442,32 @@ void ranks_balance(const engine *e, double particles[2], double bonds[2])
 	bonds[1] = (double)e->pairs.bonds.n / R->size;
 }
 
+void ranks_traffic(engine *e, double steps)
+{
+	rank_split *R = &e->ranks;
+	double own = (double)(R->p1 - R->p0), per = steps > 0 ? 1 / steps : 0;
+	double v[3] = {R->recv_halo * per, (R->recv_halo + R->recv_all) * per,
+	               R->size > 1 ? state_bytes(e->p.n) - state_bytes((size_t)own) : 0};
+	double top[3] = {v[0], v[1], v[2]};
+	par_max(top, 3);
+	xsum s[3];
+	for (int k = 0; k < 3; k++) {
+		xsum_clear(&s[k]);
+		xsum_add(&s[k], v[k]);
+	}
+	par_sum(s, 3);
+	double *out[3] = {R->traffic_halo, R->traffic_state, R->traffic_allgather};
+	for (int k = 0; k < 3; k++) {
+		out[k][0] = top[k];
+		out[k][1] = xsum_round(&s[k]) / R->size;
+	}
+}
+
 void ranks_free(rank_split *r)
 {
 	free(r->pfirst), free(r->state);
+	links_free(&r->hsend);
+	links_free(&r->hrecv);
 	links_free(&r->bsend);
 	links_free(&r->brecv);
 	links_free(&r->csend);

@@ -8,10 +8,18 @@
  * pair that reaches into a later rank ("crossing") is computed by the rank
  * of i, which sends its force to the rank of j; there it is added where
  * pair order puts it, so every particle's force is the same sum, bit for
- * bit, on any number of ranks. Between steps every rank holds every
- * particle's position and velocities (the state a neighbour search and the
- * crossing pairs read); the histories of bonds and contacts live with the
- * rank of their i and are gathered only for output. */
+ * bit, on any number of ranks. After each step a rank receives the new
+ * position and velocities of its halo only: the particles j of the
+ * crossing pairs it computes, from their ranks, point to point. The other
+ * ranks' particles are then stale until ranks_gather_state brings every
+ * particle's state to every rank, which whatever reads beyond the halo
+ * calls first (a neighbour rebuild, the lateral surface, the gauge, the
+ * end layers, output, the diagnoses); the step's end does so at once when
+ * the next step rebuilds or updates the surface. With DEM_RANKS_POISON=1
+ * in the environment the stale particles' x, v and ω are NaN instead, so
+ * that a read that misses the gather shows. The histories of bonds and
+ * contacts live with the rank of their i and are gathered only for
+ * output. */
 #ifndef DEM_RANKS_H
 #define DEM_RANKS_H
 
@@ -35,13 +43,24 @@ typedef struct {
 
 typedef struct {
 	int size, rank;
-	size_t *pfirst;          /* [size + 1] first particle of each rank */
-	int s0, s1;              /* this rank's shares of pairs.split */
-	size_t p0, p1;           /* its particles */
-	size_t blk0, blk1;       /* its particle blocks */
-	rank_links bsend, brecv; /* crossing bonds' forces */
-	rank_links csend, crecv; /* crossing contacts' forces */
-	double *state;           /* [n][9] x, v, ω: what ranks_share_state sends */
+	size_t *pfirst;             /* [size + 1] first particle of each rank */
+	int s0, s1;                 /* this rank's shares of pairs.split */
+	size_t p0, p1;              /* its particles */
+	size_t blk0, blk1;          /* its particle blocks */
+	rank_links bsend, brecv;    /* crossing bonds' forces */
+	rank_links csend, crecv;    /* crossing contacts' forces */
+	rank_links hsend, hrecv;    /* the halo: particles whose x, v, ω go to
+	                               (come from) each peer, in increasing order */
+	double *state;              /* [n][9] x, v, ω: what ranks_gather_state sends */
+	int stale;                  /* other ranks' particles beyond the halo are old */
+	int poison;                 /* DEM_RANKS_POISON: and NaN */
+	double recv_halo, recv_all; /* bytes of state received so far by halo
+	                               exchanges and by full gathers */
+	/* Bytes of state received per step of the run, the largest and the mean
+	 * over the ranks (ranks_traffic): by halo exchanges, in all (with the
+	 * full gathers), and what gathering every particle after every step
+	 * would receive. */
+	double traffic_halo[2], traffic_state[2], traffic_allgather[2];
 } rank_split;
 
 /* This rank's part of the shares (after bonds_split). */
@@ -51,9 +70,13 @@ void ranks_contacts(engine *e);
 /* Inside the step's parallel region, by one thread: the forces of the
  * crossing bonds and contacts sent to the ranks of their j. */
 void ranks_exchange_forces(engine *e);
-/* After the step: every particle's new position and velocities on every
- * rank. */
-void ranks_share_state(engine *e);
+/* After the step (this rank's particles moved): their new position and
+ * velocities to the ranks whose halo they are in or, when all, to every
+ * rank. Collective: every rank passes the same all. */
+void ranks_share_state(engine *e, int all);
+/* Every particle's current state on every rank, if some are stale: first
+ * thing of whatever reads particles beyond the halo. Collective. */
+void ranks_gather_state(engine *e);
 /* After the step: the failures this rank found since `first` (the length
  * of e->out.cracks before the step) and those of the other ranks, in bond
  * order on every rank. */
@@ -67,6 +90,9 @@ void ranks_agree(int *flags, int n);
 /* The load balance: the largest and the mean number of particles (and of
  * bonds, by their i) per rank. */
 void ranks_balance(const engine *e, double particles[2], double bonds[2]);
+/* The state traffic per step over `steps` steps, into e->ranks.traffic_*.
+ * Collective. */
+void ranks_traffic(engine *e, double steps);
 void ranks_free(rank_split *r);
 
 #endif

@@ -67,6 +67,14 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 			        "(%.3f); bonds %.0f, %.0f (%.3f)\n",
 			        e->ranks.size, pbal[0], pbal[1], pbal[0] / pbal[1], bbal[0],
 			        bbal[1], bbal[1] > 0 ? bbal[0] / bbal[1] : 1);
+		if (e->ranks.size > 1)
+			fprintf(stderr,
+			        "  state received per rank and step: halo %.4g bytes at most, "
+			        "%.4g on average; with the full gathers %.4g, %.4g (every "
+			        "particle every step: %.4g, %.4g)\n",
+			        e->ranks.traffic_halo[0], e->ranks.traffic_halo[1],
+			        e->ranks.traffic_state[0], e->ranks.traffic_state[1],
+			        e->ranks.traffic_allgather[0], e->ranks.traffic_allgather[1]);
 		for (int k = 0; k < TM_TOTAL; k++)
 			fprintf(stderr, "  %-12s %9.3f s %6.1f %%\n", phase_names[k],
 			        e->tm.total[k], wall > 0 ? 100 * e->tm.total[k] / wall : 0);
@@ -82,6 +90,16 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	json_num(j, "ranks", e->ranks.size);
 	json_num(j, "rank_particles_max_over_mean", pbal[0] / pbal[1]);
 	json_num(j, "rank_bonds_max_over_mean", bbal[1] > 0 ? bbal[0] / bbal[1] : 1);
+	/* Bytes of particle state each rank received per step (ranks.h). */
+	static const char *const traffic[3][2] = {
+	    {"halo_bytes_per_step_max", "halo_bytes_per_step_mean"},
+	    {"state_bytes_per_step_max", "state_bytes_per_step_mean"},
+	    {"allgather_bytes_per_step_max", "allgather_bytes_per_step_mean"}};
+	const double *tv[3] = {e->ranks.traffic_halo, e->ranks.traffic_state,
+	                       e->ranks.traffic_allgather};
+	for (int k = 0; k < 3; k++)
+		for (int m = 0; m < 2; m++)
+			json_num(j, traffic[k][m], tv[k][m]);
 	json_num(j, "steps", steps);
 	json_num(j, "wall", wall);
 	json_num(j, "particle_steps_per_second", rate);

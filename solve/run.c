@@ -87,6 +87,7 @@ static int snapshot(loop_state *L)
 		return 0;
 	L->last_snapshot_step = e->clock.step;
 	e->out.last_snapshot_strain = engine_strain(e);
+	ranks_gather_state(e);
 	ranks_sync_pairs(e);
 	return (L->w && output_snapshot(e, L->w)) || flush_now_and_then(L);
 }
@@ -116,6 +117,7 @@ static int checkpoint(loop_state *L)
 {
 	engine *e = L->e;
 	L->last_checkpoint = timer_now();
+	ranks_gather_state(e);
 	ranks_sync_pairs(e);
 	if (write_cracks(L))
 		return -1;
@@ -361,6 +363,7 @@ static int run_loop(engine *e, run_writer *w, const run_opts *o)
 	for (int k = 0; k < AFILE_NSIGNALS; k++)
 		sigaction(afile_signals[k], &old[k], NULL);
 	phase_stop(&e->tm, TM_TOTAL);
+	ranks_traffic(e, (double)(e->clock.step - L.step0));
 	if (L.code == RUN_FAILED && par_rank() == 0)
 		fprintf(stderr, "%s: %s\n", err_program_name(), L.status);
 	if (par_rank() == 0)

@@ -279,21 +279,30 @@ static void particles_sum(engine *e)
 	t->bad = -top[2];
 }
 
+/* Whether the lateral surface is updated at the start of this step. */
+static int surface_due(const engine *e)
+{
+	return e->clock.step - e->bc.surf.updated >= e->cs->surface_every && e->bc.surf.ntheta;
+}
+
 void engine_step(engine *e, int measure)
 {
 	phase_start(&e->tm, TM_NEIGHBOUR);
+	/* These read every particle (ranks_gather_state). */
 	if (e->pairs.rebuild)
 		contacts_rebuild(e);
-	if (e->clock.step - e->bc.surf.updated >= e->cs->surface_every && e->bc.surf.ntheta)
+	if (surface_due(e))
 		surface_update(e);
 	boundary_prepare(e);
-	if (measure)
+	if (measure) {
+		ranks_gather_state(e); /* the gauge's particles */
 		e->sums.meas = (measurement){.t = e->clock.t,
 		                             .step = e->clock.step,
 		                             .stage = e->prog.stage,
 		                             .strain_radial = gauge_strain(e),
 		                             .lateral_area = e->bc.surf.lateral_area,
 		                             .volume = e->bc.surf.volume};
+	}
 	phase_stop(&e->tm, TM_NEIGHBOUR);
 	phase_start(&e->tm, TM_BONDS);
 	/* Each thread takes this rank's shares s0 + tid, s0 + tid + team, ...
@@ -334,7 +343,6 @@ void engine_step(engine *e, int measure)
 	pair_sums_total(e->scratch.bblock + blk0, nblk, &e->sums.bonds);
 	pair_sums_total(e->scratch.cblock + blk0, nblk, &e->sums.contacts);
 	particles_sum(e);
-	ranks_share_state(e);
 	phase_stop(&e->tm, TM_INTEGRATE);
 	phase_start(&e->tm, TM_NEIGHBOUR);
 
@@ -370,4 +378,9 @@ void engine_step(engine *e, int measure)
 	if (2 * drift >= e->pairs.skin || drift + platens_drift(e) >= e->pairs.skin)
 		e->pairs.rebuild = 1;
 	phase_stop(&e->tm, TM_NEIGHBOUR);
+	/* The next step reads the halo, or every particle when it starts with
+	 * a neighbour rebuild or a surface update (ranks.h). */
+	phase_start(&e->tm, TM_INTEGRATE);
+	ranks_share_state(e, e->pairs.rebuild || surface_due(e));
+	phase_stop(&e->tm, TM_INTEGRATE);
 }

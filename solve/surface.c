@@ -31,6 +31,7 @@
 #include "lib/err.h"
 #include "lib/vec3.h"
 #include "solve/engine.h"
+#include "solve/ranks.h"
 #include "solve/surface.h"
 
 /* Axial coordinate and radial vector of a position. */
@@ -126,6 +127,7 @@ static size_t bin_index(const surface *S, int iz, int t)
 void surface_update(engine *e)
 {
 	particles *P = &e->p;
+	ranks_gather_state(e); /* the bins read every particle */
 	surface *S = &e->bc.surf;
 	size_t nbins = (size_t)S->ntheta * S->nz;
 	double lo, hi;

@@ -46,8 +46,11 @@ static double contact_omega2(const engine *e, size_t i)
 			double dx = P->x[3 * c->j + k] - P->x[3 * c->i + k];
 			d2 += dx * dx;
 		}
-		if (d2 >= c->d0 * c->d0)
+		if (!(d2 < c->d0 * c->d0)) {
+			if (isnan(d2))
+				return NAN; /* no bound from a position that is not finite */
 			continue;
+		}
 		const double *kk = c->h;
 		sum += pair_omega2(kk[0], kk[1], P->m[c->i], P->m[c->j],
 		                   1 / particle_inv_i(P, (size_t)c->i),
@@ -105,7 +108,7 @@ double timestep_critical(const engine *e, int with_contacts, size_t *worst)
 	}
 	for (size_t i = 0; i < P->n; i++) {
 		double w2 = bw2[i] + (with_contacts ? contact_omega2(e, i) : 0);
-		if (w2 > top) {
+		if (w2 > top || (isnan(w2) && !isnan(top))) {
 			top = w2;
 			*worst = i;
 		}
