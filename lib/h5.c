@@ -5,6 +5,7 @@
 #include <sys/statvfs.h>
 
 #include <hdf5_hl.h>
+#include <zlib.h>
 
 #include "lib/afile.h"
 #include "lib/err.h"
@@ -338,6 +339,9 @@ int h5_read_attr_f64v(hid_t obj, const char *name, double *v, size_t n)
 /* Rows of one chunk (chunked_plist), the piece size of h5_rows. */
 static size_t chunk_rows(size_t cols) { return H5_PIECE_ELEMENTS / (cols ? cols : 1); }
 
+/* The deflate level of every compressed dataset. */
+enum { DEFLATE_LEVEL = 1 };
+
 /* Chunked, deflate-compressed creation properties for a dataset of the
  * given shape (rank 1 or 2); extendible along rows when ext. */
 static hid_t chunked_plist(size_t rows, size_t cols, int ext)
@@ -351,7 +355,7 @@ static hid_t chunked_plist(size_t rows, size_t cols, int ext)
 		chunk[0] = 1;
 	H5Pset_chunk(dcpl, cols ? 2 : 1, chunk);
 	H5Pset_shuffle(dcpl);
-	H5Pset_deflate(dcpl, 1);
+	H5Pset_deflate(dcpl, DEFLATE_LEVEL);
 	return dcpl;
 }
 
@@ -375,7 +379,8 @@ int h5_rows_open(h5_rows *r, hid_t loc, const char *name, hid_t type, size_t row
 	*r = (h5_rows){.loc = loc, .d = -1, .type = type, .name = name, .rows = rows, .cols = cols};
 	hsize_t dims[2] = {rows, cols};
 	hid_t space = H5Screate_simple(cols ? 2 : 1, dims, NULL);
-	hid_t dcpl = rows * (cols ? cols : 1) >= 4096 ? chunked_plist(rows, cols, 0) : H5P_DEFAULT;
+	r->chunked = rows * (cols ? cols : 1) >= 4096;
+	hid_t dcpl = r->chunked ? chunked_plist(rows, cols, 0) : H5P_DEFAULT;
 	r->d = H5Dcreate2(loc, name, type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
 	if (r->d >= 0 && unit && unit[0] && h5_attr_str(r->d, "units", unit))
 		r->failed = 1;
@@ -424,12 +429,116 @@ int h5_rows_close(h5_rows *r)
 	return rc;
 }
 
+static int threads_ = 1;
+void h5_set_threads(int n) { threads_ = n > 0 ? n : 1; }
+
+/* HDF5's shuffle filter (H5Zshuffle.c): byte k of every element, for k =
+ * 0, 1, ..., size - 1 in turn, from n elements of size bytes. */
+static void shuffle(unsigned char *restrict out, const unsigned char *restrict in, size_t n,
+                    size_t size)
+{
+	if (size < 2 || n < 2) {
+		memcpy(out, in, n * size);
+		return;
+	}
+	for (size_t i = 0; i < n; i++)
+		for (size_t k = 0; k < size; k++)
+			out[k * n + i] = in[i * size + k];
+}
+
+/* Rows [at, at + m) of r from fill, one chunk of piece rows per step, the
+ * steps shared by the threads; each chunk shuffled and deflated as the
+ * filters of chunked_plist would (the deflate filter, H5Zdeflate.c:
+ * compress2 into ceil(1.001 bytes) + 12 bytes; if that fails, the filter,
+ * being optional, is skipped for the chunk and flagged in its filter mask),
+ * then written as it stands, in chunk order. A partial last chunk is padded
+ * with zeros, the fill value HDF5 gives the rest of such a chunk. */
+static int fill_chunks(h5_rows *r, h5_fill fill, void *ctx, size_t piece)
+{
+	size_t size = H5Tget_size(r->type), width = r->cols ? r->cols : 1;
+	size_t bytes = piece * width * size, zcap = (size_t)ceil((double)bytes * 1.001) + 12;
+	size_t at0 = r->at, n = (r->rows - at0 + piece - 1) / piece;
+	int failed = 0, werrno = 0, team = threads_ < (int)n ? threads_ : (int)n;
+#pragma omp parallel num_threads(team)
+	{
+		unsigned char *raw = xmalloc(bytes), *shuf = xmalloc(bytes), *z = xmalloc(zcap);
+#pragma omp for ordered schedule(dynamic, 1)
+		for (size_t k = 0; k < n; k++) {
+			int stop;
+#pragma omp atomic read
+			stop = failed;
+			size_t at = at0 + k * piece,
+			       m = r->rows - at < piece ? r->rows - at : piece;
+			uLongf zn = (uLongf)zcap;
+			int zrc = Z_OK;
+			if (!stop) {
+				memset(raw + m * width * size, 0, bytes - m * width * size);
+				fill(ctx, at, m, raw);
+				shuffle(shuf, raw, piece * width, size);
+				zrc = compress2(z, &zn, shuf, (uLong)bytes, DEFLATE_LEVEL);
+			}
+#pragma omp ordered
+			if (!stop) {
+				hsize_t offset[2] = {at, 0};
+				int ok = zrc == Z_OK;
+				if (H5Dwrite_chunk(r->d, H5P_DEFAULT, ok ? 0 : 1u << 1, offset,
+				                   ok ? (size_t)zn : bytes,
+				                   ok ? (void *)z : shuf) < 0) {
+					werrno = errno;
+#pragma omp atomic write
+					failed = 1;
+				}
+			}
+		}
+		free(raw), free(shuf), free(z);
+	}
+	if (failed) {
+		r->failed = 1;
+		errno = werrno; /* for the message: the write failed on another thread */
+		return h5_write_dataset_error(r->loc, r->name);
+	}
+	r->at = r->rows;
+	return 0;
+}
+
+int h5_rows_fill(h5_rows *r, h5_fill fill, void *ctx)
+{
+	if (r->failed)
+		return -1;
+	size_t piece = chunk_rows(r->cols);
+	/* Several chunks: compressed here. */
+	if (r->chunked && r->at % piece == 0 && r->rows - r->at > piece)
+		return fill_chunks(r, fill, ctx, piece);
+	/* What fits in a chunk: through HDF5's filters. */
+	void *buf = xmalloc(piece * (r->cols ? r->cols : 1) * H5Tget_size(r->type));
+	int rc = 0;
+	for (size_t m; !rc && (m = h5_rows_piece(r)) > 0;) {
+		fill(ctx, r->at, m, buf);
+		rc = h5_rows_put(r, buf, m);
+	}
+	free(buf);
+	return rc;
+}
+
+/* A fill from a whole array of rows of row bytes each. */
+typedef struct {
+	const unsigned char *data;
+	size_t row;
+} whole;
+
+static void from_whole(void *ctx, size_t at, size_t m, void *buf)
+{
+	const whole *w = ctx;
+	memcpy(buf, w->data + at * w->row, m * w->row);
+}
+
 int h5_write(hid_t loc, const char *name, hid_t type, const void *data, size_t rows, size_t cols,
              const char *unit)
 {
 	h5_rows r;
+	whole w = {data, (cols ? cols : 1) * H5Tget_size(type)};
 	int rc = h5_rows_open(&r, loc, name, type, rows, cols, unit);
-	rc = rc || h5_rows_put(&r, data, rows);
+	rc = rc || h5_rows_fill(&r, from_whole, &w);
 	return h5_rows_close(&r) || rc ? -1 : 0;
 }
 
@@ -619,15 +728,23 @@ int h5_scale(hid_t loc, const char *name)
 	return 0;
 }
 
-/* Rows [at, at + n) of the index dataset d: the values at, at + 1, ... */
+/* Rows of an index (h5_fill): the values at, at + 1, ... */
+static void index_rows(void *ctx, size_t at, size_t m, void *buf)
+{
+	(void)ctx;
+	int64_t *v = buf;
+	for (size_t k = 0; k < m; k++)
+		v[k] = (int64_t)(at + k);
+}
+
+/* Rows [at, at + n) of the extendible index dataset d. */
 static int put_index(hid_t d, size_t at, size_t n)
 {
 	int rc = 0;
 	int64_t *v = xmalloc(H5_PIECE_ELEMENTS * sizeof *v);
 	for (size_t done = 0; !rc && done < n;) {
 		size_t m = n - done < H5_PIECE_ELEMENTS ? n - done : H5_PIECE_ELEMENTS;
-		for (size_t k = 0; k < m; k++)
-			v[k] = (int64_t)(at + done + k);
+		index_rows(NULL, at + done, m, v);
 		rc = h5_slab(d, H5T_NATIVE_INT64, at + done, m, 0, v, 1);
 		done += m;
 	}
@@ -643,10 +760,9 @@ int h5_index(hid_t loc, const char *name, size_t rows, int ext)
 	} else {
 		h5_rows r;
 		int rc = h5_rows_open(&r, loc, name, H5T_NATIVE_INT64, rows, 0, NULL);
-		int rp = rc || put_index(r.d, 0, rows);
-		r.at = rp ? 0 : rows;
-		if (h5_rows_close(&r) || rp)
-			return rc ? -1 : h5_write_dataset_error(loc, name);
+		rc = rc || h5_rows_fill(&r, index_rows, NULL);
+		if (h5_rows_close(&r) || rc)
+			return -1;
 	}
 	return h5_scale(loc, name) || (ext && h5_index_append(loc, name, rows)) ? -1 : 0;
 }

@@ -64,7 +64,7 @@ typedef struct {
 	hid_t loc, d, type;
 	const char *name;
 	size_t rows, cols, at;
-	int failed;
+	int failed, chunked; /* chunked: compressed, in chunks of one piece */
 } h5_rows;
 /* Write (or read) rows [at, at + m) of an open dataset of cols columns
  * (0: rank 1) from (into) buf. No message set: the caller names the file. */
@@ -74,6 +74,19 @@ int h5_rows_open(h5_rows *r, hid_t loc, const char *name, hid_t type, size_t row
 size_t h5_rows_piece(const h5_rows *r);
 int h5_rows_put(h5_rows *r, const void *data, size_t m);
 int h5_rows_close(h5_rows *r);
+/* Put all the rows not yet written, a piece at a time from fill(ctx, at, m,
+ * buf), which writes rows [at, at + m) (at most one piece) into buf in the
+ * dataset's type. A dataset of several chunks is compressed on the
+ * threads h5_set_threads sets, one chunk each at a time, with the shuffle and
+ * deflate filters its creation properties declare (exactly what HDF5 would
+ * write), and its chunks written in order: the file is the same whatever
+ * the thread count. fill is then called on several threads at once, each
+ * with its own rows and buffer. */
+typedef void (*h5_fill)(void *ctx, size_t at, size_t m, void *buf);
+int h5_rows_fill(h5_rows *r, h5_fill fill, void *ctx);
+/* The threads that compress the chunks of h5_rows_fill, h5_write and
+ * h5_index (1 until set; n < 1 sets 1). */
+void h5_set_threads(int n);
 /* Read a dataset, checking its rank and (when cols > 0) its column count.
  * *rows gets the row count; the data is allocated (caller frees). Reading a
  * dataset of zero rows gives a valid pointer. */

@@ -84,8 +84,9 @@ int run_snapshot(run_writer *w, const dem_snapshot *s);
 /* The same two without the whole arrays in memory: fill(ctx, f, at, m, buf)
  * writes rows [at, at + m) of field f into buf, in the dataset's type
  * (double; int32_t for the bond ends; uint8_t for bond_state) and columns
- * (3 for x, v, w and bond_fs). run_snapshot_fill takes the header, n and
- * nbonds from s and does not read its arrays. */
+ * (3 for x, v, w and bond_fs), and may be called on several threads at once
+ * (h5_rows_fill), each with its own rows and buf. run_snapshot_fill takes
+ * the header, n and nbonds from s and does not read its arrays. */
 enum { BTAB_I, BTAB_J, BTAB_D0, BTAB_AREA, BTAB_KN, BTAB_KS, BTAB_NFIELDS };
 enum {
 	SNAP_X,

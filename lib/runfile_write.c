@@ -307,28 +307,38 @@ static size_t row_bytes(const rec_field *f)
 	return (f->cols ? f->cols : 1) * (f->type == F64 ? 8 : f->type == I32 ? 4 : 1);
 }
 
-/* Each field a piece at a time: memory is one piece, not the whole arrays. */
+/* One field of a run_fill (h5_fill). */
+typedef struct {
+	run_fill fill;
+	void *ctx;
+	int f;
+} field_fill;
+
+static void fill_field(void *ctx, size_t at, size_t m, void *buf)
+{
+	const field_fill *ff = ctx;
+	ff->fill(ff->ctx, ff->f, at, m, buf);
+}
+
+/* Each field a piece at a time (a piece per thread that compresses):
+ * memory is a few pieces, not the whole arrays. */
 static int write_fields(hid_t g, const rec_field *fs, int nf, size_t np, size_t nb, run_fill fill,
                         void *ctx, const char *dim_particle, const char *dim_bond,
                         const char *dim_xyz)
 {
-	unsigned char *buf = xmalloc(H5_PIECE_ELEMENTS * sizeof(double));
 	int rc = 0;
 	for (int f = 0; !rc && f < nf; f++) {
 		h5_rows r;
+		field_fill ff = {fill, ctx, f};
 		rc = h5_rows_open(&r, g, fs[f].name, native(fs[f].type), fs[f].per_bond ? nb : np,
 		                  fs[f].cols, fs[f].unit);
-		for (size_t m; !rc && (m = h5_rows_piece(&r)) > 0;) {
-			fill(ctx, f, r.at, m, buf);
-			rc = h5_rows_put(&r, buf, m);
-		}
+		rc = rc || h5_rows_fill(&r, fill_field, &ff);
 		rc = h5_rows_close(&r) || rc;
 		/* The rows' and the components' dimension scales, of the group
 		 * or of its parent (a snapshot's are those of /snapshots). */
 		const char *dims[2] = {fs[f].per_bond ? dim_bond : dim_particle, dim_xyz};
 		rc = rc || h5_attach(g, fs[f].name, dims, fs[f].cols ? 2 : 1);
 	}
-	free(buf);
 	return rc ? -1 : 0;
 }
 

@@ -439,6 +439,7 @@ int run_case(const dem_case *cs, dem_assembly *a, const run_opts *o)
 	engine e;
 	if (engine_setup(&e, cs, a, &(engine_opts){.threads = o->threads, .quiet = o->quiet}))
 		fatal("%s: %s", cs->source, err_msg());
+	h5_set_threads(e.team); /* the run file's chunks compressed on the step's threads */
 	run_writer *w = create(&e, a, o);
 	assembly_free(a); /* in the run file now; the engine keeps what it needs */
 	int code = bonds_then_loop(&e, w, o);
@@ -521,6 +522,7 @@ static int run_continue(const run_opts *o, const char *from, dem_run *r)
 	engine e;
 	if (engine_setup(&e, &cs, &r->assembly, &(engine_opts){.threads = o->threads, .quiet = 1}))
 		fatal(NULL);
+	h5_set_threads(e.team);
 	phase_start(&e.tm, TM_SETUP);
 	if (checkpoint_read(&e, from))
 		fatal(NULL);
