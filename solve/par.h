@@ -25,5 +25,17 @@ void par_sum(xsum *a, int n);
 /* The largest (smallest) of each of v[0..n) over the ranks, in place. */
 void par_max(double *v, int n);
 void par_min(double *v, int n);
+/* The largest of each of v[0..n) over the ranks, in place. */
+void par_max_int(int *v, int n);
+
+/* The reductions above (each one MPI_Allreduce) this process took part in
+ * since par_tally_reset: their number, their payload (the bytes each rank
+ * sends and receives back) and the wall seconds spent in them, waiting for
+ * the slowest rank included. None on one rank. */
+typedef struct {
+	double calls, bytes, seconds;
+} par_tally;
+par_tally par_reductions(void);
+void par_tally_reset(void);
 
 #endif

@@ -9,6 +9,7 @@
 #endif
 
 #include "lib/err.h"
+#include "lib/timer.h"
 #include "solve/blocks.h"
 #include "solve/bonds.h"
 #include "solve/engine.h"
@@ -202,6 +203,7 @@ void ranks_exchange_forces(engine *e)
 	rank_split *R = &e->ranks;
 	if (R->size == 1)
 		return;
+	double t0 = timer_now();
 	int nreq = 0;
 	MPI_Request *req =
 	    xmalloc((size_t)(R->bsend.n + R->brecv.n + R->csend.n + R->crecv.n + 1) * sizeof *req);
@@ -218,6 +220,11 @@ void ranks_exchange_forces(engine *e)
 	free(req);
 	unpack(&R->brecv, parts, pstride);
 	unpack(&R->crecv, e->pairs.contacts.f, 6);
+	for (int k = 0; k < R->brecv.n; k++)
+		R->recv_forces += 6.0 * sizeof(double) * (double)R->brecv.l[k].n;
+	for (int k = 0; k < R->crecv.n; k++)
+		R->recv_forces += 6.0 * sizeof(double) * (double)R->crecv.l[k].n;
+	R->sec[RANKS_FORCES] += timer_now() - t0;
 #else
 	(void)e;
 #endif
@@ -226,8 +233,10 @@ void ranks_exchange_forces(engine *e)
 #ifdef DEM_MPI
 /* Every rank's rows [first[q], first[q + 1]) of an array of rows of `row`
  * bytes gathered in place on every rank. */
+static double ngathers_;
 static void gather_rows(void *base, const size_t *first, size_t row, int size)
 {
+	ngathers_++;
 	int *cnt = xmalloc((size_t)size * sizeof *cnt), *dsp = xmalloc((size_t)size * sizeof *dsp);
 	MPI_Datatype t;
 	MPI_Type_contiguous((int)row, MPI_BYTE, &t);
@@ -253,6 +262,7 @@ static void share_halo(engine *e)
 	rank_split *R = &e->ranks;
 	particles *P = &e->p;
 	double *const arr[3] = {P->x, P->v, P->w};
+	double t0 = timer_now();
 	MPI_Request *req = xmalloc((size_t)(R->hsend.n + R->hrecv.n + 1) * sizeof *req);
 	int nreq = 0;
 	/* A peer with an empty list on one side has one on the other. */
@@ -290,6 +300,7 @@ static void share_halo(engine *e)
 		R->recv_halo += state_bytes(l->n);
 	}
 	R->stale = 1;
+	R->sec[RANKS_HALO] += timer_now() - t0;
 }
 
 /* Every rank's particles' state on every rank. */
@@ -299,6 +310,7 @@ static void gather_all(engine *e)
 	/* x, v and ω in one message: each rank's rows of [n][9]. */
 	particles *P = &e->p;
 	double *const arr[3] = {P->x, P->v, P->w};
+	double t0 = timer_now();
 	R->state = xrealloc(R->state, (9 * P->n + 1) * sizeof *R->state);
 	for (size_t i = R->p0; i < R->p1; i++)
 		for (int a = 0; a < 3; a++)
@@ -311,6 +323,7 @@ static void gather_all(engine *e)
 				       3 * sizeof *R->state);
 	R->recv_all += state_bytes(P->n - (R->p1 - R->p0));
 	R->stale = 0;
+	R->sec[RANKS_GATHERS] += timer_now() - t0;
 }
 #endif
 
@@ -346,9 +359,11 @@ void ranks_share_cracks(engine *e, size_t first)
 		return;
 	crack_buf *cb = &e->out.cracks;
 	size_t mine = cb->n - first;
+	double t0 = timer_now();
 	int *cnt = xmalloc((size_t)R->size * sizeof *cnt);
 	int own = (int)mine;
 	MPI_Allgather(&own, 1, MPI_INT, cnt, 1, MPI_INT, MPI_COMM_WORLD);
+	ngathers_++;
 	size_t *at = xmalloc(((size_t)R->size + 1) * sizeof *at);
 	at[0] = first;
 	for (int q = 0; q < R->size; q++)
@@ -369,6 +384,7 @@ void ranks_share_cracks(engine *e, size_t first)
 		cb->n = total;
 	}
 	free(cnt), free(at);
+	R->sec[RANKS_GATHERS] += timer_now() - t0;
 #else
 	(void)e, (void)first;
 #endif
@@ -396,6 +412,7 @@ void ranks_sync_pairs(engine *e)
 	rank_split *R = &e->ranks;
 	if (R->size == 1)
 		return;
+	double t0 = timer_now();
 	gather_pairs(&e->pairs.bonds, e->pairs.split.bfirst, R, 1);
 	gather_pairs(&e->pairs.contacts, e->scratch.cfirst, R, 1);
 	platens *pl = &e->bc.pl;
@@ -411,20 +428,13 @@ void ranks_sync_pairs(engine *e)
 		gather_rows(pl->pc[k], first, sizeof *pl->pc[k], R->size);
 	}
 	free(first);
+	R->sec[RANKS_GATHERS] += timer_now() - t0;
 #else
 	(void)e;
 #endif
 }
 
-void ranks_agree(int *flags, int n)
-{
-#ifdef DEM_MPI
-	if (par_size() > 1)
-		MPI_Allreduce(MPI_IN_PLACE, flags, n, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-#else
-	(void)flags, (void)n;
-#endif
-}
+void ranks_agree(int *flags, int n) { par_max_int(flags, n); }
 
 void ranks_balance(const engine *e, double particles[2], double bonds[2])
 {
@@ -442,25 +452,54 @@ void ranks_balance(const engine *e, double particles[2], double bonds[2])
 	bonds[1] = (double)e->pairs.bonds.n / R->size;
 }
 
+void ranks_traffic_start(engine *e)
+{
+	rank_split *R = &e->ranks;
+	R->recv_halo = R->recv_all = R->recv_forces = 0;
+	memset(R->sec, 0, sizeof R->sec);
+#ifdef DEM_MPI
+	ngathers_ = 0;
+#endif
+	par_tally_reset();
+}
+
 void ranks_traffic(engine *e, double steps)
 {
 	rank_split *R = &e->ranks;
+	/* The run's own, before the reductions here. */
+	par_tally red = par_reductions();
+#ifdef DEM_MPI
+	double ngathers = ngathers_;
+#else
+	double ngathers = 0;
+#endif
 	double own = (double)(R->p1 - R->p0), per = steps > 0 ? 1 / steps : 0;
-	double v[3] = {R->recv_halo * per, (R->recv_halo + R->recv_all) * per,
-	               R->size > 1 ? state_bytes(e->p.n) - state_bytes((size_t)own) : 0};
-	double top[3] = {v[0], v[1], v[2]};
-	par_max(top, 3);
-	xsum s[3];
-	for (int k = 0; k < 3; k++) {
+	R->sec[RANKS_REDUCTIONS] = red.seconds;
+	enum { NV = 4 + RANKS_NX };
+	double v[NV] = {R->recv_halo * per, (R->recv_halo + R->recv_all) * per,
+	                R->size > 1 ? state_bytes(e->p.n) - state_bytes((size_t)own) : 0,
+	                R->recv_forces * per};
+	for (int k = 0; k < RANKS_NX; k++)
+		v[4 + k] = R->sec[k];
+	double top[NV];
+	memcpy(top, v, sizeof top);
+	par_max(top, NV);
+	xsum s[NV];
+	for (int k = 0; k < NV; k++) {
 		xsum_clear(&s[k]);
 		xsum_add(&s[k], v[k]);
 	}
-	par_sum(s, 3);
-	double *out[3] = {R->traffic_halo, R->traffic_state, R->traffic_allgather};
-	for (int k = 0; k < 3; k++) {
-		out[k][0] = top[k];
-		out[k][1] = xsum_round(&s[k]) / R->size;
+	par_sum(s, NV);
+	double *out[4] = {R->traffic_halo, R->traffic_state, R->traffic_allgather,
+	                  R->traffic_forces};
+	for (int k = 0; k < NV; k++) {
+		double *o = k < 4 ? out[k] : R->seconds[k - 4];
+		o[0] = top[k];
+		o[1] = xsum_round(&s[k]) / R->size;
 	}
+	R->reductions_per_step = red.calls * per;
+	R->reduction_bytes_per_step = red.bytes * per;
+	R->gathers_per_step = ngathers * per;
 }
 
 void ranks_free(rank_split *r)

@@ -41,6 +41,12 @@ typedef struct {
 	rank_link *l;
 } rank_links;
 
+/* What a rank spends its exchanges on: the crossing pairs' forces and the
+ * halo's state (point to point, every step), the full gathers (every
+ * particle's state, the pairs' histories for output, the crack log) and
+ * the reductions (par.h). */
+enum { RANKS_FORCES, RANKS_HALO, RANKS_GATHERS, RANKS_REDUCTIONS, RANKS_NX };
+
 typedef struct {
 	int size, rank;
 	size_t *pfirst;             /* [size + 1] first particle of each rank */
@@ -56,11 +62,21 @@ typedef struct {
 	int poison;                 /* DEM_RANKS_POISON: and NaN */
 	double recv_halo, recv_all; /* bytes of state received so far by halo
 	                               exchanges and by full gathers */
+	double recv_forces;         /* bytes of crossing forces received so far */
+	double ngathers;            /* collective gathers (MPI_Allgather(v)) so far */
+	double sec[RANKS_NX];       /* wall seconds in each kind of exchange so far,
+	                               waiting for the peers included */
 	/* Bytes of state received per step of the run, the largest and the mean
 	 * over the ranks (ranks_traffic): by halo exchanges, in all (with the
 	 * full gathers), and what gathering every particle after every step
 	 * would receive. */
 	double traffic_halo[2], traffic_state[2], traffic_allgather[2];
+	/* Likewise, the bytes of crossing forces received per step; the wall
+	 * seconds of the run in each kind of exchange; and, per step, the
+	 * reductions (MPI_Allreduce calls), their payload in bytes, and the
+	 * collective gathers, which every rank makes alike. */
+	double traffic_forces[2], seconds[RANKS_NX][2];
+	double reductions_per_step, reduction_bytes_per_step, gathers_per_step;
 } rank_split;
 
 /* This rank's part of the shares (after bonds_split). */
@@ -90,8 +106,11 @@ void ranks_agree(int *flags, int n);
 /* The load balance: the largest and the mean number of particles (and of
  * bonds, by their i) per rank. */
 void ranks_balance(const engine *e, double particles[2], double bonds[2]);
-/* The state traffic per step over `steps` steps, into e->ranks.traffic_*.
- * Collective. */
+/* Zero the counts of traffic and time above (where the run loop starts). */
+void ranks_traffic_start(engine *e);
+/* The traffic per step over the `steps` steps since ranks_traffic_start,
+ * and the time in each exchange, into e->ranks.traffic_*, .seconds and the
+ * counts per step. Collective. */
 void ranks_traffic(engine *e, double steps);
 void ranks_free(rank_split *r);
 

@@ -11,6 +11,8 @@
 
 static const char *const phase_names[] = {"neighbour", "bonds", "contacts", "integration",
                                           "output"};
+/* ranks.h, RANKS_FORCES ... */
+static const char *const exchange_names[RANKS_NX] = {"forces", "halo", "gathers", "reductions"};
 
 size_t engine_bytes(const engine *e)
 {
@@ -75,6 +77,22 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 			        e->ranks.traffic_halo[0], e->ranks.traffic_halo[1],
 			        e->ranks.traffic_state[0], e->ranks.traffic_state[1],
 			        e->ranks.traffic_allgather[0], e->ranks.traffic_allgather[1]);
+		if (e->ranks.size > 1) {
+			const rank_split *R = &e->ranks;
+			fprintf(stderr,
+			        "  crossing forces received per rank and step: %.4g bytes at most, "
+			        "%.4g on average; per step %.3g reductions of %.4g bytes in all, "
+			        "%.3g collective gathers\n",
+			        R->traffic_forces[0], R->traffic_forces[1], R->reductions_per_step,
+			        R->reduction_bytes_per_step, R->gathers_per_step);
+			fprintf(stderr, "  exchanges per rank, largest and mean over the ranks "
+			                "(waiting for the others included):");
+			for (int k = 0; k < RANKS_NX; k++)
+				fprintf(stderr, "%s %s %.3g s, %.3g s (%.1f %%)", k ? ";" : "",
+				        exchange_names[k], R->seconds[k][0], R->seconds[k][1],
+				        wall > 0 ? 100 * R->seconds[k][1] / wall : 0);
+			fputc('\n', stderr);
+		}
 		for (int k = 0; k < TM_TOTAL; k++)
 			fprintf(stderr, "  %-12s %9.3f s %6.1f %%\n", phase_names[k],
 			        e->tm.total[k], wall > 0 ? 100 * e->tm.total[k] / wall : 0);
@@ -100,6 +118,19 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	for (int k = 0; k < 3; k++)
 		for (int m = 0; m < 2; m++)
 			json_num(j, traffic[k][m], tv[k][m]);
+	json_num(j, "force_bytes_per_step_max", e->ranks.traffic_forces[0]);
+	json_num(j, "force_bytes_per_step_mean", e->ranks.traffic_forces[1]);
+	json_num(j, "reductions_per_step", e->ranks.reductions_per_step);
+	json_num(j, "reduction_bytes_per_step", e->ranks.reduction_bytes_per_step);
+	json_num(j, "gathers_per_step", e->ranks.gathers_per_step);
+	/* Wall seconds of the run per kind of exchange (ranks.h), the largest
+	 * and the mean over the ranks; they overlap the phases. */
+	cJSON *xmax = cJSON_AddObjectToObject(j, "exchange_seconds_max");
+	cJSON *xmean = cJSON_AddObjectToObject(j, "exchange_seconds_mean");
+	for (int k = 0; k < RANKS_NX; k++) {
+		json_num(xmax, exchange_names[k], e->ranks.seconds[k][0]);
+		json_num(xmean, exchange_names[k], e->ranks.seconds[k][1]);
+	}
 	json_num(j, "steps", steps);
 	json_num(j, "wall", wall);
 	json_num(j, "particle_steps_per_second", rate);

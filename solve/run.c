@@ -340,6 +340,7 @@ static void loop(loop_state *L)
 static int run_loop(engine *e, run_writer *w, const run_opts *o)
 {
 	phase_start(&e->tm, TM_TOTAL);
+	ranks_traffic_start(e);
 	loop_state L = {.e = e, .w = w, .o = o, .last_snapshot_step = -1};
 	L.wall0 = L.last_checkpoint = L.last_row_wall = L.last_flush = timer_now();
 	L.last_row_step = L.step0 = L.pace_step = e->clock.step;

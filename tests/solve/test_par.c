@@ -50,6 +50,22 @@ int main(int argc, char **argv)
 	par_max(mx, 2);
 	par_min(mn, 1);
 	CHECK(mx[0] == size - 1 && mx[1] == 0 && mn[0] == 0.5);
+	int flags[2] = {rank == size - 1, 0};
+	par_max_int(flags, 2);
+	CHECK(flags[0] == 1 && flags[1] == 0);
+	/* Each of the four reductions counted, with its payload (an exact
+	 * accumulator is DEM_XSUM_WORDS int64 words); none on one rank. */
+	par_tally t = par_reductions();
+	if (size == 1) {
+		CHECK(t.calls == 0 && t.bytes == 0 && t.seconds == 0);
+	} else {
+		CHECK(t.calls == 4);
+		CHECK(t.bytes == NF * DEM_XSUM_WORDS * 8 + 3 * 8 + 2 * sizeof(int));
+		CHECK(t.seconds >= 0);
+	}
+	par_tally_reset();
+	t = par_reductions();
+	CHECK(t.calls == 0 && t.bytes == 0);
 	int failed = check_done();
 	par_finalize();
 	return failed;
