@@ -12,6 +12,8 @@ bin=$1 tmp=$2 mpiexec=$3
 here=$(cd "$(dirname "$0")" && pwd)
 share=$(cd "$here/../../share" && pwd)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_yield_when_idle=1
+# Stale particles of other ranks are NaN: a read that misses a gather shows.
+export DEM_RANKS_POISON=1
 rm -rf "$tmp"
 mkdir -p "$tmp"
 cd "$tmp"
