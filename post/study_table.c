@@ -19,7 +19,7 @@
 #include "post/study_table.h"
 
 /* The figures of summary.json in the table, with their columns' names. */
-enum { NQ = 9 };
+enum { NQ = 10 };
 static const struct {
 	const char *column; /* in the CSV files */
 	const char *key[2]; /* summed from summary.json */
@@ -33,6 +33,7 @@ static const struct {
     {"spheres", {"spheres"}},
     {"solid_fraction", {"solid_fraction"}},
     {"wall_time_s", {"wall_time"}},
+    {"bts_strength_Pa", {"bts_strength"}},
 };
 
 typedef enum { RUN_OK, RUN_FAILED, RUN_MISSING } run_status;
@@ -224,11 +225,22 @@ static void write_study(const study *s, const group *g, const char *dir)
 	free(path);
 }
 
-/* The columns of the response figure: quantity, factor to its unit. */
-static const struct {
+/* The panels of the response figure: quantity, factor to its unit, axis
+ * label. A Brazilian test's show its strength and the broken bonds where
+ * a compression test's show the peak stress and Young's modulus. */
+typedef struct {
 	int q;
 	double factor;
-} panels[4] = {{0, 1e-6}, {1, 100}, {2, 1e-9}, {7, 100}};
+	const char *label;
+} panel;
+static const panel compression_panels[4] = {{0, 1e-6, "peak stress (MPa)"},
+                                            {1, 100, "strain at peak (%)"},
+                                            {2, 1e-9, "Young's modulus (GPa)"},
+                                            {7, 100, "solid fraction (%)"}};
+static const panel bts_panels[4] = {{9, 1e-6, "Brazilian tensile strength (MPa)"},
+                                    {1, 100, "strain at peak (%)"},
+                                    {5, 1, "bonds broken"},
+                                    {7, 100, "solid fraction (%)"}};
 
 static double x_of(const study_param *p, int v)
 {
@@ -239,6 +251,10 @@ static int draw_response(const study *s, const group *g, const char *dir)
 {
 	const study_param *p = &s->p[0];
 	int ng = s->np > 1 ? s->p[1].n : 1, has_sd = s->nseeds > 1;
+	const panel *panels = compression_panels;
+	for (int k = 0; k < group_count(s); k++)
+		if (isfinite(g[k].mean[9]))
+			panels = bts_panels;
 	plot_data d;
 	plot_begin(&d);
 	fputs("$study << EOD\n", d.f);
@@ -260,19 +276,29 @@ static int draw_response(const study *s, const group *g, const char *dir)
 	}
 	fprintf(d.f, "EOD\nngroups = %d\nhas_sd = %d\narray group_title[%d]\n", ng, has_sd, ng);
 	/* A panel whose values are all one gets a range about it (gnuplot
-	 * would warn of an empty one). */
-	fputs("array flat[4]\n", d.f);
+	 * would warn of an empty one); one without any is drawn empty. */
+	fputs("array flat[4]\narray empty[4]\narray ylabel_text[4]\n", d.f);
+	double xlo = INFINITY, xhi = -INFINITY;
 	for (int c = 0; c < 4; c++) {
 		double lo = INFINITY, hi = -INFINITY;
 		for (int k = 0; k < group_count(s); k++) {
-			double v = panels[c].factor * g[k].mean[panels[c].q];
+			double v = panels[c].factor * g[k].mean[panels[c].q],
+			       x = x_of(p, g[k].v[0]);
+			xlo = fmin(xlo, x), xhi = fmax(xhi, x);
 			if (isfinite(v))
 				lo = fmin(lo, v), hi = fmax(hi, v);
 		}
 		fprintf(d.f, "flat[%d] = ", c + 1);
 		plot_num(d.f, lo == hi ? lo : NAN);
+		fprintf(d.f, "\nempty[%d] = %d\nylabel_text[%d] = ", c + 1, lo > hi, c + 1);
+		plot_quote(d.f, panels[c].label);
 		fputc('\n', d.f);
 	}
+	fputs("xmin = ", d.f);
+	plot_num(d.f, xlo < xhi ? xlo : xlo - 1);
+	fputs("\nxmax = ", d.f);
+	plot_num(d.f, xlo < xhi ? xhi : xhi + 1);
+	fputc('\n', d.f);
 	for (int j = 0; j < ng; j++) {
 		char t[200] = "";
 		if (s->np > 1)

@@ -2,9 +2,9 @@
  * file is rewritten only when its content changes), the table of their
  * results against hand-made summary.json files (means and sample standard
  * deviations over the seeds, a failed and a missing point marked, the
- * figures drawn), and bad study files: one message naming the file, the
- * key, the value and what was expected, exit status 1, and the points
- * already written left as they were. */
+ * figures drawn, a Brazilian test's strength), and bad study files: one message naming the file,
+ * the key, the value and what was expected, exit status 1, and the points already written left as
+ * they were. */
 #include <math.h>
 #include <sys/stat.h>
 
@@ -142,17 +142,29 @@ static void test_points(void)
 	free(mk);
 }
 
-/* A summary.json of the keys the table reads. */
-static void write_summary(const char *point, double peak, double strain, double broken)
+/* A summary.json of the keys the table reads: a compression test's, with
+ * bts > 0 a Brazilian test's (no modulus, that strength), with bts < 0
+ * one with neither. */
+static void write_summary_of(const char *point, double peak, double strain, double broken,
+                             double bts)
 {
-	char text[1024];
+	char text[1024], e[32] = "1e10", t[32] = "null";
+	if (bts != 0)
+		snprintf(e, sizeof e, "null");
+	if (bts > 0)
+		snprintf(t, sizeof t, "%.10g", bts);
 	snprintf(text, sizeof text,
-	         "{\"peak_stress\": %.10g, \"strain_at_peak\": %.10g, \"young_modulus\": 1e10, "
+	         "{\"peak_stress\": %.10g, \"strain_at_peak\": %.10g, \"young_modulus\": %s, "
 	         "\"poisson_ratio\": null, \"bonds\": 1000, \"bonds_broken_tension\": %.10g, "
 	         "\"bonds_broken_shear\": 5, \"spheres\": 300, \"solid_fraction\": 0.5, "
-	         "\"wall_time\": 2}\n",
-	         peak, strain, broken);
+	         "\"wall_time\": 2, \"bts_strength\": %s}\n",
+	         peak, strain, e, broken, t);
 	write_text(point_path(point, "summary.json"), text);
+}
+
+static void write_summary(const char *point, double peak, double strain, double broken)
+{
+	write_summary_of(point, peak, strain, broken, 0);
 }
 
 /* The field of a CSV text in the row whose first field is row, under
@@ -239,6 +251,36 @@ static void test_table(void)
 		CHECK(!strncmp(fig, png, 4));
 		free(fig);
 	}
+
+	/* A Brazilian test's results: its strength in the table and the
+	 * figure, which draws without a modulus. */
+	unlink(study_file("response.png"));
+	write_summary_of("interaction_range-1.2_seed-1", 4e6, 0.02, 100, 2.5e6);
+	write_summary_of("interaction_range-1.2_seed-2", 4e6, 0.02, 100, 2.7e6);
+	write_summary_of("interaction_range-1.4_seed-1", 5e6, 0.02, 100, 3.1e6);
+	r = plan("--table");
+	CHECK(r.status == 0);
+	harness_free(&r);
+	study = harness_slurp(study_file("study.csv"));
+	CHECK_REL(csv_number(study, "1.2", "bts_strength_Pa"), 2.6e6, 1e-9);
+	CHECK(isnan(csv_number(study, "1.2", "young_modulus_Pa")));
+	free(study);
+	char *fig = harness_slurp(study_file("response.png"));
+	CHECK(fig && !strncmp(fig, png, 4));
+	free(fig);
+	/* No modulus at all: that panel is drawn empty. */
+	unlink(study_file("response.png"));
+	for (int k = 0; k < 3; k++)
+		write_summary_of(
+		    k < 2 ? (k ? "interaction_range-1.2_seed-2" : "interaction_range-1.2_seed-1")
+		          : "interaction_range-1.4_seed-1",
+		    4e6, 0.02, 100, -1);
+	r = plan("--table");
+	CHECK(r.status == 0);
+	harness_free(&r);
+	fig = harness_slurp(study_file("response.png"));
+	CHECK(fig && !strncmp(fig, png, 4));
+	free(fig);
 }
 
 static void test_errors(void)
