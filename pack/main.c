@@ -12,6 +12,7 @@
 #include "lib/assembly.h"
 #include "lib/depfile.h"
 #include "lib/err.h"
+#include "lib/h5.h"
 #include "lib/progress.h"
 #include "lib/timer.h"
 #include "pack/lattice.h"
@@ -202,6 +203,7 @@ static void start(pack_run *r, int argc, char **argv)
 		      r->o.threads, most);
 	if (r->o.threads > 0)
 		omp_set_num_threads((int)r->o.threads);
+	h5_set_threads(omp_get_max_threads()); /* the assembly's chunks compressed on them */
 	r->t0 = timer_now();
 }
 
