@@ -63,22 +63,20 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 		    " neighbour rebuilds\n",
 		    err_program_name(), steps, wall, rate, e->team, e->team > 1 ? "s" : "", ns_bond,
 		    state / n, e->pairs.rebuilds);
-		if (e->ranks.size > 1)
+		if (e->ranks.size > 1) {
+			const rank_split *R = &e->ranks;
 			fprintf(stderr,
 			        "  on %d ranks: particles per rank %.0f at most, %.0f on average "
 			        "(%.3f); bonds %.0f, %.0f (%.3f)\n",
-			        e->ranks.size, pbal[0], pbal[1], pbal[0] / pbal[1], bbal[0],
-			        bbal[1], bbal[1] > 0 ? bbal[0] / bbal[1] : 1);
-		if (e->ranks.size > 1)
+			        R->size, pbal[0], pbal[1], pbal[0] / pbal[1], bbal[0], bbal[1],
+			        bbal[1] > 0 ? bbal[0] / bbal[1] : 1);
 			fprintf(stderr,
 			        "  state received per rank and step: halo %.4g bytes at most, "
 			        "%.4g on average; with the full gathers %.4g, %.4g (every "
 			        "particle every step: %.4g, %.4g)\n",
-			        e->ranks.traffic_halo[0], e->ranks.traffic_halo[1],
-			        e->ranks.traffic_state[0], e->ranks.traffic_state[1],
-			        e->ranks.traffic_allgather[0], e->ranks.traffic_allgather[1]);
-		if (e->ranks.size > 1) {
-			const rank_split *R = &e->ranks;
+			        R->traffic_halo[0], R->traffic_halo[1], R->traffic_state[0],
+			        R->traffic_state[1], R->traffic_allgather[0],
+			        R->traffic_allgather[1]);
 			fprintf(stderr,
 			        "  crossing forces received per rank and step: %.4g bytes at most, "
 			        "%.4g on average; per step %.3g reductions of %.4g bytes in all, "
@@ -108,18 +106,18 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	json_num(j, "ranks", e->ranks.size);
 	json_num(j, "rank_particles_max_over_mean", pbal[0] / pbal[1]);
 	json_num(j, "rank_bonds_max_over_mean", bbal[1] > 0 ? bbal[0] / bbal[1] : 1);
-	/* Bytes of particle state each rank received per step (ranks.h). */
-	static const char *const traffic[3][2] = {
+	/* Bytes of particle state and of crossing forces each rank received per
+	 * step (ranks.h). */
+	static const char *const traffic[4][2] = {
 	    {"halo_bytes_per_step_max", "halo_bytes_per_step_mean"},
 	    {"state_bytes_per_step_max", "state_bytes_per_step_mean"},
-	    {"allgather_bytes_per_step_max", "allgather_bytes_per_step_mean"}};
-	const double *tv[3] = {e->ranks.traffic_halo, e->ranks.traffic_state,
-	                       e->ranks.traffic_allgather};
-	for (int k = 0; k < 3; k++)
+	    {"allgather_bytes_per_step_max", "allgather_bytes_per_step_mean"},
+	    {"force_bytes_per_step_max", "force_bytes_per_step_mean"}};
+	const double *tv[4] = {e->ranks.traffic_halo, e->ranks.traffic_state,
+	                       e->ranks.traffic_allgather, e->ranks.traffic_forces};
+	for (int k = 0; k < 4; k++)
 		for (int m = 0; m < 2; m++)
 			json_num(j, traffic[k][m], tv[k][m]);
-	json_num(j, "force_bytes_per_step_max", e->ranks.traffic_forces[0]);
-	json_num(j, "force_bytes_per_step_mean", e->ranks.traffic_forces[1]);
 	json_num(j, "reductions_per_step", e->ranks.reductions_per_step);
 	json_num(j, "reduction_bytes_per_step", e->ranks.reduction_bytes_per_step);
 	json_num(j, "gathers_per_step", e->ranks.gathers_per_step);
