@@ -13,13 +13,7 @@
 set -eu
 bin=$1 tmp=$2 mpiexec=$3
 here=$(cd "$(dirname "$0")" && pwd)
-share=$(cd "$here/../../share" && pwd)
-# Ranks that wait yield the cores to the others (more ranks than cores).
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_yield_when_idle=1
-rm -rf "$tmp"
-mkdir -p "$tmp"
-cd "$tmp"
-same() { /usr/bin/python3 "$here/same_run.py" "$1" "$2"; }
+. "$here/ranks_common.sh"
 # ranks K ARGS...: solve on K ranks; a run stopped by --max-steps is fine.
 ranks() {
 	k=$1
@@ -27,15 +21,7 @@ ranks() {
 	DEM_RANKS_POISON=1 "$mpiexec" -np "$k" --oversubscribe "$bin/solve" --quiet "$@" ||
 		[ $? -eq 3 ]
 }
-# About 2 400 spheres: 10 blocks of 256, two threads' shares on a rank.
-"$bin/pack" --quiet --diameter 0.011 --height 0.022 --radius 0.0005 --dist fuzz --fuzz 0.3 a.h5
-cat > ucs.json <<JSON
-{"test": "ucs", "assembly": "a.h5", "material": "$share/materials/cement.json",
- "damping": {"translational": 0.1, "rotational": 0.1},
- "output": {"history_every": 50, "snapshot_every": 250, "checkpoint_every": 400},
- "loading": [{"axial": {"mode": "strain_rate", "rate": 120.0}}],
- "stop": {"strain_axial": 0.03, "stress_drop": 0.7}}
-JSON
+ucs_case 400
 "$bin/solve" --quiet --threads 1 --output ucs1.h5 ucs.json
 # The run to compare breaks bonds and ends by its stress-drop rule.
 /usr/bin/python3 -c '
