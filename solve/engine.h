@@ -118,11 +118,18 @@ typedef struct {
 	double noise;   /* kinetic energy of every particle moving 1e-12 r per step */
 } engine_energy;
 
+/* Flags every rank must agree on, each the largest over the ranks (run.c:
+ * a signal, the wall-clock budget, a checkpoint due by the clock). */
+enum { ENGINE_AGREE = 3 };
+
 /* This step's reductions (blocks.h) and measurement. */
 typedef struct {
 	pair_sums bonds, contacts;
 	particle_sums particles;
 	measurement meas;
+	/* Set before the step, the largest over the ranks after it (in the
+	 * step's one reduction). */
+	double agree[ENGINE_AGREE];
 } engine_sums;
 
 /* Bookkeeping for the output. */

@@ -3,7 +3,6 @@
 #include <string.h>
 
 #include "solve/pairlist.h"
-#include "solve/reduce.h"
 
 void pairlist_free(pairlist *l)
 {
@@ -30,14 +29,6 @@ void pairlist_csr(pairlist *l, size_t np)
 	for (size_t p = np; p > 0; p--)
 		l->off[p] = l->off[p - 1];
 	l->off[0] = 0;
-}
-
-void pair_sums_total(const pair_sums *blk, size_t nb, pair_sums *out)
-{
-	/* A pair_sums is an array of doubles. */
-	enum { NF = sizeof(pair_sums) / sizeof(double) };
-	_Static_assert(sizeof(pair_sums) == NF * sizeof(double), "pair_sums: doubles only");
-	reduce_blocks((const double *)blk, nb, NF, NF, (double *)out);
 }
 
 void love_add(double love[9], const batch_geom *g, int q, const double f[6])

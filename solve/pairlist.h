@@ -41,8 +41,6 @@ void pairlist_free(pairlist *l);
 void pairlist_csr(pairlist *l, size_t np);
 /* The number of pairs particle i belongs to (a scan: for messages). */
 int pairlist_count(const pairlist *l, size_t i);
-/* The sums of nb blocks, exact (reduce.h). */
-void pair_sums_total(const pair_sums *blk, size_t nb, pair_sums *out);
 /* Love–Weber sums Σ (x_j - x_i) ⊗ F_i of pair q of a batch. */
 void love_add(double love[9], const batch_geom *g, int q, const double f[6]);
 

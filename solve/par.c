@@ -1,6 +1,7 @@
 /* The ranks of a run (par.h). */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #ifdef DEM_MPI
@@ -121,10 +122,88 @@ void par_sum(xsum *a, int n)
 }
 
 #ifdef DEM_MPI
+/* par_sum_max's operation, on elements that are each a whole buffer of
+ * int64 words (so that MPI never splits one): the count W of summed words,
+ * W words summed, then doubles (their bits) of which the larger is kept, as
+ * MPI_MAX keeps it. */
+static void sum_max_op(void *in, void *inout, int *len, MPI_Datatype *type)
+{
+	int size;
+	MPI_Type_size(*type, &size);
+	size_t words = (size_t)size / sizeof(int64_t);
+	for (int el = 0; el < *len; el++) {
+		const int64_t *a = (const int64_t *)in + (size_t)el * words;
+		int64_t *b = (int64_t *)inout + (size_t)el * words;
+		size_t w = (size_t)a[0];
+		for (size_t k = 1; k <= w; k++)
+			b[k] += a[k];
+		for (size_t k = w + 1; k < words; k++) {
+			double x, y;
+			memcpy(&x, &a[k], sizeof x);
+			memcpy(&y, &b[k], sizeof y);
+			if (x > y)
+				b[k] = a[k];
+		}
+	}
+}
+#endif
+
+void par_sum_max(xsum *a, int n, double *mx, int m)
+{
+	if (size_ == 1)
+		return;
+#ifdef DEM_MPI
+	static MPI_Op op;
+	static int made;
+	if (!made)
+		MPI_Op_create(sum_max_op, 1, &op), made = 1;
+	size_t w = (size_t)n * DEM_XSUM_WORDS, len = 1 + w + (size_t)m;
+	int64_t *buf = xmalloc(len * sizeof *buf);
+	buf[0] = (int64_t)w;
+	for (int k = 0; k < n; k++) {
+		xsum_normalize(&a[k]);
+		memcpy(buf + 1 + (size_t)k * DEM_XSUM_WORDS, a[k].d, sizeof a[k].d);
+	}
+	memcpy(buf + 1 + w, mx, (size_t)m * sizeof *mx);
+	MPI_Datatype whole;
+	MPI_Type_contiguous((int)len, MPI_INT64_T, &whole);
+	MPI_Type_commit(&whole);
+	reduce(buf, 1, whole, len * sizeof *buf, op);
+	MPI_Type_free(&whole);
+	for (int k = 0; k < n; k++)
+		memcpy(a[k].d, buf + 1 + (size_t)k * DEM_XSUM_WORDS, sizeof a[k].d);
+	memcpy(mx, buf + 1 + w, (size_t)m * sizeof *mx);
+	free(buf);
+#else
+	(void)a, (void)n, (void)mx, (void)m;
+#endif
+}
+
+#ifdef DEM_MPI
 void par_max(double *v, int n) { reduce(v, n, MPI_DOUBLE, sizeof *v, MPI_MAX); }
 void par_min(double *v, int n) { reduce(v, n, MPI_DOUBLE, sizeof *v, MPI_MIN); }
 void par_max_int(int *v, int n) { reduce(v, n, MPI_INT, sizeof *v, MPI_MAX); }
+void par_maxloc(double *v, int32_t *at, size_t n)
+{
+	if (size_ == 1)
+		return;
+	struct {
+		double v;
+		int at;
+	} *pair = xmalloc((n + 1) * sizeof *pair);
+	for (size_t k = 0; k < n; k++) {
+		pair[k].v = v[k];
+		pair[k].at = at[k];
+	}
+	reduce(pair, (int)n, MPI_DOUBLE_INT, sizeof(double) + sizeof(int), MPI_MAXLOC);
+	for (size_t k = 0; k < n; k++) {
+		v[k] = pair[k].v;
+		at[k] = pair[k].at;
+	}
+	free(pair);
+}
 #else
+void par_maxloc(double *v, int32_t *at, size_t n) { (void)v, (void)at, (void)n; }
 void par_max(double *v, int n) { (void)v, (void)n; }
 void par_min(double *v, int n) { (void)v, (void)n; }
 void par_max_int(int *v, int n) { (void)v, (void)n; }

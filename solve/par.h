@@ -6,6 +6,9 @@
 #ifndef DEM_PAR_H
 #define DEM_PAR_H
 
+#include <stddef.h>
+#include <stdint.h>
+
 #include "lib/xsum.h"
 
 /* Join the launcher's ranks, if a launcher started this process: 0, or -1
@@ -22,11 +25,16 @@ int par_launcher_size(void);
 /* Each of the n accumulators summed over the ranks, in place on every rank
  * (normalized first, xsum.h). */
 void par_sum(xsum *a, int n);
+/* par_sum of a[0..n) and par_max of mx[0..m) in one collective. */
+void par_sum_max(xsum *a, int n, double *mx, int m);
 /* The largest (smallest) of each of v[0..n) over the ranks, in place. */
 void par_max(double *v, int n);
 void par_min(double *v, int n);
 /* The largest of each of v[0..n) over the ranks, in place. */
 void par_max_int(int *v, int n);
+/* For each k < n, the largest v[k] over the ranks and, of the ranks that
+ * hold it, the smallest at[k] (MPI_MAXLOC), in place. */
+void par_maxloc(double *v, int32_t *at, size_t n);
 
 /* The reductions above (each one MPI_Allreduce) this process took part in
  * since par_tally_reset: their number, their payload (the bytes each rank

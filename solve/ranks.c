@@ -434,7 +434,38 @@ void ranks_sync_pairs(engine *e)
 #endif
 }
 
-void ranks_agree(int *flags, int n) { par_max_int(flags, n); }
+int ranks_own(const engine *e, size_t *p0, size_t *p1)
+{
+	const rank_split *R = &e->ranks;
+	int split = R->pfirst != NULL;
+	*p0 = split ? R->p0 : 0;
+	*p1 = split ? R->p1 : e->p.n;
+	return split;
+}
+
+size_t ranks_gather_list(int32_t *list, size_t mine)
+{
+#ifdef DEM_MPI
+	int size = par_size(), rank = par_rank();
+	if (size == 1)
+		return mine;
+	int own = (int)mine, *cnt = xmalloc((size_t)size * sizeof *cnt);
+	MPI_Allgather(&own, 1, MPI_INT, cnt, 1, MPI_INT, MPI_COMM_WORLD);
+	ngathers_++;
+	size_t *at = xmalloc(((size_t)size + 1) * sizeof *at);
+	at[0] = 0;
+	for (int q = 0; q < size; q++)
+		at[q + 1] = at[q] + (size_t)cnt[q];
+	memmove(list + at[rank], list, mine * sizeof *list);
+	gather_rows(list, at, sizeof *list, size);
+	size_t total = at[size];
+	free(cnt), free(at);
+	return total;
+#else
+	(void)list;
+	return mine;
+#endif
+}
 
 void ranks_balance(const engine *e, double particles[2], double bonds[2])
 {

@@ -13,9 +13,10 @@
  * crossing pairs it computes, from their ranks, point to point. The other
  * ranks' particles are then stale until ranks_gather_state brings every
  * particle's state to every rank, which whatever reads beyond the halo
- * calls first (a neighbour rebuild, the lateral surface, the gauge, the
- * end layers, output, the diagnoses); the step's end does so at once when
- * the next step rebuilds or updates the surface. With DEM_RANKS_POISON=1
+ * calls first (a neighbour rebuild, the end layers, output, the
+ * diagnoses); the step's end does so at once when the next step rebuilds.
+ * The lateral surface and the gauge read each rank's own particles and
+ * combine the ranks' parts (surface.c). With DEM_RANKS_POISON=1
  * in the environment the stale particles' x, v and ω are NaN instead, so
  * that a read that misses the gather shows. The histories of bonds and
  * contacts live with the rank of their i and are gathered only for
@@ -100,9 +101,14 @@ void ranks_share_cracks(engine *e, size_t first);
 /* Before output: every bond's and contact's history and force, and the
  * platen contacts, on every rank. */
 void ranks_sync_pairs(engine *e);
-/* Flags that every rank must agree on (a signal, a budget, a checkpoint
- * due): each the largest over the ranks, in place. */
-void ranks_agree(int *flags, int n);
+/* This rank's particles [*p0, *p1); before ranks_split (setup, where every
+ * rank holds and computes every particle alike) all of them, and 0 is
+ * returned, else 1: what the rank computes from its own particles must then
+ * be combined with the other ranks'. */
+int ranks_own(const engine *e, size_t *p0, size_t *p1);
+/* This rank's `mine` entries list[0..mine), then every rank's, in rank
+ * order, in list (room for all of them): their number. Collective. */
+size_t ranks_gather_list(int32_t *list, size_t mine);
 /* The load balance: the largest and the mean number of particles (and of
  * bonds, by their i) per rank. */
 void ranks_balance(const engine *e, double particles[2], double bonds[2]);

@@ -291,12 +291,9 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 		snprintf(L->ending, sizeof L->ending, "%s", status);
 		return END_NONE;
 	}
-	/* What a signal or rank 0's clock decides, agreed by the ranks. */
-	int agreed[3] = {interrupted,
-	                 par_rank() == 0 && o->max_wall > 0 &&
-	                     timer_now() - L->wall0 >= o->max_wall,
-	                 par_rank() == 0 && checkpoint_due_by_wall(L)};
-	ranks_agree(agreed, 3);
+	/* What a signal or rank 0's clock decided before the step, agreed by
+	 * the ranks in the step's reduction (loop). */
+	const double *agreed = e->sums.agree;
 	if (snapshot_due(L) && snapshot(L))
 		fatal(NULL);
 	if ((checkpoint_due_by_step(L) || agreed[2]) &&
@@ -312,7 +309,7 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 			        "%s: interrupted at step %" PRId64
 			        " (%s); continue with: solve --restart %s\n",
 			        err_program_name(), e->clock.step,
-			        agreed[0] ? strsignal(agreed[0]) : "budget", o->output);
+			        agreed[0] ? strsignal((int)agreed[0]) : "budget", o->output);
 		}
 		return end(L, END_INTERRUPTED, RUN_INTERRUPTED, "interrupted");
 	}
@@ -329,6 +326,11 @@ static void loop(loop_state *L)
 		int measure = L->ending[0] || e->clock.step % e->cs->history_every == 0 ||
 		              boundary_clock_ends_run(e);
 		int64_t rebuilds = e->pairs.rebuilds;
+		double *agree = e->sums.agree;
+		agree[0] = interrupted;
+		agree[1] = par_rank() == 0 && L->o->max_wall > 0 &&
+		           timer_now() - L->wall0 >= L->o->max_wall;
+		agree[2] = par_rank() == 0 && checkpoint_due_by_wall(L);
 		engine_step(e, measure);
 		phase_start(&e->tm, TM_OUTPUT);
 		how = after_step(L, measure, rebuilds);

@@ -216,9 +216,10 @@ static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 	double vn[3], wn[3], ext[3] = {0, 0, 0}, er[3] = {0, 0, 0};
 	int32_t slot = P->surf[i];
 	uint8_t flag = P->flag[i];
-	if (slot >= 0 || (flag & PF_CONSTRAINED))
+	int confined = slot >= 0 && e->bc.loads.lateral == LATERAL_PRESSURE;
+	if (confined || (flag & PF_CONSTRAINED))
 		radial_unit(e, P->x + 3 * i, er);
-	if (slot >= 0 && e->bc.loads.lateral == LATERAL_PRESSURE)
+	if (confined)
 		confine(e, i, slot, er, F, ext, s, measure);
 	if (e->bc.loads.layers && (flag & (PF_LAYER_BOTTOM | PF_LAYER_TOP))) {
 		move_layer(e, i, flag & PF_LAYER_TOP ? 1 : 0, F, vn, wn, s);
@@ -249,34 +250,53 @@ static void particles_integrate(engine *e, int k, int measure)
 		integrate_block(e, blk, measure);
 }
 
-/* Block sums of this rank's particles (after the parallel step), then over
- * the ranks: the sums exact (reduce.h), the largest displacement and speed
- * and the first bad particle. */
-static void particles_sum(engine *e)
+/* The step's sums over this rank's blocks of bonds, contacts and particles,
+ * the largest displacement and speed, the first bad particle, the count of
+ * new failures and the flags of e->sums.agree, all over the ranks in one
+ * reduction (reduce.h): the sums exact, the rest the largest of the ranks'.
+ * Returns whether some rank found failures in this step. */
+static int step_sums(engine *e, size_t ncracks)
 {
-	size_t n = e->p.n, nb = e->ranks.blk1 - e->ranks.blk0;
+	size_t n = e->p.n, blk0 = e->ranks.blk0, nb = e->ranks.blk1 - blk0;
 	particle_sums *t = &e->sums.particles;
-	const particle_sums *blk = e->scratch.pblock + e->ranks.blk0;
-	/* The summed members are the doubles before disp2. */
+	const particle_sums *blk = e->scratch.pblock + blk0;
+	/* The sums are arrays of doubles; of a particle_sums, those before disp2. */
 	enum {
+		PAIR = sizeof(pair_sums) / sizeof(double),
 		STRIDE = sizeof(particle_sums) / sizeof(double),
 		NF = offsetof(particle_sums, disp2) / sizeof(double)
 	};
+	_Static_assert(sizeof(pair_sums) == PAIR * sizeof(double), "pair_sums: doubles only");
 	_Static_assert(sizeof(particle_sums) == STRIDE * sizeof(double),
 	               "particle_sums: doubles only");
-	reduce_blocks((const double *)blk, nb, STRIDE, NF, (double *)t);
-	t->disp2 = t->v2max = 0;
-	t->bad = (double)n;
+	double top[3] = {0, 0, -(double)n}; /* disp2, v2max, -bad */
 	for (size_t k = 0; k < nb; k++) {
-		t->disp2 = blk[k].disp2 > t->disp2 ? blk[k].disp2 : t->disp2;
-		t->v2max = blk[k].v2max > t->v2max ? blk[k].v2max : t->v2max;
-		t->bad = blk[k].bad < t->bad ? blk[k].bad : t->bad;
+		top[0] = blk[k].disp2 > top[0] ? blk[k].disp2 : top[0];
+		top[1] = blk[k].v2max > top[1] ? blk[k].v2max : top[1];
+		top[2] = -blk[k].bad > top[2] ? -blk[k].bad : top[2];
 	}
-	double top[3] = {t->disp2, t->v2max, -t->bad}; /* one message */
-	par_max(top, 3);
-	t->disp2 = top[0];
-	t->v2max = top[1];
-	t->bad = -top[2];
+	static reduction r; /* some 35 kB; steps run one at a time */
+	reduce_clear(&r);
+	int kb = reduce_add_blocks(&r, (const double *)(e->scratch.bblock + blk0), nb, PAIR, PAIR);
+	int kc = reduce_add_blocks(&r, (const double *)(e->scratch.cblock + blk0), nb, PAIR, PAIR);
+	int kp = reduce_add_blocks(&r, (const double *)blk, nb, STRIDE, NF);
+	int km = reduce_add_max(&r, top[0]);
+	reduce_add_max(&r, top[1]);
+	reduce_add_max(&r, top[2]);
+	int kf = reduce_add_max(&r, (double)(e->out.cracks.n - ncracks));
+	int ka = reduce_add_max(&r, e->sums.agree[0]);
+	for (int k = 1; k < ENGINE_AGREE; k++)
+		reduce_add_max(&r, e->sums.agree[k]);
+	reduce_finish(&r);
+	reduce_sums(&r, kb, PAIR, (double *)&e->sums.bonds);
+	reduce_sums(&r, kc, PAIR, (double *)&e->sums.contacts);
+	reduce_sums(&r, kp, NF, (double *)t);
+	t->disp2 = r.max[km];
+	t->v2max = r.max[km + 1];
+	t->bad = -r.max[km + 2];
+	for (int k = 0; k < ENGINE_AGREE; k++)
+		e->sums.agree[k] = r.max[ka + k];
+	return r.max[kf] > 0;
 }
 
 /* Whether the lateral surface is updated at the start of this step. */
@@ -288,14 +308,14 @@ static int surface_due(const engine *e)
 void engine_step(engine *e, int measure)
 {
 	phase_start(&e->tm, TM_NEIGHBOUR);
-	/* These read every particle (ranks_gather_state). */
+	/* The search reads every particle (ranks_gather_state); the surface
+	 * and the gauge each rank's own. */
 	if (e->pairs.rebuild)
 		contacts_rebuild(e);
 	if (surface_due(e))
 		surface_update(e);
 	boundary_prepare(e);
 	if (measure) {
-		ranks_gather_state(e); /* the gauge's particles */
 		e->sums.meas = (measurement){.t = e->clock.t,
 		                             .step = e->clock.step,
 		                             .stage = e->prog.stage,
@@ -310,7 +330,7 @@ void engine_step(engine *e, int measure)
 	 * the crossing forces have reached the ranks of their j, the other
 	 * bonds and the particles, which read and move only the share's own
 	 * particles. */
-	size_t blk0 = e->ranks.blk0, nblk = e->ranks.blk1 - blk0, ncracks = e->out.cracks.n;
+	size_t ncracks = e->out.cracks.n;
 #pragma omp parallel num_threads(e->team)
 	{
 		int tid = omp_get_thread_num(), nth = omp_get_num_threads(), s0 = e->ranks.s0,
@@ -340,9 +360,8 @@ void engine_step(engine *e, int measure)
 		for (int k = s0 + tid; k < s1; k += nth)
 			particles_integrate(e, k, measure);
 	}
-	pair_sums_total(e->scratch.bblock + blk0, nblk, &e->sums.bonds);
-	pair_sums_total(e->scratch.cblock + blk0, nblk, &e->sums.contacts);
-	particles_sum(e);
+	bonds_collect_cracks(e);
+	int failures = step_sums(e, ncracks);
 	phase_stop(&e->tm, TM_INTEGRATE);
 	phase_start(&e->tm, TM_NEIGHBOUR);
 
@@ -369,8 +388,8 @@ void engine_step(engine *e, int measure)
 		              : m->lateral_area > 0 ? ps->constraint_force / m->lateral_area
 		                                    : 0;
 	}
-	bonds_collect_cracks(e);
-	ranks_share_cracks(e, ncracks);
+	if (failures)
+		ranks_share_cracks(e, ncracks);
 	boundary_finish_step(e);
 	e->clock.t += e->clock.dt;
 	e->clock.step++;
@@ -379,8 +398,8 @@ void engine_step(engine *e, int measure)
 		e->pairs.rebuild = 1;
 	phase_stop(&e->tm, TM_NEIGHBOUR);
 	/* The next step reads the halo, or every particle when it starts with
-	 * a neighbour rebuild or a surface update (ranks.h). */
+	 * a neighbour rebuild (ranks.h). */
 	phase_start(&e->tm, TM_INTEGRATE);
-	ranks_share_state(e, e->pairs.rebuild || surface_due(e));
+	ranks_share_state(e, e->pairs.rebuild);
 	phase_stop(&e->tm, TM_INTEGRATE);
 }

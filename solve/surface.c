@@ -30,7 +30,9 @@
 
 #include "lib/err.h"
 #include "lib/vec3.h"
+#include "lib/xsum.h"
 #include "solve/engine.h"
+#include "solve/par.h"
 #include "solve/ranks.h"
 #include "solve/surface.h"
 
@@ -45,16 +47,21 @@ static double frame(const engine *e, const double *x, double rho[3])
 	return z;
 }
 
-static void extent(const engine *e, double *lo, double *hi)
+/* The axial extent of the particles [p0, p1), over the ranks when split
+ * (ranks_own). */
+static void extent(const engine *e, size_t p0, size_t p1, int split, double *lo, double *hi)
 {
 	const particles *P = &e->p;
-	*lo = INFINITY;
-	*hi = -INFINITY;
-	for (size_t i = 0; i < P->n; i++) {
+	double m[2] = {-INFINITY, -INFINITY}; /* -lo, hi */
+	for (size_t i = p0; i < p1; i++) {
 		double rho[3], z = frame(e, P->x + 3 * i, rho);
-		*lo = fmin(*lo, z - P->r[i]);
-		*hi = fmax(*hi, z + P->r[i]);
+		m[0] = fmax(m[0], -(z - P->r[i]));
+		m[1] = fmax(m[1], z + P->r[i]);
 	}
+	if (split)
+		par_max(m, 2);
+	*lo = -m[0];
+	*hi = m[1];
 }
 
 void surface_init(engine *e)
@@ -83,7 +90,7 @@ void surface_init(engine *e)
 	}
 	v3_scale(e->frame.e1, e->frame.e1, 1 / l);
 	v3_cross(e->frame.e2, e->frame.axis, e->frame.e1);
-	extent(e, &lo, &hi);
+	extent(e, 0, P->n, 0, &lo, &hi);
 	S->bin = e->cs->surface_bin > 0 ? e->cs->surface_bin : 2 * e->frame.r_mean;
 	S->ntheta = (int)fmax(8, round(2 * DEM_PI * best / S->bin));
 	S->nz = (int)fmax(1, round((hi - lo) / S->bin));
@@ -124,20 +131,25 @@ static size_t bin_index(const surface *S, int iz, int t)
 	return (size_t)iz * S->ntheta + (size_t)(((t % S->ntheta) + S->ntheta) % S->ntheta);
 }
 
+/* Each rank bins its own particles, whose state is current (ranks.h); the
+ * bins' outermost spheres are then a maximum over the ranks (the lowest
+ * index among equals, as on one rank), and the surface layer each rank's
+ * list in rank order, which is index order: the same bins and list on
+ * every rank, for any number of ranks. */
 void surface_update(engine *e)
 {
 	particles *P = &e->p;
-	ranks_gather_state(e); /* the bins read every particle */
 	surface *S = &e->bc.surf;
-	size_t nbins = (size_t)S->ntheta * S->nz;
+	size_t nbins = (size_t)S->ntheta * S->nz, p0, p1;
+	int split = ranks_own(e, &p0, &p1);
 	double lo, hi;
-	extent(e, &lo, &hi);
+	extent(e, p0, p1, split, &lo, &hi);
 	double dz = (hi - lo) / S->nz, dth = 2 * DEM_PI / S->ntheta;
 	for (size_t b = 0; b < nbins; b++) {
 		S->best[b] = -1;
 		S->best_rho[b] = -INFINITY;
 	}
-	for (size_t i = 0; i < P->n; i++) {
+	for (size_t i = p0; i < p1; i++) {
 		bin_range br = sphere_bins(e, i, lo, dz, dth);
 		for (int iz = br.z0; iz <= br.z1; iz++)
 			for (int t = br.t0; t <= br.t1; t++) {
@@ -148,22 +160,26 @@ void surface_update(engine *e)
 				}
 			}
 	}
+	if (split)
+		par_maxloc(S->best_rho, S->best, nbins);
 	/* The surface layer: spheres reaching within their own radius of the
 	 * outermost point of a bin they overlap. */
 	for (size_t k = 0; k < S->n; k++)
 		P->surf[S->idx[k]] = -1;
-	S->n = 0;
-	for (size_t i = 0; i < P->n; i++) {
+	size_t mine = 0;
+	for (size_t i = p0; i < p1; i++) {
 		bin_range br = sphere_bins(e, i, lo, dz, dth);
 		int in = 0;
 		for (int iz = br.z0; iz <= br.z1 && !in; iz++)
 			for (int t = br.t0; t <= br.t1 && !in; t++)
 				in = br.out >= S->best_rho[bin_index(S, iz, t)] - P->r[i];
-		if (in) {
-			P->surf[i] = (int32_t)S->n;
-			S->idx[S->n] = (int32_t)i;
-			S->area[S->n++] = 0;
-		}
+		if (in)
+			S->idx[mine++] = (int32_t)i;
+	}
+	S->n = split ? ranks_gather_list(S->idx, mine) : mine;
+	for (size_t k = 0; k < S->n; k++) {
+		P->surf[S->idx[k]] = (int32_t)k;
+		S->area[k] = 0;
 	}
 	S->lateral_area = S->volume = 0;
 	double rsum = 0;
@@ -190,7 +206,7 @@ void gauge_init(engine *e)
 	const particles *P = &e->p;
 	gauge *G = &e->bc.gauge;
 	double lo, hi;
-	extent(e, &lo, &hi);
+	extent(e, 0, P->n, 0, &lo, &hi);
 	double mid = 0.5 * (lo + hi), half = fmax(0.05 * (hi - lo), e->frame.r_mean);
 	double outer = -INFINITY;
 	for (size_t i = 0; i < P->n; i++) {
@@ -219,13 +235,22 @@ double gauge_strain(const engine *e)
 	const gauge *G = &e->bc.gauge;
 	if (!G->n || G->radius0 <= 0)
 		return 0;
-	double sum = 0;
+	/* Each rank its own gauge particles, summed exactly over the ranks. */
+	size_t p0, p1;
+	int split = ranks_own(e, &p0, &p1);
+	xsum sum;
+	xsum_clear(&sum);
 	for (size_t k = 0; k < G->n; k++) {
+		size_t i = (size_t)G->idx[k];
+		if (i < p0 || i >= p1)
+			continue;
 		double rho[3];
-		frame(e, e->p.x + 3 * G->idx[k], rho);
-		sum += v3_norm(rho) - G->rho0[k];
+		frame(e, e->p.x + 3 * i, rho);
+		xsum_add(&sum, v3_norm(rho) - G->rho0[k]);
 	}
-	return -sum / G->n / G->radius0;
+	if (split)
+		par_sum(&sum, 1);
+	return -xsum_round(&sum) / G->n / G->radius0;
 }
 
 void gauge_free(gauge *g) { free(g->idx), free(g->rho0); }
