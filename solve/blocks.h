@@ -13,7 +13,7 @@
 
 #include "solve/clones.h"
 
-enum { BLOCK = 256, BATCH = 32 };
+enum { BLOCK = 256, BATCH = 16 };
 
 static inline size_t nblocks(size_t n) { return (n + BLOCK - 1) / BLOCK; }
 
