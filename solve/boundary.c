@@ -61,7 +61,7 @@ static void select_layers(engine *e, double thickness)
 void boundary_begin_stage(engine *e)
 {
 	const stage *s = current(e);
-	ranks_gather_state(e); /* the end layers and the surface read every particle */
+	ranks_gather_state(e); /* the end layers read every particle */
 	int was = e->bc.pl.active;
 	e->bc.pl.active = uses_platens(s->axial);
 	if (e->bc.pl.active != was)
