@@ -351,6 +351,24 @@ void ranks_gather_state(engine *e)
 #endif
 }
 
+#ifdef DEM_MPI
+/* Where each rank's rows of a list go, in rank order from row `first`, when
+ * this rank has `mine` of them: [size + 1] offsets, the last the end
+ * (free them). Collective. */
+static size_t *rank_rows(size_t first, size_t mine, int size)
+{
+	int own = (int)mine, *cnt = xmalloc((size_t)size * sizeof *cnt);
+	MPI_Allgather(&own, 1, MPI_INT, cnt, 1, MPI_INT, MPI_COMM_WORLD);
+	ngathers_++;
+	size_t *at = xmalloc(((size_t)size + 1) * sizeof *at);
+	at[0] = first;
+	for (int q = 0; q < size; q++)
+		at[q + 1] = at[q] + (size_t)cnt[q];
+	free(cnt);
+	return at;
+}
+#endif
+
 void ranks_share_cracks(engine *e, size_t first)
 {
 #ifdef DEM_MPI
@@ -360,15 +378,7 @@ void ranks_share_cracks(engine *e, size_t first)
 	crack_buf *cb = &e->out.cracks;
 	size_t mine = cb->n - first;
 	double t0 = timer_now();
-	int *cnt = xmalloc((size_t)R->size * sizeof *cnt);
-	int own = (int)mine;
-	MPI_Allgather(&own, 1, MPI_INT, cnt, 1, MPI_INT, MPI_COMM_WORLD);
-	ngathers_++;
-	size_t *at = xmalloc(((size_t)R->size + 1) * sizeof *at);
-	at[0] = first;
-	for (int q = 0; q < R->size; q++)
-		at[q + 1] = at[q] + (size_t)cnt[q];
-	size_t total = at[R->size];
+	size_t *at = rank_rows(first, mine, R->size), total = at[R->size];
 	if (total > first) {
 		if (total > cb->cap) {
 			cb->cap = total + total / 2;
@@ -383,7 +393,7 @@ void ranks_share_cracks(engine *e, size_t first)
 		gather_rows(cb->bond, at, sizeof *cb->bond, R->size);
 		cb->n = total;
 	}
-	free(cnt), free(at);
+	free(at);
 	R->sec[RANKS_GATHERS] += timer_now() - t0;
 #else
 	(void)e, (void)first;
@@ -449,17 +459,10 @@ size_t ranks_gather_list(int32_t *list, size_t mine)
 	int size = par_size(), rank = par_rank();
 	if (size == 1)
 		return mine;
-	int own = (int)mine, *cnt = xmalloc((size_t)size * sizeof *cnt);
-	MPI_Allgather(&own, 1, MPI_INT, cnt, 1, MPI_INT, MPI_COMM_WORLD);
-	ngathers_++;
-	size_t *at = xmalloc(((size_t)size + 1) * sizeof *at);
-	at[0] = 0;
-	for (int q = 0; q < size; q++)
-		at[q + 1] = at[q] + (size_t)cnt[q];
+	size_t *at = rank_rows(0, mine, size), total = at[size];
 	memmove(list + at[rank], list, mine * sizeof *list);
 	gather_rows(list, at, sizeof *list, size);
-	size_t total = at[size];
-	free(cnt), free(at);
+	free(at);
 	return total;
 #else
 	(void)list;

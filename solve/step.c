@@ -284,8 +284,8 @@ static int step_sums(engine *e, size_t ncracks)
 	reduce_add_max(&r, top[1]);
 	reduce_add_max(&r, top[2]);
 	int kf = reduce_add_max(&r, (double)(e->out.cracks.n - ncracks));
-	int ka = reduce_add_max(&r, e->sums.agree[0]);
-	for (int k = 1; k < ENGINE_AGREE; k++)
+	int ka = r.nmax;
+	for (int k = 0; k < ENGINE_AGREE; k++)
 		reduce_add_max(&r, e->sums.agree[k]);
 	reduce_finish(&r);
 	reduce_sums(&r, kb, PAIR, (double *)&e->sums.bonds);
