@@ -25,6 +25,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))
 import yade_jcfpm as yj  # noqa: E402
 from yade import O  # noqa: E402
 from yade.wrapper import PyRunner  # noqa: E402
+from yade.minieigenHP import Vector3  # noqa: E402
 
 case_path, spheres_path, dt, steps, every, out = sys.argv[1:7]
 dt, steps, every = float(dt), int(steps), int(every)
@@ -42,6 +43,9 @@ state = {"peak": 0.0}
 
 def record():
     k = O.iter - state["iter0"]
+    if k == 0:
+        for i, v in state["start"]:
+            O.bodies[i].state.vel = v
     if k % every and k != steps - 1:
         return
     zb, zt = O.bodies[state["b"]].state.pos[ax], O.bodies[state["t"]].state.pos[ax]
@@ -63,6 +67,12 @@ if layers:
     bottom, top, v_bottom, v_top, height = yj.end_layers(spheres, ids, axial)
 else:
     bottom, top, v_bottom, v_top, height = yj.platens(spheres, material, axial, ax, branch)
+# The ends start moving in the first step, as solve's: at rest while its
+# forces are computed (Yade would otherwise take their speed into that
+# step's shear increments, with no motion behind it), then at their speed.
+state["start"] = [(i, Vector3(O.bodies[i].state.vel)) for i in bottom + top]
+for i in bottom + top:
+    O.bodies[i].state.vel = O.bodies[i].state.vel * 0
 state.update(iter0=O.iter, b=bottom[0], t=top[0], height=height, bottom=bottom, top=top,
              law=law, zb0=O.bodies[bottom[0]].state.pos[ax], zt0=O.bodies[top[0]].state.pos[ax])
 O.run(steps, True)
