@@ -259,7 +259,7 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 		               "(radius %g m, %d bonds): lower time_step.dt or leave it out",
 		               cs->dt, e->clock.dt_crit, e->p.orig[worst], e->p.r[worst],
 		               pairlist_count(&e->pairs.bonds, worst));
-	if (!isfinite(e->clock.dt_crit))
+	if (!isfinite(e->clock.dt_crit) && !(cs->dt > 0))
 		return err_set("no bond or contact: the critical time step is undefined "
 		               "(give time_step.dt)");
 	if (!(e->clock.dt_crit > 0))
@@ -267,7 +267,7 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 		    "the critical time step is 0 s, set by particle %d (radius %g m, mass "
 		    "%g kg): the material's stiffness is out of range for its density",
 		    e->p.orig[worst], e->p.r[worst], e->p.m[worst]);
-	if (cs->dt > 0 && cs->dt < 1e-6 * e->clock.dt_crit)
+	if (cs->dt > 0 && isfinite(e->clock.dt_crit) && cs->dt < 1e-6 * e->clock.dt_crit)
 		return err_set("time step %g s below a millionth of the stable limit %g s: the run "
 		               "would take a million times the steps it needs (raise time_step.dt "
 		               "or leave it out)",
