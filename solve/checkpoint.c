@@ -97,6 +97,11 @@ typedef struct {
 	double *f; /* [B][OLD_FCOLS] */
 } old_bonds;
 
+/* Whether contacts follow Yade's conventions (laws/material.h): they then
+ * keep their start (contact_d0, platen<k>_start), which checkpoints hold
+ * and checksum. */
+static int yade_contacts(const engine *e) { return e->cs->mat.conventions == CONTACT_YADE; }
+
 /* old: when not NULL, the bonds' h and f as an old checkpoint held them. */
 static uLong pairs_crc(uLong c, const pairlist *l, int contacts, const old_bonds *old)
 {
@@ -142,11 +147,15 @@ static int64_t state_crc(engine *e, const old_bonds *old)
 	c = crc(c, e->bc.surf.area, e->bc.surf.n * sizeof *e->bc.surf.area);
 	c = pairs_crc(c, &e->pairs.bonds, 0, old);
 	c = pairs_crc(c, &e->pairs.contacts, 1, NULL);
+	for (size_t b = 0; yade_contacts(e) && b < e->pairs.contacts.n; b++)
+		c = crc(c, &e->pairs.contacts.rec[b].d0, sizeof(double));
 	for (int k = 0; k < 2; k++) {
 		const platens *pl = &e->bc.pl;
 		c = crc(c, pl->who[k], pl->ncand[k] * sizeof *pl->who[k]);
 		for (size_t q = 0; q < pl->ncand[k]; q++)
-			c = crc(c, &pl->pc[k][q], sizeof pl->pc[k][q]);
+			c = crc(c, &pl->pc[k][q],
+			        yade_contacts(e) ? sizeof pl->pc[k][q]
+			                         : offsetof(platen_contact, u0));
 	}
 	return (int64_t)c;
 }
@@ -274,11 +283,11 @@ static const field bond_fields[] = {
     FIELD("bond_h", T_F64, h, LAW_NHIST),
     FIELD("bond_state", T_U8, state, 1),
 };
+/* The last, with Yade's conventions only. */
 static const field contact_fields[] = {
-    FIELD("contact_i", T_I32, i, 1),
-    FIELD("contact_j", T_I32, j, 1),
-    FIELD("contact_t", T_F64, t, 3),
-    FIELD("contact_k", T_F64, h, 3),
+    FIELD("contact_i", T_I32, i, 1),   FIELD("contact_j", T_I32, j, 1),
+    FIELD("contact_t", T_F64, t, 3),   FIELD("contact_k", T_F64, h, 3),
+    FIELD("contact_d0", T_F64, d0, 1),
 };
 
 static int put_fields(hid_t g, const field *f, int nf, const pairlist *l)
@@ -305,6 +314,12 @@ static int write_platens(hid_t g, const engine *e)
 		snprintf(con, sizeof con, "platen%d_contact", k);
 		rc = put(g, who, H5T_NATIVE_INT32, e->bc.pl.who[k], n, 0) ||
 		     put(g, con, H5T_NATIVE_DOUBLE, pc, n, 6);
+		if (!rc && yade_contacts(e)) {
+			for (size_t c = 0; c < n; c++)
+				pc[c] = e->bc.pl.pc[k][c].u0;
+			snprintf(con, sizeof con, "platen%d_start", k);
+			rc = put(g, con, H5T_NATIVE_DOUBLE, pc, n, 0);
+		}
 		free(pc);
 	}
 	return rc;
@@ -336,8 +351,9 @@ int checkpoint_write(engine *e, hid_t file)
 	     put(g, "surface_area", H5T_NATIVE_DOUBLE, e->bc.surf.area, e->bc.surf.n, 0) ||
 	     put_fields(g, bond_fields, 3, &e->pairs.bonds) ||
 	     put(g, "bond_force", H5T_NATIVE_DOUBLE, e->pairs.bonds.f, e->pairs.bonds.n, 3) ||
-	     put_fields(g, contact_fields, 4, &e->pairs.contacts) || write_platens(g, e) ||
-	     h5_attr_i64(g, "checksum", state_crc(e, NULL)) || h5_attr_i64(g, "complete", 1);
+	     put_fields(g, contact_fields, yade_contacts(e) ? 5 : 4, &e->pairs.contacts) ||
+	     write_platens(g, e) || h5_attr_i64(g, "checksum", state_crc(e, NULL)) ||
+	     h5_attr_i64(g, "complete", 1);
 	H5Gclose(g);
 	if (!rc && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
 		rc = h5_write_error(h5_name(file), "the checkpoint");
@@ -425,7 +441,7 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 		b->d0 = e->p.r[b->i] + e->p.r[b->j];
 		b->state = BOND_BROKEN_TENSION;
 	}
-	if (rc)
+	if (rc || (yade_contacts(e) && get_field(g, &contact_fields[4], L->rec, nc)))
 		return -1;
 	L->n = nc;
 	memset(L->f, 0, 6 * nc * sizeof *L->f);
@@ -476,7 +492,14 @@ static int read_platens(hid_t g, engine *e)
 			q->kn = pc[6 * c + 3];
 			q->ks = pc[6 * c + 4];
 			q->cn = pc[6 * c + 5];
+			q->u0 = 0;
 			P->pslot[k][p] = (int32_t)c;
+		}
+		if (!rc && n && yade_contacts(e)) {
+			snprintf(con, sizeof con, "platen%d_start", k);
+			rc = get(g, con, H5T_NATIVE_DOUBLE, pc, n, 0);
+			for (size_t c = 0; !rc && c < n; c++)
+				e->bc.pl.pc[k][c].u0 = pc[c];
 		}
 		free(pc);
 		if (rc)

@@ -2,8 +2,10 @@
  * closer than r_i + r_j + skin, built from a cell grid and rebuilt only when
  * some particle has moved more than half the skin since the last build (so
  * no pair can come into contact unseen). Each pair is a Cundall–Strack
- * contact (laws/cundall.h) about d0 = r_i + r_j; its shear history survives
- * rebuilds by merging the old and new lists, both sorted by (i, j). */
+ * contact (laws/cundall.h) about d0 = r_i + r_j (with Yade's
+ * conventions, about the distance at which it started); its shear
+ * history and d0 survive rebuilds by merging the old and new lists, both
+ * sorted by (i, j). */
 #include <math.h>
 #include <omp.h>
 #include <string.h>
@@ -63,8 +65,10 @@ static void add_contact(engine *e, pairlist *L, const pairlist *old, size_t *o, 
 	c->state = BOND_BROKEN_TENSION;
 	while (*o < old->n && (old->rec[*o].i < i || (old->rec[*o].i == i && old->rec[*o].j < j)))
 		(*o)++;
-	if (*o < old->n && old->rec[*o].i == i && old->rec[*o].j == j)
+	if (*o < old->n && old->rec[*o].i == i && old->rec[*o].j == j) {
 		memcpy(c->t, old->rec[*o].t, sizeof c->t);
+		c->d0 = old->rec[*o].d0;
+	}
 	contact_constants(&e->cs->mat, e->lp, P->r[i], P->r[j], P->m[i], P->m[j], c->d0, c->h);
 	L->n++;
 }
@@ -122,6 +126,7 @@ DEM_VECTOR_CLONES static void contact_block(engine *e, size_t lo, size_t hi, int
 	const particles *P = &e->p;
 	pairlist *L = &e->pairs.contacts;
 	double mu = e->cs->mat.friction;
+	int yade = e->cs->mat.conventions == CONTACT_YADE;
 	law_batch B;
 	batch_geom g;
 	memset(s, 0, sizeof *s);
@@ -138,6 +143,13 @@ DEM_VECTOR_CLONES static void contact_block(engine *e, size_t lo, size_t hi, int
 			double *t = rec[q].t;
 			for (int d = 0; d < 3; d++)
 				t[d] = B.t[d][q];
+			if (yade) {
+				double rs = B.ri[q] + B.rj[q], u0 = rec[q].d0 - rs;
+				if (!cundall_started(&u0, B.un[q] + u0)) {
+					rec[q].d0 = rs + u0;
+					B.un[q] = 0; /* as just touching: no force, no shear */
+				}
+			}
 			cundall_force(&cd, B.un[q], B.vn[q], dus, t, &out);
 			for (int d = 0; d < 3; d++)
 				B.fs[d][q] = out.fs[d];

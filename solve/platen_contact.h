@@ -4,7 +4,12 @@
  * +axis for the top one); the contact point is where n meets the plane, at
  * the centre-plane distance h; u_n = h - r; the platen moves only along the
  * axis, so the tangential increment is that of the sphere's contact point,
- * reversed (the platen relative to the sphere, as for a pair). */
+ * reversed (the platen relative to the sphere, as for a pair). The platen
+ * does not turn, so the shear force keeps its direction, and the torque
+ * acts at the contact point, h n × F_s. With Yade's conventions
+ * (laws/material.h) the contact starts and ends as Yade's, its shear force
+ * turns about n by half the sphere's spin, ½ ω·n Δt, and its torque has
+ * the arm r - overlap/2 = (r + h)/2. */
 #ifndef DEM_PLATEN_CONTACT_H
 #define DEM_PLATEN_CONTACT_H
 
@@ -38,6 +43,20 @@ static inline void platen_force(const engine *e, int k, int32_t i, platen_contac
 		kin.dus[d] = -(vc[d] - vcn * n[d]) * e->clock.dt;
 		c->t[d] -= tn * n[d];
 	}
+	int yade = e->cs->mat.conventions == CONTACT_YADE;
+	double arm = h;
+	if (yade) {
+		double spin = 0.5 * e->clock.dt * (w[0] * n[0] + w[1] * n[1] + w[2] * n[2]);
+		double u[3] = {c->t[0], c->t[1], c->t[2]};
+		c->t[0] = u[0] + spin * (n[1] * u[2] - n[2] * u[1]);
+		c->t[1] = u[1] + spin * (n[2] * u[0] - n[0] * u[2]);
+		c->t[2] = u[2] + spin * (n[0] * u[1] - n[1] * u[0]);
+		arm = 0.5 * (P->r[i] + h);
+	}
+	if (yade && !cundall_started(&c->u0, kin.un))
+		kin.un = 0; /* as just touching: no force, no shear */
+	else
+		kin.un -= c->u0;
 	law_out out = {0};
 	cundall cd = {.kn = c->kn, .ks = c->ks, .cn = c->cn, .mu = e->cs->mat.platen_friction};
 	cundall_force(&cd, kin.un, kin.vn, kin.dus, c->t, &out);
@@ -46,9 +65,9 @@ static inline void platen_force(const engine *e, int k, int32_t i, platen_contac
 		f[d] = out.fn * n[d] + out.fs[d];
 		F[d] += f[d];
 	}
-	T[0] += h * (n[1] * out.fs[2] - n[2] * out.fs[1]);
-	T[1] += h * (n[2] * out.fs[0] - n[0] * out.fs[2]);
-	T[2] += h * (n[0] * out.fs[1] - n[1] * out.fs[0]);
+	T[0] += arm * (n[1] * out.fs[2] - n[2] * out.fs[1]);
+	T[1] += arm * (n[2] * out.fs[0] - n[0] * out.fs[2]);
+	T[2] += arm * (n[0] * out.fs[1] - n[1] * out.fs[0]);
 	int touch = kin.un < 0;
 	s->load[k] -= out.fn;
 	s->ksum[k] += touch ? c->kn : 0;

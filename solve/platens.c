@@ -71,10 +71,13 @@ void platens_rebuild(engine *e)
 			c->kn = 2 * kk[0];
 			c->ks = 2 * kk[1];
 			c->cn = 2 * kk[2];
-			if (old >= 0)
+			if (old >= 0) {
 				memcpy(c->t, pl->pc_old[k][old].t, sizeof c->t);
-			else
+				c->u0 = pl->pc_old[k][old].u0;
+			} else {
 				memset(c->t, 0, sizeof c->t);
+				c->u0 = 0;
+			}
 			pl->who[k][n] = (int32_t)i;
 			P->pslot[k][i] = (int32_t)n++;
 		}

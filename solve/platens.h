@@ -11,6 +11,8 @@ typedef struct engine engine;
 typedef struct {
 	double t[3];       /* N, shear force history */
 	double kn, ks, cn; /* of the sphere–platen contact */
+	double u0;         /* m, with Yade's conventions: the overlap at which it started
+	                      (cundall_started), else 0 */
 } platen_contact;
 
 typedef struct {

@@ -51,6 +51,22 @@ static inline void cundall_force(const cundall *c, double un, double vn, const d
 	out->e_friction += slide * (tt - lim) * lim / c->ks;
 }
 
+/* Yade's start of a contact (laws/material.h, CONTACT_YADE): u is the normal
+ * displacement from touching (d - (r_i + r_j), or h - r for a platen), *u0
+ * the overlap at which the contact started (< 0), 0 while it has not.
+ * Returns whether the contact acts in this step, at u - *u0; when it does
+ * not, it must exert no force and forget its shear history. */
+static inline int cundall_started(double *u0, double u)
+{
+	if (*u0 < 0) {
+		if (u - *u0 <= 0)
+			return 1;
+		*u0 = 0; /* open past its start: it has ended */
+	} else if (u < 0)
+		*u0 = u; /* found overlapping: it starts, without force */
+	return 0;
+}
+
 /* Elastic energy of a contact at normal displacement un with shear force t. */
 static inline double cundall_energy(const cundall *c, double un, const double t[3])
 {

@@ -24,18 +24,23 @@
  * detects a new one when they touch again, taking the distance then as its
  * equilibrium distance. Here the reference distance moves instead: once a
  * broken pair is apart it becomes min(distance now, r_i + r_j), so the
- * contact acts again from the moment the spheres touch.
+ * contact acts again from the moment the spheres touch. With Yade's contact
+ * conventions (laws/material.h) the pair follows Yade's rule: ended
+ * (h[1] = 1) when it breaks in tension or opens, it starts again without
+ * force in the first step it overlaps, at that distance.
  *
  * No contact damping (Yade uses its global damping only): C_n = 0.
  *
- * History: h[0] the shift of the reference distance from d (m), h[1..2]
- * unused; t the elastic shear
+ * History: h[0] the shift of the reference distance from d (m), h[1] 1
+ * while a broken pair has ended (Yade's conventions), h[2] unused; t the
+ * elastic shear
  * displacement, F_s = k_s t. A JCFPM bond is intact or broken, never
  * damaged.
  */
 #include <stdlib.h>
 
 #include "solve/laws/area.h"
+#include "solve/laws/material.h"
 #include "solve/laws/shear.h"
 
 typedef struct {
@@ -46,6 +51,7 @@ typedef struct {
 	double tan_b;      /* bond friction, Eq. 3.13 */
 	double tan_c;      /* contact (residual) friction, Eq. 3.14 */
 	double range;      /* gamma */
+	int yade;          /* contact.conventions "yade" */
 } jcfpm_params;
 
 static const double DEG = DEM_PI / 180;
@@ -54,7 +60,9 @@ static law_params *jcfpm_parse(cfg *m)
 {
 	jcfpm_params *p = calloc(1, sizeof *p);
 	double phi_c, phi_b;
-	if (!p || cfg_number(m, "E", &p->E, "Pa", CFG_POS, INFINITY) ||
+	int conventions;
+	if (!p || contact_conventions_parse(m, &conventions) ||
+	    cfg_number(m, "E", &p->E, "Pa", CFG_POS, INFINITY) ||
 	    cfg_number(m, "ks_ratio", &p->ks_over_kn, "", 0, INFINITY) ||
 	    cfg_number(m, "tensile_strength", &p->sigma_t, "Pa", 0, INFINITY) ||
 	    cfg_number(m, "cohesion", &p->cohesion, "Pa", 0, INFINITY) ||
@@ -64,6 +72,7 @@ static law_params *jcfpm_parse(cfg *m)
 		free(p);
 		return NULL;
 	}
+	p->yade = conventions == CONTACT_YADE;
 	p->tan_b = tan(phi_b * DEG);
 	p->tan_c = tan(phi_c * DEG);
 	return (law_params *)p;
@@ -101,13 +110,22 @@ static void jcfpm_constants(const law_params *lp, const law_pair *pair, law_cons
 	out->rc = area_rc(pair);
 }
 
-/* A broken pair apart: the interaction is gone until the spheres touch. */
-static void apart(const law_pair *pair, bond *b, double un, law_out *out)
+static void no_force(bond *b, law_out *out)
 {
-	b->h[0] = law_min(un, pair->ri + pair->rj - pair->d0);
 	memset(b->t, 0, sizeof b->t);
 	out->fn = 0;
 	memset(out->fs, 0, sizeof out->fs);
+}
+
+/* A broken pair apart: the interaction is gone until the spheres touch
+ * (with Yade's conventions, it has ended until they overlap). */
+static void apart(const jcfpm_params *p, const law_pair *pair, bond *b, double un, law_out *out)
+{
+	if (p->yade)
+		b->h[1] = 1;
+	else
+		b->h[0] = law_min(un, pair->ri + pair->rj - pair->d0);
+	no_force(b, out);
 }
 
 static inline void jcfpm_force(const law_params *lp, const law_pair *pair, bond *b,
@@ -121,11 +139,19 @@ static inline void jcfpm_force(const law_params *lp, const law_pair *pair, bond 
 	if (intact && u > p->sigma_t * A / kn) { /* its stored energy is released */
 		out->e_damage += 0.5 * kn * u * u + 0.5 * ks * v3_dot(b->t, b->t);
 		shear_break(b, out, BOND_BROKEN_TENSION, CRACK_TENSION);
-		apart(pair, b, k->un, out);
+		apart(p, pair, b, k->un, out);
+		return;
+	}
+	if (!intact && b->h[1] != 0) { /* ended (Yade's conventions): no force */
+		if (k->un + pair->d0 - (pair->ri + pair->rj) < 0) { /* overlaps: starts here */
+			b->h[0] = k->un;
+			b->h[1] = 0;
+		}
+		no_force(b, out);
 		return;
 	}
 	if (!intact && u > 0) {
-		apart(pair, b, k->un, out);
+		apart(p, pair, b, k->un, out);
 		return;
 	}
 	double fn = kn * u;
@@ -135,7 +161,7 @@ static inline void jcfpm_force(const law_params *lp, const law_pair *pair, bond 
 		out->failed = CRACK_SHEAR;
 		if (fn > 0) { /* in tension: erased */
 			out->e_damage += 0.5 * fn * fn / kn;
-			apart(pair, b, k->un, out);
+			apart(p, pair, b, k->un, out);
 			return;
 		}
 	}
@@ -181,8 +207,8 @@ static double jcfpm_energy(const law_params *lp, const law_pair *pair, const bon
 {
 	const jcfpm_params *p = (const jcfpm_params *)lp;
 	double kn = stiffness(p, pair), u = un - b->h[0];
-	if (b->state != BOND_INTACT && u > 0)
-		u = 0;
+	if (b->state != BOND_INTACT && (u > 0 || b->h[1] != 0))
+		return 0;
 	return 0.5 * kn * u * u + 0.5 * p->ks_over_kn * kn * v3_dot(b->t, b->t);
 }
 

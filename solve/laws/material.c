@@ -4,6 +4,16 @@
 #include "lib/err.h"
 #include "solve/laws/material.h"
 
+int contact_conventions_parse(cfg *c, int *conventions)
+{
+	static const char *const words[] = {"solve", "yade", NULL};
+	*conventions = CONTACT_SOLVE;
+	cfg *ct = cfg_object_opt(c, "contact");
+	if (!ct)
+		return err_msg()[0] ? -1 : 0;
+	return cfg_choice_or(ct, "conventions", conventions, words, CONTACT_SOLVE);
+}
+
 int material_parse(cfg *c, material *m)
 {
 	memset(m, 0, sizeof *m);
@@ -29,6 +39,8 @@ int material_parse(cfg *c, material *m)
 		if (m->E > 0 && cfg_number(ct, "nu", &m->nu, "", -0.99, 0.5))
 			return -1;
 	}
+	if (contact_conventions_parse(c, &m->conventions))
+		return -1;
 	if (m->platen_friction < 0)
 		m->platen_friction = m->friction;
 	m->params = m->law->parse(c);

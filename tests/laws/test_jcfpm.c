@@ -178,6 +178,80 @@ static void test_recontact(void)
 	CHECK(o.fn == 0);
 }
 
+/* contact.conventions "yade" (Yade's rule): a pair whose bond broke in
+ * tension, or that opened after breaking, has ended; it starts again
+ * without force in the first step it overlaps, at that distance, and ends
+ * again in the first step it is open past it. */
+static void test_recontact_yade(void)
+{
+	char json[512];
+	snprintf(json, sizeof json, "%.*s, \"contact\": {\"conventions\": \"yade\"}}",
+	         (int)strlen(concrete) - 1, concrete);
+	law_params *F = drive_parse(L, json, "jcfpm-yade.json");
+	CHECK(F != NULL);
+	if (!F)
+		return;
+	/* Bonded across a gap: d0 = 2.4 mm > ri + rj = 2.25 mm. */
+	law_pair q = pair_at(2.4e-3);
+	bond b = drive_bond(L, F, &q);
+	drive_step(L, F, &q, &b, 2 * UT, 0, 0, 0, 0);
+	CHECK(b.state == BOND_BROKEN_TENSION);
+	law_out o = drive_step(L, F, &q, &b, -0.1e-3, 0, 1e-6, 0, 0); /* d = 2.3 mm: apart */
+	CHECK(o.fn == 0 && drive_fs(&o) == 0);
+	o = drive_step(L, F, &q, &b, -0.2e-3, 0, 1e-6, 0, 0); /* d = 2.2 mm: starts here */
+	CHECK(o.fn == 0 && drive_fs(&o) == 0);
+	o = drive_step(L, F, &q, &b, -0.25e-3, 0, 0, 0, 0); /* 0.05 mm closer */
+	CHECK_REL(o.fn, -KN * 0.05e-3, 1e-9);
+	o = drive_step(L, F, &q, &b, -0.25e-3, 0, 1.0, 0, 0); /* slides */
+	CHECK_REL(o.fs[0], KN * 0.05e-3 * TANPHI, 1e-9);
+	o = drive_step(L, F, &q, &b, -0.21e-3, 0, 0, 0, 0);
+	CHECK_REL(o.fn, -KN * 0.01e-3, 1e-6);
+	o = drive_step(L, F, &q, &b, -0.19e-3, 0, 0, 0, 0); /* open past 2.2 mm: ends */
+	CHECK(o.fn == 0 && drive_fs(&o) == 0);
+	o = drive_step(L, F, &q, &b, -0.195e-3, 0, 0, 0, 0); /* overlapping: starts again */
+	CHECK(o.fn == 0);
+	o = drive_step(L, F, &q, &b, -0.2e-3, 0, 0, 0, 0);
+	CHECK_REL(o.fn, -KN * 0.005e-3, 1e-6);
+	CHECK(b.state == BOND_BROKEN_TENSION && o.failed == 0);
+
+	/* Bonded with an overlap: still overlapping after the rupture, so it
+	 * starts again in the next step, at that distance. */
+	q = pair_at(2.2e-3);
+	b = drive_bond(L, F, &q);
+	drive_step(L, F, &q, &b, 2 * UT, 0, 0, 0, 0);
+	CHECK(b.state == BOND_BROKEN_TENSION);
+	o = drive_step(L, F, &q, &b, 2 * UT, 0, 0, 0, 0);
+	CHECK(o.fn == 0 && drive_energy(L, F, &q, &b) == 0);
+	o = drive_step(L, F, &q, &b, UT, 0, 0, 0, 0);
+	CHECK_REL(o.fn, -KN * UT, 1e-9);
+
+	/* Broken in shear under compression: acts about its bonding distance
+	 * while compressed, ends once open. */
+	q = pair_at(2.4e-3);
+	b = drive_bond(L, F, &q);
+	double fnc = KN * 10 * UT;
+	drive_step(L, F, &q, &b, -10 * UT, 0, 2 * (COH * AREA + fnc * TANPHI) / KS, 0, 0);
+	CHECK(b.state == BOND_BROKEN_SHEAR);
+	o = drive_step(L, F, &q, &b, -5 * UT, 0, 0, 0, 0);
+	CHECK_REL(o.fn, -5 * KN * UT, 1e-12);
+	o = drive_step(L, F, &q, &b, 0.5 * UT, 0, 0, 0, 0);
+	CHECK(o.fn == 0);
+	o = drive_step(L, F, &q, &b, -5 * UT, 0, 0, 0, 0); /* d > ri + rj: ended */
+	CHECK(o.fn == 0);
+	o = drive_step(L, F, &q, &b, -0.2e-3, 0, 0, 0, 0); /* d = 2.2 mm: starts */
+	CHECK(o.fn == 0);
+	o = drive_step(L, F, &q, &b, -0.21e-3, 0, 0, 0, 0);
+	CHECK_REL(o.fn, -KN * 0.01e-3, 1e-6);
+	L->free(F);
+
+	snprintf(json, sizeof json, "%.*s, \"contact\": {\"conventions\": \"dem\"}}",
+	         (int)strlen(concrete) - 1, concrete);
+	const char *msg = drive_error(L, json, "bad.json");
+	CHECK(strstr(msg, "conventions") && strstr(msg, "yade"));
+	if (!strstr(msg, "yade"))
+		fprintf(stderr, "message: %s\n", msg);
+}
+
 static void test_no_healing(void)
 {
 	law_pair q = pair_at(2.3e-3);
@@ -243,6 +317,7 @@ int main(void)
 	test_normal();
 	test_shear();
 	test_recontact();
+	test_recontact_yade();
 	test_no_healing();
 	test_energy_books();
 	L->free(P);
