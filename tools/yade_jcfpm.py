@@ -30,7 +30,7 @@
 #     the friction contact.platen_friction (default contact.friction, 0.5).
 #     Yade's wall-sphere JCFPM contact has k_n = 2 E_w r E r / (E_w r + E r)
 #     (the wall's "radius" is the sphere's): a wall of JCFpmMat with
-#     E_w = 1e6 E gives 2 E r (1 - 1e-6), k_s likewise, its friction
+#     E_w = 1e12 E gives 2 E r (1 - 1e-12), k_s likewise, its friction
 #     min(phi_c, atan(platen_friction)), never cohesive (another type).
 import json
 import math
@@ -188,7 +188,7 @@ def platens(spheres, material, axial, ax, branch="radius"):
         fail("platen friction %g above tan(friction_angle_deg): Yade's wall contact takes "
              "the smaller of the two friction angles" % mu)
     wall_mat = O.materials.append(JCFpmMat(
-        young=1e6 * material["E"], poisson=material["ks_ratio"], density=material["density"],
+        young=1e12 * material["E"], poisson=material["ks_ratio"], density=material["density"],
         frictionAngle=math.atan(mu), residualFrictionAngle=math.atan(mu), type=1))
     bottom = O.bodies.append(wall(lo, axis=ax, sense=1, material=wall_mat))
     top = O.bodies.append(wall(hi, axis=ax, sense=-1, material=wall_mat))
