@@ -283,12 +283,14 @@ static const field bond_fields[] = {
     FIELD("bond_h", T_F64, h, LAW_NHIST),
     FIELD("bond_state", T_U8, state, 1),
 };
-/* The last, with Yade's conventions only. */
 static const field contact_fields[] = {
-    FIELD("contact_i", T_I32, i, 1),   FIELD("contact_j", T_I32, j, 1),
-    FIELD("contact_t", T_F64, t, 3),   FIELD("contact_k", T_F64, h, 3),
-    FIELD("contact_d0", T_F64, d0, 1),
+    FIELD("contact_i", T_I32, i, 1),
+    FIELD("contact_j", T_I32, j, 1),
+    FIELD("contact_t", T_F64, t, 3),
+    FIELD("contact_k", T_F64, h, 3),
 };
+/* With Yade's conventions only. */
+static const field contact_start = FIELD("contact_d0", T_F64, d0, 1);
 
 static int put_fields(hid_t g, const field *f, int nf, const pairlist *l)
 {
@@ -351,7 +353,9 @@ int checkpoint_write(engine *e, hid_t file)
 	     put(g, "surface_area", H5T_NATIVE_DOUBLE, e->bc.surf.area, e->bc.surf.n, 0) ||
 	     put_fields(g, bond_fields, 3, &e->pairs.bonds) ||
 	     put(g, "bond_force", H5T_NATIVE_DOUBLE, e->pairs.bonds.f, e->pairs.bonds.n, 3) ||
-	     put_fields(g, contact_fields, yade_contacts(e) ? 5 : 4, &e->pairs.contacts) ||
+	     put_fields(g, contact_fields, 4, &e->pairs.contacts) ||
+	     (yade_contacts(e) &&
+	      put_field(g, &contact_start, e->pairs.contacts.rec, e->pairs.contacts.n)) ||
 	     write_platens(g, e) || h5_attr_i64(g, "checksum", state_crc(e, NULL)) ||
 	     h5_attr_i64(g, "complete", 1);
 	H5Gclose(g);
@@ -441,7 +445,7 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 		b->d0 = e->p.r[b->i] + e->p.r[b->j];
 		b->state = BOND_BROKEN_TENSION;
 	}
-	if (rc || (yade_contacts(e) && get_field(g, &contact_fields[4], L->rec, nc)))
+	if (rc || (yade_contacts(e) && get_field(g, &contact_start, L->rec, nc)))
 		return -1;
 	L->n = nc;
 	memset(L->f, 0, 6 * nc * sizeof *L->f);
