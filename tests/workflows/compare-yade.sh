@@ -13,6 +13,9 @@
 # start with the layers' speed in the first step's shear increments is
 # 2e-4 off, solve's own platen contacts 3e-6, Yade's default branch
 # vectors 1.7 %. The tool must print every quantity and draw its PNGs.
+# With --samples 2 it must run two pairs (the second with Yade's list
+# reordered and the time step 1e-12 longer) and print each quantity over
+# them.
 # Skipped (exit status 77) without yade; with DEM_REQUIRE_YADE=1 that is a
 # failure instead.
 # Usage: compare-yade.sh BIN_DIR SOURCE_DIR SCRATCH_DIR
@@ -36,7 +39,10 @@ sh "$src/tools/compare-yade" --bin "$bin" --cut 0.02,0.01 --steps 400 --every 10
 	--case "$src/share/cases/jcfpm-concrete-bts.json" \
 	--damping-form components --yade-branch contact \
 	--out "$tmp/bts" >"$tmp/bts.json"
-cat "$tmp/ucs.json" "$tmp/bts.json"
+sh "$src/tools/compare-yade" --bin "$bin" --cut 0.014,0.028 --steps 200 --every 10 \
+	--damping-form components --yade-branch contact --samples 2 \
+	--out "$tmp/samples" >"$tmp/samples.json"
+cat "$tmp/ucs.json" "$tmp/bts.json" "$tmp/samples.json"
 python3 - "$tmp" <<'PY'
 import json, os, sys
 fail = []
@@ -44,7 +50,7 @@ for test, lo, hi in (("ucs", 150, 300), ("bts", 80, 200)):
     lines = [json.loads(l) for l in open(os.path.join(sys.argv[1], test + ".json"))]
     q = {l["quantity"]: l for l in lines}
     want = ["bonds", "past_peak", "peak_stress", "strain_at_peak", "modulus",
-            "modulus_initial", "broken_at_peak", "broken_tension_at_peak",
+            "modulus_yade_window", "modulus_initial", "broken_at_peak", "broken_tension_at_peak",
             "broken_shear_at_peak", "strain_at_first_break", "broken_tension_at_end",
             "broken_shear_at_end", "stress_at_end", "strain_at_end"]
     if sorted(q) != sorted(want):
@@ -66,6 +72,20 @@ for test, lo, hi in (("ucs", 150, 300), ("bts", 80, 200)):
         fail.append("%s: stress after 400 steps: %s" % (test, q["stress_at_end"]))
     if os.path.getsize(os.path.join(sys.argv[1], test, "compare.png")) < 10000:
         fail.append("%s: compare.png missing or empty" % test)
+lines = [json.loads(l) for l in open(os.path.join(sys.argv[1], "samples.json"))]
+q = {l["quantity"]: l for l in lines}
+if "peak_stress" not in q or "modulus_yade_window" not in q:
+    fail.append("samples: quantities %s" % sorted(q))
+else:
+    dt = [json.load(open(os.path.join(sys.argv[1], "samples", "sample-%d" % k, "yade.json")))["dt"]
+          for k in (0, 1)]
+    if not (q["stress_at_end"]["samples"] == 2 and len(q["stress_at_end"]["solve"]) == 2
+            and 0.5e-12 < dt[1] / dt[0] - 1 < 1.5e-12):
+        fail.append("samples: %s, time steps %s" % (q["stress_at_end"], dt))
+    a, b = q["stress_at_end"]["solve_mean"], q["stress_at_end"]["yade_mean"]
+    if not abs(q["stress_at_end"]["rel_diff"] - (a - b) / b) < 1e-15 or \
+            not abs(q["stress_at_end"]["rel_diff"]) < 1e-7:
+        fail.append("samples: stress at the end %s" % q["stress_at_end"])
 for f in fail:
     print("FAIL:", f)
 sys.exit(1 if fail else 0)
