@@ -134,6 +134,25 @@ static void test_shear(void)
 	CHECK(o.failed == CRACK_SHEAR && o.fn == 0 && drive_fs(&o) == 0);
 }
 
+/* A bond of pair q (bonded across a gap) broken in shear under
+ * compression, still pushing about its bonding distance while compressed,
+ * then opened and brought back to a distance beyond r_i + r_j: no force
+ * there. Returns the bond, apart. */
+static bond broken_in_shear_then_apart(const law_params *p, const law_pair *q)
+{
+	bond b = drive_bond(L, p, q);
+	double fnc = KN * 10 * UT;
+	drive_step(L, p, q, &b, -10 * UT, 0, 2 * (COH * AREA + fnc * TANPHI) / KS, 0, 0);
+	CHECK(b.state == BOND_BROKEN_SHEAR);
+	law_out o = drive_step(L, p, q, &b, -5 * UT, 0, 0, 0, 0);
+	CHECK_REL(o.fn, -5 * KN * UT, 1e-12);
+	o = drive_step(L, p, q, &b, 0.5 * UT, 0, 0, 0, 0);
+	CHECK(o.fn == 0);
+	o = drive_step(L, p, q, &b, -5 * UT, 0, 0, 0, 0); /* d > ri + rj: apart */
+	CHECK(o.fn == 0);
+	return b;
+}
+
 /* A broken pair loses its reference length once apart: it interacts again
  * as a frictional contact from the distance at which it touches again, as
  * Yade erases the interaction and detects a new one. */
@@ -166,16 +185,7 @@ static void test_recontact(void)
 	/* Broken in shear under compression: keeps its reference length while
 	 * compressed (the interaction survives in Yade), loses it once apart. */
 	q = pair_at(2.4e-3);
-	b = drive_bond(L, P, &q);
-	double fnc = KN * 10 * UT;
-	drive_step(L, P, &q, &b, -10 * UT, 0, 2 * (COH * AREA + fnc * TANPHI) / KS, 0, 0);
-	CHECK(b.state == BOND_BROKEN_SHEAR);
-	o = drive_step(L, P, &q, &b, -5 * UT, 0, 0, 0, 0);
-	CHECK_REL(o.fn, -5 * KN * UT, 1e-12);
-	o = drive_step(L, P, &q, &b, 0.5 * UT, 0, 0, 0, 0);
-	CHECK(o.fn == 0);
-	o = drive_step(L, P, &q, &b, -5 * UT, 0, 0, 0, 0); /* d > ri + rj: apart */
-	CHECK(o.fn == 0);
+	b = broken_in_shear_then_apart(P, &q);
 }
 
 /* contact.conventions "yade" (Yade's rule): a pair whose bond broke in
@@ -228,16 +238,7 @@ static void test_recontact_yade(void)
 	/* Broken in shear under compression: acts about its bonding distance
 	 * while compressed, ends once open. */
 	q = pair_at(2.4e-3);
-	b = drive_bond(L, F, &q);
-	double fnc = KN * 10 * UT;
-	drive_step(L, F, &q, &b, -10 * UT, 0, 2 * (COH * AREA + fnc * TANPHI) / KS, 0, 0);
-	CHECK(b.state == BOND_BROKEN_SHEAR);
-	o = drive_step(L, F, &q, &b, -5 * UT, 0, 0, 0, 0);
-	CHECK_REL(o.fn, -5 * KN * UT, 1e-12);
-	o = drive_step(L, F, &q, &b, 0.5 * UT, 0, 0, 0, 0);
-	CHECK(o.fn == 0);
-	o = drive_step(L, F, &q, &b, -5 * UT, 0, 0, 0, 0); /* d > ri + rj: ended */
-	CHECK(o.fn == 0);
+	b = broken_in_shear_then_apart(F, &q);
 	o = drive_step(L, F, &q, &b, -0.2e-3, 0, 0, 0, 0); /* d = 2.2 mm: starts */
 	CHECK(o.fn == 0);
 	o = drive_step(L, F, &q, &b, -0.21e-3, 0, 0, 0, 0);
