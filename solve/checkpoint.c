@@ -27,8 +27,10 @@ typedef struct {
 	size_t *z;
 } scalar;
 
-/* Every scalar of the state, by name: the one table for writing and reading. */
-static int scalars(engine *e, scalar *s)
+/* Every scalar of the state, by name: the one table for writing and reading
+ * (the counts of the whole specimen's contacts and platen contacts in
+ * count[3]). */
+static int scalars(engine *e, size_t count[3], scalar *s)
 {
 	scalar t[] = {
 	    {"t", &e->clock.t, 0, 0, 0},
@@ -74,9 +76,9 @@ static int scalars(engine *e, scalar *s)
 	    {"crack_rows", 0, 0, 0, &e->out.crack_rows},
 	    {"snapshot_strain_next", 0, 0, 0, &e->out.snapshot_strain_next},
 	    {"surface_n", 0, 0, 0, &e->bc.surf.n},
-	    {"contacts_n", 0, 0, 0, &e->pairs.contacts.n},
-	    {"platen_n0", 0, 0, 0, &e->bc.pl.ncand[0]},
-	    {"platen_n1", 0, 0, 0, &e->bc.pl.ncand[1]},
+	    {"contacts_n", 0, 0, 0, &count[0]},
+	    {"platen_n0", 0, 0, 0, &count[1]},
+	    {"platen_n1", 0, 0, 0, &count[2]},
 	};
 	int n = (int)(sizeof t / sizeof t[0]);
 	if (s)
@@ -127,11 +129,24 @@ static uLong pairs_crc(uLong c, const pairlist *l, int contacts, const old_bonds
 	           : crc(c, l->f, (size_t)l->fcols * l->n * sizeof *l->f);
 }
 
-static int64_t state_crc(engine *e, const old_bonds *old)
+/* The engine's own contact lists as a view (ranks.h): the whole specimen's
+ * after a checkpoint has been read, before contacts_restore. */
+static void own_lists(const engine *e, pairs_view *v)
+{
+	v->contacts = &e->pairs.contacts;
+	for (int k = 0; k < 2; k++) {
+		v->ncand[k] = e->bc.pl.ncand[k];
+		v->pc[k] = e->bc.pl.pc[k];
+		v->who[k] = e->bc.pl.who[k];
+	}
+}
+
+static int64_t state_crc(engine *e, const pairs_view *v, const old_bonds *old)
 {
 	uLong c = crc32_z(0, Z_NULL, 0);
 	scalar s[64];
-	int ns = scalars(e, s);
+	size_t count[3] = {v->contacts->n, v->ncand[0], v->ncand[1]};
+	int ns = scalars(e, count, s);
 	for (int k = 0; k < ns; k++) {
 		int64_t v = s[k].i ? *s[k].i : s[k].n ? *s[k].n : s[k].z ? (int64_t)*s[k].z : 0;
 		c = s[k].d ? crc(c, s[k].d, sizeof *s[k].d) : crc(c, &v, sizeof v);
@@ -146,15 +161,14 @@ static int64_t state_crc(engine *e, const old_bonds *old)
 	c = crc(c, e->bc.surf.idx, e->bc.surf.n * sizeof *e->bc.surf.idx);
 	c = crc(c, e->bc.surf.area, e->bc.surf.n * sizeof *e->bc.surf.area);
 	c = pairs_crc(c, &e->pairs.bonds, 0, old);
-	c = pairs_crc(c, &e->pairs.contacts, 1, NULL);
-	for (size_t b = 0; yade_contacts(e) && b < e->pairs.contacts.n; b++)
-		c = crc(c, &e->pairs.contacts.rec[b].d0, sizeof(double));
+	c = pairs_crc(c, v->contacts, 1, NULL);
+	for (size_t b = 0; yade_contacts(e) && b < v->contacts->n; b++)
+		c = crc(c, &v->contacts->rec[b].d0, sizeof(double));
 	for (int k = 0; k < 2; k++) {
-		const platens *pl = &e->bc.pl;
-		c = crc(c, pl->who[k], pl->ncand[k] * sizeof *pl->who[k]);
-		for (size_t q = 0; q < pl->ncand[k]; q++)
-			c = crc(c, &pl->pc[k][q],
-			        yade_contacts(e) ? sizeof pl->pc[k][q]
+		c = crc(c, v->who[k], v->ncand[k] * sizeof *v->who[k]);
+		for (size_t q = 0; q < v->ncand[k]; q++)
+			c = crc(c, &v->pc[k][q],
+			        yade_contacts(e) ? sizeof v->pc[k][q]
 			                         : offsetof(platen_contact, u0));
 	}
 	return (int64_t)c;
@@ -300,25 +314,25 @@ static int put_fields(hid_t g, const field *f, int nf, const pairlist *l)
 	return 0;
 }
 
-static int write_platens(hid_t g, const engine *e)
+static int write_platens(hid_t g, const engine *e, const pairs_view *v)
 {
 	int rc = 0;
 	for (int k = 0; !rc && k < 2; k++) {
-		size_t n = e->bc.pl.ncand[k];
+		size_t n = v->ncand[k];
 		double *pc = xmalloc((6 * n + 1) * sizeof *pc);
 		for (size_t c = 0; c < n; c++) {
-			const platen_contact *p = &e->bc.pl.pc[k][c];
+			const platen_contact *p = &v->pc[k][c];
 			double v[6] = {p->t[0], p->t[1], p->t[2], p->kn, p->ks, p->cn};
 			memcpy(pc + 6 * c, v, sizeof v);
 		}
 		char who[32], con[32];
 		snprintf(who, sizeof who, "platen%d_particle", k);
 		snprintf(con, sizeof con, "platen%d_contact", k);
-		rc = put(g, who, H5T_NATIVE_INT32, e->bc.pl.who[k], n, 0) ||
+		rc = put(g, who, H5T_NATIVE_INT32, v->who[k], n, 0) ||
 		     put(g, con, H5T_NATIVE_DOUBLE, pc, n, 6);
 		if (!rc && yade_contacts(e)) {
 			for (size_t c = 0; c < n; c++)
-				pc[c] = e->bc.pl.pc[k][c].u0;
+				pc[c] = v->pc[k][c].u0;
 			snprintf(con, sizeof con, "platen%d_start", k);
 			rc = put(g, con, H5T_NATIVE_DOUBLE, pc, n, 0);
 		}
@@ -334,8 +348,11 @@ int checkpoint_write(engine *e, hid_t file)
 	if (g < 0)
 		return -1;
 	int rc = h5_attr_i64(g, "complete", 0);
+	pairs_view v;
+	ranks_pairs(e, &v);
+	size_t count[3] = {v.contacts->n, v.ncand[0], v.ncand[1]};
 	scalar s[64];
-	int ns = scalars(e, s);
+	int ns = scalars(e, count, s);
 	for (int k = 0; !rc && k < ns; k++)
 		rc = s[k].d   ? h5_attr_f64(g, s[k].name, *s[k].d)
 		     : s[k].i ? h5_attr_i64(g, s[k].name, *s[k].i)
@@ -353,10 +370,9 @@ int checkpoint_write(engine *e, hid_t file)
 	     put(g, "surface_area", H5T_NATIVE_DOUBLE, e->bc.surf.area, e->bc.surf.n, 0) ||
 	     put_fields(g, bond_fields, 3, &e->pairs.bonds) ||
 	     put(g, "bond_force", H5T_NATIVE_DOUBLE, e->pairs.bonds.f, e->pairs.bonds.n, 3) ||
-	     put_fields(g, contact_fields, 4, &e->pairs.contacts) ||
-	     (yade_contacts(e) &&
-	      put_field(g, &contact_start, e->pairs.contacts.rec, e->pairs.contacts.n)) ||
-	     write_platens(g, e) || h5_attr_i64(g, "checksum", state_crc(e, NULL)) ||
+	     put_fields(g, contact_fields, 4, v.contacts) ||
+	     (yade_contacts(e) && put_field(g, &contact_start, v.contacts->rec, v.contacts->n)) ||
+	     write_platens(g, e, &v) || h5_attr_i64(g, "checksum", state_crc(e, &v, NULL)) ||
 	     h5_attr_i64(g, "complete", 1);
 	H5Gclose(g);
 	if (!rc && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
@@ -449,9 +465,6 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 		return -1;
 	L->n = nc;
 	memset(L->f, 0, 6 * nc * sizeof *L->f);
-	pairlist_csr(L, e->p.n);
-	contacts_index_blocks(e);
-	ranks_contacts(e);
 	return 0;
 }
 
@@ -548,8 +561,9 @@ int checkpoint_read_file(engine *e, hid_t f)
 		    "%s: the checkpoint is incomplete (the program was killed while writing "
 		    "it)",
 		    path);
+	size_t count[3] = {0, 0, 0};
 	scalar s[64];
-	int ns = scalars(e, s);
+	int ns = scalars(e, count, s);
 	for (int k = 0; !rc && k < ns; k++) {
 		int64_t v;
 		if (s[k].d)
@@ -563,6 +577,8 @@ int checkpoint_read_file(engine *e, hid_t f)
 				*s[k].z = (size_t)v;
 		}
 	}
+	for (int k = 0; k < 2; k++)
+		e->bc.pl.ncand[k] = count[1 + k];
 	particles *P = &e->p;
 	size_t n = P->n, nb = e->pairs.bonds.n;
 	old_bonds old = {NULL, NULL};
@@ -584,7 +600,7 @@ int checkpoint_read_file(engine *e, hid_t f)
 	     get_field(g, &bond_fields[0], e->pairs.bonds.rec, nb) ||
 	     get_field(g, &bond_fields[2], e->pairs.bonds.rec, nb) ||
 	     read_bond_h_f(g, e, &old, &is_old) || read_surface(g, e) ||
-	     read_pairs(g, e, e->pairs.contacts.n) || read_platens(g, e);
+	     read_pairs(g, e, count[0]) || read_platens(g, e);
 	for (size_t b = 0; !rc && b < nb; b++)
 		if (e->pairs.bonds.rec[b].state > BOND_BROKEN_SHEAR)
 			rc = err_set("%s: checkpoint dataset 'bond_state': value %d at row %zu: "
@@ -592,11 +608,17 @@ int checkpoint_read_file(engine *e, hid_t f)
 			             path, e->pairs.bonds.rec[b].state, b, BOND_INTACT,
 			             BOND_BROKEN_SHEAR);
 	int64_t sum = 0;
-	if (!rc &&
-	    (h5_read_attr_i64(g, "checksum", &sum) || sum != state_crc(e, is_old ? &old : NULL)))
+	pairs_view v;
+	own_lists(e, &v);
+	if (!rc && (h5_read_attr_i64(g, "checksum", &sum) ||
+	            sum != state_crc(e, &v, is_old ? &old : NULL)))
 		rc = err_set("%s: the checkpoint's data do not match its checksum (damaged, or "
 		             "written by an older version): not restartable",
 		             path);
+	if (!rc) { /* what this rank keeps of the whole specimen's lists */
+		contacts_restore(e);
+		platens_restore(e);
+	}
 	free(old.h), free(old.f);
 	H5Gclose(g);
 	return rc ? -1 : 0;

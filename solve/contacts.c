@@ -8,6 +8,7 @@
  * sorted by (i, j). */
 #include <math.h>
 #include <omp.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "lib/err.h"
@@ -84,10 +85,56 @@ void contacts_index_blocks(engine *e)
 	}
 }
 
+/* The particles a rank's search looks at: with several ranks its own and
+ * its ghosts (ranks_share_ghosts), in increasing order, their positions and
+ * radii copied to x and r; with one, all of them in place. */
+typedef struct {
+	size_t n;
+	int32_t *glob; /* index of each, or NULL: all particles */
+	const double *x, *r;
+	double *xb, *rb;
+} search_set;
+
+static void search_set_make(engine *e, search_set *s)
+{
+	const particles *P = &e->p;
+	memset(s, 0, sizeof *s);
+	if (e->ranks.size == 1) {
+		s->n = P->n;
+		s->x = P->x;
+		s->r = P->r;
+		return;
+	}
+	/* A pair within reach is closer than 2 r_max + skin along each axis;
+	 * the margin covers the rounding of both tests. */
+	double reach = (2 * e->frame.r_max + e->pairs.skin) * (1 + 1e-9);
+	size_t p0 = e->ranks.p0, p1 = e->ranks.p1;
+	int32_t *g = xmalloc((P->n + 1) * sizeof *g);
+	size_t ng = ranks_share_ghosts(e, reach, g);
+	s->glob = xmalloc((ng + p1 - p0 + 1) * sizeof *s->glob);
+	size_t k = 0;
+	while (k < ng && (size_t)g[k] < p0)
+		s->glob[s->n++] = g[k++];
+	for (size_t i = p0; i < p1; i++)
+		s->glob[s->n++] = (int32_t)i;
+	while (k < ng)
+		s->glob[s->n++] = g[k++];
+	free(g);
+	s->xb = xmalloc((3 * s->n + 1) * sizeof *s->xb);
+	s->rb = xmalloc((s->n + 1) * sizeof *s->rb);
+	for (size_t a = 0; a < s->n; a++) {
+		memcpy(s->xb + 3 * a, P->x + 3 * (size_t)s->glob[a], 3 * sizeof *s->xb);
+		s->rb[a] = P->r[s->glob[a]];
+	}
+	s->x = s->xb;
+	s->r = s->rb;
+}
+
+static void search_set_free(search_set *s) { free(s->glob), free(s->xb), free(s->rb); }
+
 void contacts_rebuild(engine *e)
 {
 	particles *P = &e->p;
-	ranks_gather_state(e); /* the search reads every particle */
 	pairlist tmp = e->pairs.contacts_old;
 	e->pairs.contacts_old = e->pairs.contacts;
 	e->pairs.contacts = tmp;
@@ -95,29 +142,64 @@ void contacts_rebuild(engine *e)
 	const pairlist *old = &e->pairs.contacts_old;
 	L->n = 0;
 	reserve(L, 0, P->n);
+	/* A rank lists the pairs of its particles i and, before them, those of
+	 * earlier ranks' particles i with its own j (whose forces it receives,
+	 * ranks.h): every pair with an end of its own, as one process lists
+	 * them. */
+	search_set s;
+	search_set_make(e, &s);
+	size_t p0 = e->ranks.size > 1 ? e->ranks.p0 : 0,
+	       p1 = e->ranks.size > 1 ? e->ranks.p1 : P->n;
 	cells *g = &e->pairs.grid;
-	cells_build(g, P->x, P->n, 2 * e->frame.r_max + e->pairs.skin);
+	cells_build(g, s.x, s.n, 2 * e->frame.r_max + e->pairs.skin);
 	enum { CAP = 4096 };
 	int32_t js[CAP];
 	size_t o = 0;
-	for (size_t i = 0; i < P->n; i++) {
-		int nj = cells_partners(g, P->x, P->r, i, 1, e->pairs.skin, js, CAP);
+	for (size_t a = 0; a < s.n; a++) {
+		size_t i = s.glob ? (size_t)s.glob[a] : a;
+		if (i >= p1)
+			break;
+		int nj = cells_partners(g, s.x, s.r, a, 1, e->pairs.skin, js, CAP);
 		if (nj < 0)
 			fatal(
 			    "particle %d has more than %d neighbours within its reach: overlapping "
 			    "spheres?",
 			    P->orig[i], CAP);
-		for (int q = 0; q < nj; q++)
-			if (!bonded(e, (int32_t)i, js[q]))
-				add_contact(e, L, old, &o, (int32_t)i, js[q]);
+		for (int q = 0; q < nj; q++) {
+			int32_t j = s.glob ? s.glob[js[q]] : js[q];
+			if ((i >= p0 || ((size_t)j >= p0 && (size_t)j < p1)) &&
+			    !bonded(e, (int32_t)i, j))
+				add_contact(e, L, old, &o, (int32_t)i, j);
+		}
 	}
+	search_set_free(&s);
 	pairlist_csr(L, P->n);
 	contacts_index_blocks(e);
-	memcpy(P->x_ref, P->x, 3 * P->n * sizeof *P->x);
+	memcpy(P->x_ref + 3 * p0, P->x + 3 * p0, 3 * (p1 - p0) * sizeof *P->x);
 	platens_rebuild(e);
 	ranks_contacts(e);
 	e->pairs.rebuilds++;
 	e->pairs.rebuild = 0;
+}
+
+void contacts_restore(engine *e)
+{
+	pairlist *L = &e->pairs.contacts;
+	const rank_split *R = &e->ranks;
+	if (R->size > 1) {
+		size_t m = 0;
+		for (size_t c = 0; c < L->n; c++) {
+			size_t i = (size_t)L->rec[c].i, j = (size_t)L->rec[c].j;
+			if ((i >= R->p0 && i < R->p1) || (j >= R->p0 && j < R->p1)) {
+				L->rec[m] = L->rec[c];
+				memcpy(L->f + 6 * m++, L->f + 6 * c, 6 * sizeof *L->f);
+			}
+		}
+		L->n = m;
+	}
+	pairlist_csr(L, e->p.n);
+	contacts_index_blocks(e);
+	ranks_contacts(e);
 }
 
 DEM_VECTOR_CLONES static void contact_block(engine *e, size_t lo, size_t hi, int measure,

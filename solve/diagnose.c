@@ -5,6 +5,7 @@
 
 #include "lib/err.h"
 #include "solve/diagnose.h"
+#include "solve/par.h"
 #include "solve/ranks.h"
 #include "solve/timestep.h"
 
@@ -53,7 +54,9 @@ void diagnose_nan(const engine *e, size_t i, char *msg, size_t n)
 	int count;
 	int64_t b = worst_pair(e, L, &who, &count);
 	if (b < 0) {
-		L = &e->pairs.contacts;
+		pairs_view v; /* the whole specimen's, after ranks_sync_pairs */
+		ranks_pairs(e, &v);
+		L = v.contacts;
 		what = "contact";
 		law = "contact";
 		b = worst_pair(e, L, &who, &count);
@@ -148,16 +151,19 @@ int diagnose_runaway(engine *e, char *msg, size_t n)
 
 int diagnose_timestep(engine *e, char *msg, size_t n)
 {
-	size_t worst;
-	ranks_gather_state(e); /* the contacts touching now */
+	size_t worst, p0, p1;
 	double crit = timestep_critical(e, 1, &worst);
 	if (e->clock.dt <= crit)
 		return 0;
 	const particles *P = &e->p;
+	/* The contacts of a particle are on its rank's list (ranks.h). */
+	ranks_own(e, &p0, &p1);
+	int nc = worst >= p0 && worst < p1 ? pairlist_count(&e->pairs.contacts, worst) : 0;
+	par_max_int(&nc, 1);
 	snprintf(msg, n,
 	         "stopped: time step %g s above the stable limit %g s at step %" PRId64
 	         ": particle %d has %d bonds and %d contacts (lower time_step.safety)",
 	         e->clock.dt, crit, e->clock.step, P->orig[worst],
-	         pairlist_count(&e->pairs.bonds, worst), pairlist_count(&e->pairs.contacts, worst));
+	         pairlist_count(&e->pairs.bonds, worst), nc);
 	return 1;
 }

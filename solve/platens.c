@@ -14,6 +14,7 @@
 #include "solve/engine.h"
 #include "solve/laws/contact.h"
 #include "solve/platens.h"
+#include "solve/ranks.h"
 
 static double axial(const engine *e, const double *x)
 {
@@ -51,8 +52,10 @@ void platens_rebuild(engine *e)
 		pl->pc_old[k] = pl->pc[k];
 		pl->pc[k] = tmp;
 		size_t old_cap = pl->cap[k];
-		size_t n = 0;
-		for (size_t i = 0; i < P->n; i++) {
+		size_t n = 0, p0, p1;
+		/* Each rank its own particles' (ranks.h). */
+		ranks_own(e, &p0, &p1);
+		for (size_t i = p0; i < p1; i++) {
 			int32_t old = P->pslot[k][i];
 			P->pslot[k][i] = -1;
 			double z = axial(e, P->x + 3 * i);
@@ -85,6 +88,28 @@ void platens_rebuild(engine *e)
 		pl->z_ref[k] = pl->z[k];
 		if (pl->cap[k] != old_cap)
 			pl->pc_old[k] = xrealloc(pl->pc_old[k], pl->cap[k] * sizeof *pl->pc_old[k]);
+	}
+}
+
+void platens_restore(engine *e)
+{
+	platens *pl = &e->bc.pl;
+	particles *P = &e->p;
+	size_t p0, p1;
+	ranks_own(e, &p0, &p1);
+	for (int k = 0; k < 2; k++) {
+		size_t m = 0;
+		for (size_t i = 0; i < P->n; i++)
+			P->pslot[k][i] = -1;
+		for (size_t c = 0; c < pl->ncand[k]; c++) {
+			int32_t i = pl->who[k][c];
+			if ((size_t)i < p0 || (size_t)i >= p1)
+				continue;
+			pl->pc[k][m] = pl->pc[k][c];
+			pl->who[k][m] = i;
+			P->pslot[k][i] = (int32_t)m++;
+		}
+		pl->ncand[k] = m;
 	}
 }
 

@@ -31,6 +31,9 @@ typedef struct {
 void platens_init(engine *e);
 /* List the particles within the skin of each platen (at a neighbour rebuild). */
 void platens_rebuild(engine *e);
+/* After a checkpoint has replaced the candidates with the whole
+ * specimen's: keep this rank's particles' (ranks.h), and their slots. */
+void platens_restore(engine *e);
 /* Move the platens at vel (m/s along the axis) for one step, with their work. */
 void platens_move(engine *e, const double vel[2]);
 /* The distance each platen moved since the last rebuild. */

@@ -327,17 +327,142 @@ static void gather_all(engine *e)
 }
 #endif
 
-void ranks_share_state(engine *e, int all)
+void ranks_share_state(engine *e)
 {
 #ifdef DEM_MPI
-	if (e->ranks.size == 1)
-		return;
-	if (all)
-		gather_all(e);
-	else
+	if (e->ranks.size > 1)
 		share_halo(e);
 #else
-	(void)e, (void)all;
+	(void)e;
+#endif
+}
+
+#ifdef DEM_MPI
+enum { TAG_GHOSTS = 4, TAG_VALUES = 5 };
+
+/* Whether the box of rank p's particles reaches within `reach` of rank q's
+ * (box[6]: lo, hi): p then sends q its particles in that reach. Both ranks
+ * evaluate it alike, from the same boxes. */
+static int box_reaches(const double *bp, const double *bq, double reach)
+{
+	for (int k = 0; k < 3; k++)
+		if (!(bp[k] <= bq[3 + k] + reach && bp[3 + k] >= bq[k] - reach))
+			return 0;
+	return 1;
+}
+#endif
+
+size_t ranks_share_ghosts(engine *e, double reach, int32_t *ghosts)
+{
+#ifdef DEM_MPI
+	rank_split *R = &e->ranks;
+	if (R->size == 1)
+		return 0;
+	particles *P = &e->p;
+	double *const arr[3] = {P->x, P->v, P->w};
+	double t0 = timer_now();
+	/* Every rank's box: 6 doubles each, the one collective. */
+	double *box = xmalloc(6 * (size_t)R->size * sizeof *box), *mine = box + 6 * R->rank;
+	for (int k = 0; k < 3; k++)
+		mine[k] = INFINITY, mine[3 + k] = -INFINITY;
+	for (size_t i = R->p0; i < R->p1; i++)
+		for (int k = 0; k < 3; k++) {
+			mine[k] = fmin(mine[k], P->x[3 * i + k]);
+			mine[3 + k] = fmax(mine[3 + k], P->x[3 * i + k]);
+		}
+	MPI_Allgather(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, box, 6, MPI_DOUBLE, MPI_COMM_WORLD);
+	ngathers_++;
+	/* To each rank this one's box reaches: its particles in that rank's
+	 * reach, as (index, x, v, ω), in increasing order. */
+	double **out = xcalloc((size_t)R->size, sizeof *out);
+	MPI_Request *req = xmalloc((size_t)R->size * sizeof *req);
+	int nreq = 0;
+	for (int q = 0; q < R->size; q++) {
+		if (q == R->rank || !box_reaches(mine, box + 6 * q, reach))
+			continue;
+		const double *bq = box + 6 * q;
+		size_t m = 0;
+		for (int pass = 0; pass < 2; pass++) {
+			m = 0;
+			for (size_t i = R->p0; i < R->p1; i++) {
+				const double *x = P->x + 3 * i;
+				int in = 1;
+				for (int k = 0; k < 3 && in; k++)
+					in = x[k] >= bq[k] - reach && x[k] <= bq[3 + k] + reach;
+				if (in && pass) {
+					double *o = out[q] + 10 * m;
+					o[0] = (double)i;
+					for (int a = 0; a < 3; a++)
+						memcpy(o + 1 + 3 * a, arr[a] + 3 * i,
+						       3 * sizeof *o);
+				}
+				m += (size_t)in;
+			}
+			if (!pass)
+				out[q] = xmalloc((10 * m + 1) * sizeof *out[q]);
+		}
+		MPI_Isend(out[q], (int)(10 * m), MPI_DOUBLE, q, TAG_GHOSTS, MPI_COMM_WORLD,
+		          &req[nreq++]);
+	}
+	/* From each rank whose box reaches this one's, in rank order: the
+	 * ranks hold increasing runs of particles, so the ghosts come sorted. */
+	size_t ng = 0;
+	double *in = NULL;
+	for (int q = 0; q < R->size; q++) {
+		if (q == R->rank || !box_reaches(box + 6 * q, mine, reach))
+			continue;
+		MPI_Status st;
+		int cnt;
+		MPI_Probe(q, TAG_GHOSTS, MPI_COMM_WORLD, &st);
+		MPI_Get_count(&st, MPI_DOUBLE, &cnt);
+		in = xrealloc(in, ((size_t)cnt + 1) * sizeof *in);
+		MPI_Recv(in, cnt, MPI_DOUBLE, q, TAG_GHOSTS, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+		for (int m = 0; m < cnt / 10; m++) {
+			const double *o = in + 10 * m;
+			size_t i = (size_t)o[0];
+			for (int a = 0; a < 3; a++)
+				memcpy(arr[a] + 3 * i, o + 1 + 3 * a, 3 * sizeof *o);
+			ghosts[ng++] = (int32_t)i;
+		}
+		R->recv_halo += state_bytes((size_t)cnt / 10);
+	}
+	MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE);
+	for (int q = 0; q < R->size; q++)
+		free(out[q]);
+	free(out), free(req), free(in), free(box);
+	R->sec[RANKS_HALO] += timer_now() - t0;
+	return ng;
+#else
+	(void)e, (void)reach, (void)ghosts;
+	return 0;
+#endif
+}
+
+void ranks_share_contact_values(engine *e, double *v)
+{
+#ifdef DEM_MPI
+	rank_split *R = &e->ranks;
+	if (R->size == 1)
+		return;
+	MPI_Request *req = xmalloc((size_t)(R->csend.n + R->crecv.n + 1) * sizeof *req);
+	int nreq = 0;
+	for (int k = 0; k < R->crecv.n; k++)
+		MPI_Irecv(R->crecv.l[k].buf, (int)R->crecv.l[k].n, MPI_DOUBLE, R->crecv.l[k].peer,
+		          TAG_VALUES, MPI_COMM_WORLD, &req[nreq++]);
+	for (int k = 0; k < R->csend.n; k++) {
+		rank_link *l = &R->csend.l[k];
+		for (size_t q = 0; q < l->n; q++)
+			l->buf[q] = v[l->idx[q]];
+		MPI_Isend(l->buf, (int)l->n, MPI_DOUBLE, l->peer, TAG_VALUES, MPI_COMM_WORLD,
+		          &req[nreq++]);
+	}
+	MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE);
+	free(req);
+	for (int k = 0; k < R->crecv.n; k++)
+		for (size_t q = 0; q < R->crecv.l[k].n; q++)
+			v[R->crecv.l[k].idx[q]] = R->crecv.l[k].buf[q];
+#else
+	(void)e, (void)v;
 #endif
 }
 
@@ -401,18 +526,35 @@ void ranks_share_cracks(engine *e, size_t first)
 }
 
 #ifdef DEM_MPI
-/* The rows of a pair list each rank owns: the pairs of its particles i
- * (listed by i, blkfirst[] the first of each particle block; a rank's
- * first particle is a block boundary or the particle count). */
-static void gather_pairs(pairlist *L, const size_t *blkfirst, const rank_split *R, int forces)
+/* The bonds each rank owns, those of its particles i (listed by i, a
+ * rank's first particle a block boundary or the particle count), gathered
+ * in place. */
+static void gather_bonds(engine *e)
 {
+	const rank_split *R = &e->ranks;
+	pairlist *L = &e->pairs.bonds;
 	size_t *first = xmalloc(((size_t)R->size + 1) * sizeof *first);
 	for (int q = 0; q <= R->size; q++)
-		first[q] = blkfirst[nblocks(R->pfirst[q])];
+		first[q] = e->pairs.split.bfirst[nblocks(R->pfirst[q])];
 	gather_rows(L->rec, first, sizeof *L->rec, R->size);
-	if (forces)
-		gather_rows(L->f, first, (size_t)L->fcols * sizeof *L->f, R->size);
+	gather_rows(L->f, first, (size_t)L->fcols * sizeof *L->f, R->size);
 	free(first);
+}
+
+/* Every rank's `mine` rows of `row` bytes at src gathered, in rank order,
+ * into *dst (grown to *cap rows as needed): their number. */
+static size_t gather_list(const void *src, size_t mine, size_t row, void **dst, size_t *cap)
+{
+	int size = par_size(), rank = par_rank();
+	size_t *at = rank_rows(0, mine, size), total = at[size];
+	if (total > *cap || !*dst) {
+		*cap = total + total / 4 + 16;
+		*dst = xrealloc(*dst, *cap * row);
+	}
+	memcpy((char *)*dst + at[rank] * row, src, mine * row);
+	gather_rows(*dst, at, row, size);
+	free(at);
+	return total;
 }
 #endif
 
@@ -423,25 +565,42 @@ void ranks_sync_pairs(engine *e)
 	if (R->size == 1)
 		return;
 	double t0 = timer_now();
-	gather_pairs(&e->pairs.bonds, e->pairs.split.bfirst, R, 1);
-	gather_pairs(&e->pairs.contacts, e->scratch.cfirst, R, 1);
-	platens *pl = &e->bc.pl;
-	size_t *first = xmalloc(((size_t)R->size + 1) * sizeof *first);
+	gather_bonds(e);
+	/* Each rank's particles' positions at the last rebuild (checkpoints). */
+	gather_rows(e->p.x_ref, R->pfirst, 3 * sizeof *e->p.x_ref, R->size);
+	/* A rank's contacts are those of its particles i (the ones of its
+	 * particles j from earlier ranks come first in its list). */
+	const pairlist *C = &e->pairs.contacts;
+	pairlist *A = &R->all_contacts;
+	size_t c0 = e->scratch.cfirst[R->blk0], mine = e->scratch.cfirst[R->blk1] - c0;
+	size_t cap = A->cap;
+	A->n = gather_list(C->rec + c0, mine, sizeof *C->rec, (void **)&A->rec, &A->cap);
+	A->fcols = 6;
+	A->n = gather_list(C->f + 6 * c0, mine, 6 * sizeof *C->f, (void **)&A->f, &cap);
+	const platens *pl = &e->bc.pl;
 	for (int k = 0; k < 2; k++) {
-		/* The candidates are listed by particle. */
-		for (int q = 0, c = 0; q <= R->size; q++) {
-			while ((size_t)c < pl->ncand[k] && (size_t)pl->who[k][c] < R->pfirst[q])
-				c++;
-			first[q] = (size_t)c;
-		}
-		first[R->size] = pl->ncand[k];
-		gather_rows(pl->pc[k], first, sizeof *pl->pc[k], R->size);
+		size_t wcap = R->all_cap[k];
+		R->all_ncand[k] = gather_list(pl->pc[k], pl->ncand[k], sizeof *pl->pc[k],
+		                              (void **)&R->all_pc[k], &R->all_cap[k]);
+		gather_list(pl->who[k], pl->ncand[k], sizeof *pl->who[k], (void **)&R->all_who[k],
+		            &wcap);
 	}
-	free(first);
 	R->sec[RANKS_GATHERS] += timer_now() - t0;
 #else
 	(void)e;
 #endif
+}
+
+void ranks_pairs(const engine *e, pairs_view *v)
+{
+	const rank_split *R = &e->ranks;
+	int all = R->size > 1;
+	v->contacts = all ? &R->all_contacts : &e->pairs.contacts;
+	for (int k = 0; k < 2; k++) {
+		v->ncand[k] = all ? R->all_ncand[k] : e->bc.pl.ncand[k];
+		v->pc[k] = all ? R->all_pc[k] : e->bc.pl.pc[k];
+		v->who[k] = all ? R->all_who[k] : e->bc.pl.who[k];
+	}
 }
 
 int ranks_own(const engine *e, size_t *p0, size_t *p1)
@@ -539,6 +698,9 @@ void ranks_traffic(engine *e, double steps)
 void ranks_free(rank_split *r)
 {
 	free(r->pfirst), free(r->state);
+	pairlist_free(&r->all_contacts);
+	for (int k = 0; k < 2; k++)
+		free(r->all_pc[k]), free(r->all_who[k]);
 	links_free(&r->hsend);
 	links_free(&r->hrecv);
 	links_free(&r->bsend);

@@ -10,22 +10,35 @@
  * pair order puts it, so every particle's force is the same sum, bit for
  * bit, on any number of ranks. After each step a rank receives the new
  * position and velocities of its halo only: the particles j of the
- * crossing pairs it computes, from their ranks, point to point. The other
- * ranks' particles are then stale until ranks_gather_state brings every
- * particle's state to every rank, which whatever reads beyond the halo
- * calls first (a neighbour rebuild, the end layers, output, the
- * diagnoses); the step's end does so at once when the next step rebuilds.
- * The lateral surface and the gauge read each rank's own particles and
- * combine the ranks' parts (surface.c). With DEM_RANKS_POISON=1
- * in the environment the stale particles' x, v and ω are NaN instead, so
- * that a read that misses the gather shows. The histories of bonds and
- * contacts live with the rank of their i and are gathered only for
- * output. */
+ * crossing pairs it computes, from their ranks, point to point.
+ *
+ * A neighbour rebuild searches each rank's own particles and its ghosts:
+ * the other ranks' particles within the contact reach (2 r_max + skin) of
+ * the box around its own, which their ranks send it point to point after
+ * one gather of every rank's box. A rank lists the contacts of its own
+ * particles i and, before them, those of earlier ranks' particles i with
+ * its own j, whose forces it receives: every contact with an end of its
+ * own, in the order one process lists them. Likewise the platen contacts
+ * of its own particles. Checkpoints and diagnoses read the whole
+ * specimen's lists, which ranks_sync_pairs gathers (ranks_pairs).
+ *
+ * The other ranks' particles are stale between such exchanges until
+ * ranks_gather_state brings every particle's state to every rank, which
+ * whatever reads beyond the halo calls first (the end layers, output, the
+ * diagnoses). The lateral surface and the gauge read each rank's own
+ * particles and combine the ranks' parts (surface.c). With
+ * DEM_RANKS_POISON=1 in the environment the stale particles' x, v and ω
+ * are NaN instead, so that a read that misses an exchange shows. The
+ * histories of bonds and contacts live with the rank of their i and are
+ * gathered only for output. */
 #ifndef DEM_RANKS_H
 #define DEM_RANKS_H
 
 #include <stddef.h>
 #include <stdint.h>
+
+#include "solve/pairlist.h"
+#include "solve/platens.h"
 
 typedef struct engine engine;
 
@@ -78,7 +91,22 @@ typedef struct {
 	 * collective gathers, which every rank makes alike. */
 	double traffic_forces[2], seconds[RANKS_NX][2];
 	double reductions_per_step, reduction_bytes_per_step, gathers_per_step;
+	/* Every rank's contacts and platen contacts, gathered for output
+	 * (ranks_sync_pairs, ranks_pairs). */
+	pairlist all_contacts;
+	size_t all_ncand[2], all_cap[2];
+	platen_contact *all_pc[2];
+	int32_t *all_who[2];
 } rank_split;
+
+/* The contacts and platen contacts of the whole specimen, in the order one
+ * process holds them: what checkpoints write and diagnoses read. */
+typedef struct {
+	const pairlist *contacts;
+	size_t ncand[2];
+	const platen_contact *pc[2];
+	const int32_t *who[2];
+} pairs_view;
 
 /* This rank's part of the shares (after bonds_split). */
 void ranks_split(engine *e);
@@ -88,9 +116,17 @@ void ranks_contacts(engine *e);
  * crossing bonds and contacts sent to the ranks of their j. */
 void ranks_exchange_forces(engine *e);
 /* After the step (this rank's particles moved): their new position and
- * velocities to the ranks whose halo they are in or, when all, to every
- * rank. Collective: every rank passes the same all. */
-void ranks_share_state(engine *e, int all);
+ * velocities to the ranks whose halo they are in. Collective. */
+void ranks_share_state(engine *e);
+/* Before a neighbour search: the current state of the other ranks'
+ * particles whose centres lie within `reach` (per axis) of the box around
+ * this rank's own particles (its ghosts), from their ranks, point to
+ * point. Their indices, in increasing order, into *ghosts (room for
+ * e->p.n, the caller's), their number returned. Collective. */
+size_t ranks_share_ghosts(engine *e, double reach, int32_t *ghosts);
+/* For each crossing contact (ranks_contacts), the value v[c] the rank of
+ * its i holds sent to the rank of its j, into v[c] there. Collective. */
+void ranks_share_contact_values(engine *e, double *v);
 /* Every particle's current state on every rank, if some are stale: first
  * thing of whatever reads particles beyond the halo. Collective. */
 void ranks_gather_state(engine *e);
@@ -98,9 +134,13 @@ void ranks_gather_state(engine *e);
  * of e->out.cracks before the step) and those of the other ranks, in bond
  * order on every rank. */
 void ranks_share_cracks(engine *e, size_t first);
-/* Before output: every bond's and contact's history and force, and the
- * platen contacts, on every rank. */
+/* Before output: every bond's history and force and every particle's
+ * position at the last rebuild (x_ref) on every rank, and every contact
+ * and platen contact in the lists ranks_pairs shows. Collective. */
 void ranks_sync_pairs(engine *e);
+/* The whole specimen's contacts and platen contacts: this rank's own lists
+ * with one rank, else those of the last ranks_sync_pairs. */
+void ranks_pairs(const engine *e, pairs_view *v);
 /* This rank's particles [*p0, *p1); before ranks_split (setup, where every
  * rank holds and computes every particle alike) all of them, and 0 is
  * returned, else 1: what the rank computes from its own particles must then

@@ -308,8 +308,8 @@ static int surface_due(const engine *e)
 void engine_step(engine *e, int measure)
 {
 	phase_start(&e->tm, TM_NEIGHBOUR);
-	/* The search reads every particle (ranks_gather_state); the surface
-	 * and the gauge each rank's own. */
+	/* The search reads each rank's own particles and its ghosts; the
+	 * surface and the gauge each rank's own. */
 	if (e->pairs.rebuild)
 		contacts_rebuild(e);
 	if (surface_due(e))
@@ -397,9 +397,9 @@ void engine_step(engine *e, int measure)
 	if (2 * drift >= e->pairs.skin || drift + platens_drift(e) >= e->pairs.skin)
 		e->pairs.rebuild = 1;
 	phase_stop(&e->tm, TM_NEIGHBOUR);
-	/* The next step reads the halo, or every particle when it starts with
-	 * a neighbour rebuild (ranks.h). */
+	/* The next step reads the halo (a neighbour rebuild, its ghosts too:
+	 * ranks.h). */
 	phase_start(&e->tm, TM_INTEGRATE);
-	ranks_share_state(e, e->pairs.rebuild);
+	ranks_share_state(e);
 	phase_stop(&e->tm, TM_INTEGRATE);
 }

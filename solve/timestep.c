@@ -21,6 +21,8 @@
 
 #include "lib/err.h"
 #include "solve/engine.h"
+#include "solve/par.h"
+#include "solve/ranks.h"
 #include "solve/timestep.h"
 
 double pair_omega2(double kn, double ks, double mi, double mj, double ii, double ij, double ai,
@@ -33,29 +35,34 @@ double pair_omega2(double kn, double ks, double mi, double mj, double ii, double
 
 double damping_factor(double xi) { return sqrt(1 + xi * xi) - xi; }
 
-/* Bound on ω² of particle i from the current touching contacts. */
-static double contact_omega2(const engine *e, size_t i)
+/* The bound on ω² of contact c (0 unless it touches now), which the rank
+ * of its i computes (its j is in that rank's halo, ranks.h). */
+static double contact_lambda(const engine *e, size_t c)
+{
+	const particles *P = &e->p;
+	const bond *b = &e->pairs.contacts.rec[c];
+	double d2 = 0;
+	for (int k = 0; k < 3; k++) {
+		double dx = P->x[3 * b->j + k] - P->x[3 * b->i + k];
+		d2 += dx * dx;
+	}
+	if (!(d2 < b->d0 * b->d0))
+		return isnan(d2) ? NAN : 0; /* no bound from a position that is not finite */
+	const double *kk = b->h;
+	return pair_omega2(kk[0], kk[1], P->m[b->i], P->m[b->j],
+	                   1 / particle_inv_i(P, (size_t)b->i), 1 / particle_inv_i(P, (size_t)b->j),
+	                   P->r[b->i], P->r[b->j]);
+}
+
+/* Bound on ω² of particle i from the current touching contacts (lam: each
+ * contact's contact_lambda) and platen contacts. */
+static double contact_omega2(const engine *e, const double *lam, size_t i)
 {
 	const particles *P = &e->p;
 	const pairlist *C = &e->pairs.contacts;
 	double sum = 0;
-	for (int32_t q = C->off[i]; q < C->off[i + 1]; q++) {
-		const bond *c = &C->rec[C->ref[q] >> 1];
-		double d2 = 0;
-		for (int k = 0; k < 3; k++) {
-			double dx = P->x[3 * c->j + k] - P->x[3 * c->i + k];
-			d2 += dx * dx;
-		}
-		if (!(d2 < c->d0 * c->d0)) {
-			if (isnan(d2))
-				return NAN; /* no bound from a position that is not finite */
-			continue;
-		}
-		const double *kk = c->h;
-		sum += pair_omega2(kk[0], kk[1], P->m[c->i], P->m[c->j],
-		                   1 / particle_inv_i(P, (size_t)c->i),
-		                   1 / particle_inv_i(P, (size_t)c->j), P->r[c->i], P->r[c->j]);
-	}
+	for (int32_t q = C->off[i]; q < C->off[i + 1]; q++)
+		sum += lam[C->ref[q] >> 1];
 	for (int k = 0; k < 2; k++) {
 		int32_t s = P->pslot[k][i];
 		if (s < 0)
@@ -94,27 +101,55 @@ double timestep_bond_omega2(const engine *e, size_t i)
 	return sum;
 }
 
-double timestep_critical(const engine *e, int with_contacts, size_t *worst)
+double timestep_critical(engine *e, int with_contacts, size_t *worst)
 {
 	const particles *P = &e->p;
-	double top = 0;
-	*worst = 0;
-	/* Each particle's bound from its bonds, summed in bond order. */
+	size_t p0, p1;
+	ranks_own(e, &p0, &p1);
+	/* Each of this rank's particles' bound from its bonds, summed in bond
+	 * order: first those of earlier ranks' particles i (the crossing bonds
+	 * it receives, in bond order, ranks.h), then those of its own. */
 	double *bw2 = xcalloc(P->n + 1, sizeof *bw2);
-	for (size_t b = 0; b < e->pairs.bonds.n; b++) {
+	const bond_split *S = &e->pairs.split;
+	const rank_links *in = &e->ranks.brecv;
+	for (int k = 0; k < in->n; k++)
+		for (size_t q = 0; q < in->l[k].n; q++) {
+			size_t b = (size_t)S->cross[in->l[k].idx[q]];
+			bw2[e->pairs.bonds.rec[b].j] += bond_omega2(e, b);
+		}
+	for (size_t b = S->bfirst[nblocks(p0)]; b < S->bfirst[nblocks(p1)]; b++) {
 		double w2 = bond_omega2(e, b);
 		bw2[e->pairs.bonds.rec[b].i] += w2;
 		bw2[e->pairs.bonds.rec[b].j] += w2;
 	}
-	for (size_t i = 0; i < P->n; i++) {
-		double w2 = bw2[i] + (with_contacts ? contact_omega2(e, i) : 0);
-		if (w2 > top || (isnan(w2) && !isnan(top))) {
-			top = w2;
-			*worst = i;
+	/* Each contact's, from the rank of its i. */
+	const pairlist *C = &e->pairs.contacts;
+	double *lam = xcalloc(C->n + 1, sizeof *lam);
+	for (size_t c = 0; with_contacts && c < C->n; c++)
+		if ((size_t)C->rec[c].i >= p0)
+			lam[c] = contact_lambda(e, c);
+	if (with_contacts)
+		ranks_share_contact_values(e, lam);
+	/* The largest over the particles, the first where two are equal; the
+	 * first that is not a number before any. */
+	double top[2] = {0, 0}; /* largest bound; 1 if some is NaN */
+	int32_t at[2] = {(int32_t)p0, (int32_t)P->n};
+	for (size_t i = p0; i < p1; i++) {
+		double w2 = bw2[i] + (with_contacts ? contact_omega2(e, lam, i) : 0);
+		if (isnan(w2) && !top[1]) {
+			top[1] = 1;
+			at[1] = (int32_t)i;
+		} else if (w2 > top[0]) {
+			top[0] = w2;
+			at[0] = (int32_t)i;
 		}
 	}
-	free(bw2);
-	if (top <= 0)
+	free(bw2), free(lam);
+	par_maxloc(top, at, 2);
+	*worst = (size_t)(top[1] > 0 ? at[1] : at[0]);
+	if (top[1] > 0)
+		return NAN;
+	if (top[0] <= 0)
 		return INFINITY;
-	return 2 / sqrt(top) * damping_factor(e->clock.xi_max);
+	return 2 / sqrt(top[0]) * damping_factor(e->clock.xi_max);
 }

@@ -7,7 +7,7 @@
 typedef struct engine engine;
 
 /* The bound of Eq. 11-15 (s); worst gets the particle setting it. */
-double timestep_critical(const engine *e, int with_contacts, size_t *worst);
+double timestep_critical(engine *e, int with_contacts, size_t *worst);
 /* The bound on ω² of particle i from its bonds (a scan of the bonds: for
  * messages). */
 double timestep_bond_omega2(const engine *e, size_t i);
