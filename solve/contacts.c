@@ -148,8 +148,8 @@ void contacts_rebuild(engine *e)
 	 * them. */
 	search_set s;
 	search_set_make(e, &s);
-	size_t p0 = e->ranks.size > 1 ? e->ranks.p0 : 0,
-	       p1 = e->ranks.size > 1 ? e->ranks.p1 : P->n;
+	size_t p0, p1;
+	ranks_own(e, &p0, &p1);
 	cells *g = &e->pairs.grid;
 	cells_build(g, s.x, s.n, 2 * e->frame.r_max + e->pairs.skin);
 	enum { CAP = 4096 };
@@ -173,7 +173,7 @@ void contacts_rebuild(engine *e)
 		}
 	}
 	search_set_free(&s);
-	pairlist_csr(L, P->n);
+	pairlist_csr(L, p0, p1); /* the forces gathered by this rank's particles */
 	contacts_index_blocks(e);
 	memcpy(P->x_ref + 3 * p0, P->x + 3 * p0, 3 * (p1 - p0) * sizeof *P->x);
 	platens_rebuild(e);
@@ -197,7 +197,9 @@ void contacts_restore(engine *e)
 		}
 		L->n = m;
 	}
-	pairlist_csr(L, e->p.n);
+	size_t p0, p1;
+	ranks_own(e, &p0, &p1);
+	pairlist_csr(L, p0, p1);
 	contacts_index_blocks(e);
 	ranks_contacts(e);
 }

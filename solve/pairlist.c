@@ -12,23 +12,28 @@ void pairlist_free(pairlist *l)
 
 /* The gather index: for each particle the pairs it belongs to, in pair
  * order, so every particle sums its forces in a fixed order. */
-void pairlist_csr(pairlist *l, size_t np)
+void pairlist_csr(pairlist *l, size_t lo, size_t hi)
 {
-	memset(l->off, 0, (np + 1) * sizeof *l->off);
-	for (size_t b = 0; b < l->n; b++) {
-		l->off[l->rec[b].i + 1]++;
-		l->off[l->rec[b].j + 1]++;
-	}
-	for (size_t p = 0; p < np; p++)
-		l->off[p + 1] += l->off[p];
-	for (size_t b = 0; b < l->n; b++) {
-		/* Pairs are sorted by i, so filling in pair order keeps each list sorted. */
-		l->ref[l->off[l->rec[b].i]++] = (int32_t)(2 * b);
-		l->ref[l->off[l->rec[b].j]++] = (int32_t)(2 * b + 1);
-	}
-	for (size_t p = np; p > 0; p--)
-		l->off[p] = l->off[p - 1];
-	l->off[0] = 0;
+	int32_t *off = l->off;
+	memset(off + lo, 0, (hi - lo + 1) * sizeof *off);
+	for (size_t b = 0; b < l->n; b++)
+		for (int end = 0; end < 2; end++) {
+			size_t p = (size_t)(end ? l->rec[b].j : l->rec[b].i);
+			off[p + 1] += p >= lo && p < hi;
+		}
+	for (size_t p = lo; p < hi; p++)
+		off[p + 1] += off[p];
+	for (size_t b = 0; b < l->n; b++)
+		for (int end = 0; end < 2; end++) {
+			/* Pairs are sorted by i, so filling in pair order keeps each
+			 * list sorted. */
+			size_t p = (size_t)(end ? l->rec[b].j : l->rec[b].i);
+			if (p >= lo && p < hi)
+				l->ref[off[p]++] = (int32_t)(2 * b + (size_t)end);
+		}
+	for (size_t p = hi; p > lo; p--)
+		off[p] = off[p - 1];
+	off[lo] = 0;
 }
 
 void love_add(double love[9], const batch_geom *g, int q, const double f[6])

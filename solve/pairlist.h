@@ -36,9 +36,10 @@ typedef struct {
 } pair_sums;
 
 void pairlist_free(pairlist *l);
-/* Build the gather index of the l->n pairs, sorted by (i, j), over np
- * particles (l->off and l->ref allocated by the caller). */
-void pairlist_csr(pairlist *l, size_t np);
+/* Build the gather index of the l->n pairs, sorted by (i, j), for the
+ * particles [lo, hi) (l->off, for every particle, and l->ref allocated by
+ * the caller). */
+void pairlist_csr(pairlist *l, size_t lo, size_t hi);
 /* The number of pairs particle i belongs to (a scan: for messages). */
 int pairlist_count(const pairlist *l, size_t i);
 /* Love–Weber sums Σ (x_j - x_i) ⊗ F_i of pair q of a batch. */

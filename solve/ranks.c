@@ -541,20 +541,22 @@ static void gather_bonds(engine *e)
 	free(first);
 }
 
-/* Every rank's `mine` rows of `row` bytes at src gathered, in rank order,
- * into *dst (grown to *cap rows as needed): their number. */
-static size_t gather_list(const void *src, size_t mine, size_t row, void **dst, size_t *cap)
+/* Every rank's rows (at: rank_rows) of `row` bytes, this rank's at src,
+ * gathered in rank order into dst. */
+static void gather_list(const void *src, const size_t *at, size_t row, void *dst)
 {
 	int size = par_size(), rank = par_rank();
-	size_t *at = rank_rows(0, mine, size), total = at[size];
-	if (total > *cap || !*dst) {
-		*cap = total + total / 4 + 16;
-		*dst = xrealloc(*dst, *cap * row);
-	}
-	memcpy((char *)*dst + at[rank] * row, src, mine * row);
-	gather_rows(*dst, at, row, size);
-	free(at);
-	return total;
+	memcpy((char *)dst + at[rank] * row, src, (at[rank + 1] - at[rank]) * row);
+	gather_rows(dst, at, row, size);
+}
+
+/* Room for n rows in *cap. */
+static int grow(size_t n, size_t *cap)
+{
+	if (n <= *cap && *cap)
+		return 0;
+	*cap = n + n / 4 + 16;
+	return 1;
 }
 #endif
 
@@ -572,18 +574,29 @@ void ranks_sync_pairs(engine *e)
 	 * particles j from earlier ranks come first in its list). */
 	const pairlist *C = &e->pairs.contacts;
 	pairlist *A = &R->all_contacts;
-	size_t c0 = e->scratch.cfirst[R->blk0], mine = e->scratch.cfirst[R->blk1] - c0;
-	size_t cap = A->cap;
-	A->n = gather_list(C->rec + c0, mine, sizeof *C->rec, (void **)&A->rec, &A->cap);
+	size_t c0 = e->scratch.cfirst[R->blk0];
+	size_t *at = rank_rows(0, e->scratch.cfirst[R->blk1] - c0, R->size);
+	if (grow(at[R->size], &A->cap)) {
+		A->rec = xrealloc(A->rec, A->cap * sizeof *A->rec);
+		A->f = xrealloc(A->f, 6 * A->cap * sizeof *A->f);
+	}
+	gather_list(C->rec + c0, at, sizeof *C->rec, A->rec);
+	gather_list(C->f + 6 * c0, at, 6 * sizeof *C->f, A->f);
+	A->n = at[R->size];
 	A->fcols = 6;
-	A->n = gather_list(C->f + 6 * c0, mine, 6 * sizeof *C->f, (void **)&A->f, &cap);
+	free(at);
 	const platens *pl = &e->bc.pl;
 	for (int k = 0; k < 2; k++) {
-		size_t wcap = R->all_cap[k];
-		R->all_ncand[k] = gather_list(pl->pc[k], pl->ncand[k], sizeof *pl->pc[k],
-		                              (void **)&R->all_pc[k], &R->all_cap[k]);
-		gather_list(pl->who[k], pl->ncand[k], sizeof *pl->who[k], (void **)&R->all_who[k],
-		            &wcap);
+		at = rank_rows(0, pl->ncand[k], R->size);
+		if (grow(at[R->size], &R->all_cap[k])) {
+			R->all_pc[k] = xrealloc(R->all_pc[k], R->all_cap[k] * sizeof *R->all_pc[k]);
+			R->all_who[k] =
+			    xrealloc(R->all_who[k], R->all_cap[k] * sizeof *R->all_who[k]);
+		}
+		gather_list(pl->pc[k], at, sizeof *pl->pc[k], R->all_pc[k]);
+		gather_list(pl->who[k], at, sizeof *pl->who[k], R->all_who[k]);
+		R->all_ncand[k] = at[R->size];
+		free(at);
 	}
 	R->sec[RANKS_GATHERS] += timer_now() - t0;
 #else
