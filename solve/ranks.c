@@ -338,17 +338,99 @@ void ranks_share_state(engine *e)
 }
 
 #ifdef DEM_MPI
-enum { TAG_GHOSTS = 4, TAG_VALUES = 5 };
+enum { TAG_GHOSTS = 4, TAG_VALUES = 5, TAG_CELLS = 6 };
 
-/* Whether the box of rank p's particles reaches within `reach` of rank q's
- * (box[6]: lo, hi): p then sends q its particles in that reach. Both ranks
- * evaluate it alike, from the same boxes. */
-static int box_reaches(const double *bp, const double *bq, double reach)
+/* Whether ranks p and q hold particles within `reach` of each other along
+ * each axis, as far as their boxes (lo, hi: 6 doubles each) tell; the same
+ * answer on both. */
+static int ranks_near(const double *box, int p, int q, double reach)
 {
+	const double *a = box + 6 * (p < q ? p : q), *b = box + 6 * (p < q ? q : p);
 	for (int k = 0; k < 3; k++)
-		if (!(bp[k] <= bq[3 + k] + reach && bp[3 + k] >= bq[k] - reach))
+		if (!(a[k] <= b[3 + k] + reach && a[3 + k] >= b[k] - reach))
 			return 0;
 	return 1;
+}
+
+/* Whether x lies within `reach` of the box b along each axis. */
+static int in_reach(const double *x, const double *b, double reach)
+{
+	for (int k = 0; k < 3; k++)
+		if (!(x[k] >= b[k] - reach && x[k] <= b[3 + k] + reach))
+			return 0;
+	return 1;
+}
+
+/* Cells of size h (the reach) over the boxes of every rank: two particles
+ * within reach of each other lie in the same or adjacent cells. */
+typedef struct {
+	double lo[3], h;
+	int64_t dim[3];
+} ghost_grid;
+
+static void ghost_grid_make(const double *box, int size, double h, ghost_grid *g)
+{
+	double hi[3];
+	for (int k = 0; k < 3; k++)
+		g->lo[k] = INFINITY, hi[k] = -INFINITY;
+	for (int q = 0; q < size; q++)
+		for (int k = 0; k < 3; k++) {
+			g->lo[k] = fmin(g->lo[k], box[6 * q + k]);
+			hi[k] = fmax(hi[k], box[6 * q + 3 + k]);
+		}
+	g->h = h;
+	for (int k = 0; k < 3; k++)
+		g->dim[k] = hi[k] >= g->lo[k] ? (int64_t)floor((hi[k] - g->lo[k]) / h) + 1 : 1;
+}
+
+static void cell_coords(const ghost_grid *g, const double *x, int64_t c[3])
+{
+	for (int k = 0; k < 3; k++) {
+		double t = floor((x[k] - g->lo[k]) / g->h);
+		c[k] = t >= 0 ? (t < (double)g->dim[k] ? (int64_t)t : g->dim[k] - 1) : 0;
+	}
+}
+
+static int64_t cell_id(const ghost_grid *g, const int64_t c[3])
+{
+	return c[0] + g->dim[0] * (c[1] + g->dim[1] * c[2]);
+}
+
+static int cmp_i64(const void *a, const void *b)
+{
+	int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
+	return (x > y) - (x < y);
+}
+
+/* Whether a cell next to x's (or x's own) is among the n sorted cells. */
+static int next_to(const ghost_grid *g, const double *x, const int64_t *cells, size_t n)
+{
+	int64_t c[3], d[3];
+	cell_coords(g, x, c);
+	for (d[2] = c[2] - 1; d[2] <= c[2] + 1; d[2]++)
+		for (d[1] = c[1] - 1; d[1] <= c[1] + 1; d[1]++)
+			for (d[0] = c[0] - 1; d[0] <= c[0] + 1; d[0]++) {
+				int inside = 1;
+				for (int k = 0; k < 3; k++)
+					inside = inside && d[k] >= 0 && d[k] < g->dim[k];
+				int64_t id = cell_id(g, d);
+				if (inside && bsearch(&id, cells, n, sizeof id, cmp_i64))
+					return 1;
+			}
+	return 0;
+}
+
+/* Receive from `from` a message of `type` (item size `item` bytes), into
+ * *buf (grown): its item count. */
+static size_t receive_any(int from, int tag, MPI_Datatype type, size_t item, void **buf)
+{
+	MPI_Status st;
+	int cnt;
+	MPI_Probe(from, tag, MPI_COMM_WORLD, &st);
+	MPI_Get_count(&st, type, &cnt);
+	*buf = xrealloc(*buf, ((size_t)cnt + 1) * item);
+	MPI_Recv(*buf, cnt, type, from, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+	return (size_t)cnt;
 }
 #endif
 
@@ -372,65 +454,80 @@ size_t ranks_share_ghosts(engine *e, double reach, int32_t *ghosts)
 		}
 	MPI_Allgather(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, box, 6, MPI_DOUBLE, MPI_COMM_WORLD);
 	ngathers_++;
-	/* To each rank this one's box reaches: its particles in that rank's
-	 * reach, as (index, x, v, ω), in increasing order. */
-	double **out = xcalloc((size_t)R->size, sizeof *out);
-	MPI_Request *req = xmalloc((size_t)R->size * sizeof *req);
+	ghost_grid g;
+	ghost_grid_make(box, R->size, reach, &g);
+	/* The peers: the ranks whose boxes come within reach of this one's, in
+	 * increasing order. */
+	int *peer = xmalloc((size_t)R->size * sizeof *peer), np = 0;
+	for (int q = 0; q < R->size; q++)
+		if (q != R->rank && ranks_near(box, R->rank, q, reach))
+			peer[np++] = q;
+	MPI_Request *req = xmalloc((2 * (size_t)np + 1) * sizeof *req);
+	void **out = xcalloc(2 * (size_t)np + 1, sizeof *out);
 	int nreq = 0;
-	for (int q = 0; q < R->size; q++) {
-		if (q == R->rank || !box_reaches(mine, box + 6 * q, reach))
-			continue;
-		const double *bq = box + 6 * q;
+	/* First each peer learns the cells this rank's particles occupy near
+	 * its box (two cells deep: a neighbour of its particle's cell). */
+	for (int u = 0; u < np; u++) {
+		const double *bq = box + 6 * peer[u];
+		int64_t *cl = xmalloc((R->p1 - R->p0 + 1) * sizeof *cl);
 		size_t m = 0;
-		for (int pass = 0; pass < 2; pass++) {
-			m = 0;
-			for (size_t i = R->p0; i < R->p1; i++) {
-				const double *x = P->x + 3 * i;
-				int in = 1;
-				for (int k = 0; k < 3 && in; k++)
-					in = x[k] >= bq[k] - reach && x[k] <= bq[3 + k] + reach;
-				if (in && pass) {
-					double *o = out[q] + 10 * m;
-					o[0] = (double)i;
-					for (int a = 0; a < 3; a++)
-						memcpy(o + 1 + 3 * a, arr[a] + 3 * i,
-						       3 * sizeof *o);
-				}
-				m += (size_t)in;
+		for (size_t i = R->p0; i < R->p1; i++)
+			if (in_reach(P->x + 3 * i, bq, 2 * reach)) {
+				int64_t c[3];
+				cell_coords(&g, P->x + 3 * i, c);
+				cl[m++] = cell_id(&g, c);
 			}
-			if (!pass)
-				out[q] = xmalloc((10 * m + 1) * sizeof *out[q]);
-		}
-		MPI_Isend(out[q], (int)(10 * m), MPI_DOUBLE, q, TAG_GHOSTS, MPI_COMM_WORLD,
+		qsort(cl, m, sizeof *cl, cmp_i64);
+		size_t k = 0;
+		for (size_t q = 0; q < m; q++)
+			if (!k || cl[q] != cl[k - 1])
+				cl[k++] = cl[q];
+		out[u] = cl;
+		MPI_Isend(cl, (int)k, MPI_INT64_T, peer[u], TAG_CELLS, MPI_COMM_WORLD,
 		          &req[nreq++]);
 	}
-	/* From each rank whose box reaches this one's, in rank order: the
-	 * ranks hold increasing runs of particles, so the ghosts come sorted. */
+	/* Then it sends each peer its particles in or next to the cells the
+	 * peer occupies, as (index, x, v, ω), in increasing order. */
+	int64_t *cells = NULL;
+	for (int u = 0; u < np; u++) {
+		size_t nc =
+		    receive_any(peer[u], TAG_CELLS, MPI_INT64_T, sizeof *cells, (void **)&cells);
+		const double *bq = box + 6 * peer[u];
+		double *o = xmalloc((10 * (R->p1 - R->p0) + 1) * sizeof *o);
+		size_t m = 0;
+		for (size_t i = R->p0; i < R->p1; i++) {
+			const double *x = P->x + 3 * i;
+			if (!in_reach(x, bq, reach) || !next_to(&g, x, cells, nc))
+				continue;
+			o[10 * m] = (double)i;
+			for (int a = 0; a < 3; a++)
+				memcpy(o + 10 * m + 1 + 3 * a, arr[a] + 3 * i, 3 * sizeof *o);
+			m++;
+		}
+		out[np + u] = o;
+		MPI_Isend(o, (int)(10 * m), MPI_DOUBLE, peer[u], TAG_GHOSTS, MPI_COMM_WORLD,
+		          &req[nreq++]);
+	}
+	/* The peers' particles, in rank order: the ranks hold increasing runs
+	 * of particles, so the ghosts come sorted. */
 	size_t ng = 0;
 	double *in = NULL;
-	for (int q = 0; q < R->size; q++) {
-		if (q == R->rank || !box_reaches(box + 6 * q, mine, reach))
-			continue;
-		MPI_Status st;
-		int cnt;
-		MPI_Probe(q, TAG_GHOSTS, MPI_COMM_WORLD, &st);
-		MPI_Get_count(&st, MPI_DOUBLE, &cnt);
-		in = xrealloc(in, ((size_t)cnt + 1) * sizeof *in);
-		MPI_Recv(in, cnt, MPI_DOUBLE, q, TAG_GHOSTS, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-		for (int m = 0; m < cnt / 10; m++) {
+	for (int u = 0; u < np; u++) {
+		size_t cnt = receive_any(peer[u], TAG_GHOSTS, MPI_DOUBLE, sizeof *in, (void **)&in);
+		for (size_t m = 0; m < cnt / 10; m++) {
 			const double *o = in + 10 * m;
 			size_t i = (size_t)o[0];
 			for (int a = 0; a < 3; a++)
 				memcpy(arr[a] + 3 * i, o + 1 + 3 * a, 3 * sizeof *o);
 			ghosts[ng++] = (int32_t)i;
 		}
-		R->recv_halo += state_bytes((size_t)cnt / 10);
+		R->recv_ghosts += state_bytes(cnt / 10);
 	}
 	MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE);
-	for (int q = 0; q < R->size; q++)
-		free(out[q]);
-	free(out), free(req), free(in), free(box);
-	R->sec[RANKS_HALO] += timer_now() - t0;
+	for (int u = 0; u < 2 * np; u++)
+		free(out[u]);
+	free(out), free(req), free(in), free(cells), free(peer), free(box);
+	R->sec[RANKS_GHOSTS] += timer_now() - t0;
 	return ng;
 #else
 	(void)e, (void)reach, (void)ghosts;
@@ -661,7 +758,7 @@ void ranks_balance(const engine *e, double particles[2], double bonds[2])
 void ranks_traffic_start(engine *e)
 {
 	rank_split *R = &e->ranks;
-	R->recv_halo = R->recv_all = R->recv_forces = 0;
+	R->recv_halo = R->recv_ghosts = R->recv_all = R->recv_forces = 0;
 	memset(R->sec, 0, sizeof R->sec);
 #ifdef DEM_MPI
 	ngathers_ = 0;
@@ -681,12 +778,13 @@ void ranks_traffic(engine *e, double steps)
 #endif
 	double own = (double)(R->p1 - R->p0), per = steps > 0 ? 1 / steps : 0;
 	R->sec[RANKS_REDUCTIONS] = red.seconds;
-	enum { NV = 4 + RANKS_NX };
-	double v[NV] = {R->recv_halo * per, (R->recv_halo + R->recv_all) * per,
+	enum { NT = 5, NV = NT + RANKS_NX };
+	double v[NV] = {R->recv_halo * per, R->recv_ghosts * per,
+	                (R->recv_halo + R->recv_ghosts + R->recv_all) * per,
 	                R->size > 1 ? state_bytes(e->p.n) - state_bytes((size_t)own) : 0,
 	                R->recv_forces * per};
 	for (int k = 0; k < RANKS_NX; k++)
-		v[4 + k] = R->sec[k];
+		v[NT + k] = R->sec[k];
 	double top[NV];
 	memcpy(top, v, sizeof top);
 	par_max(top, NV);
@@ -696,10 +794,10 @@ void ranks_traffic(engine *e, double steps)
 		xsum_add(&s[k], v[k]);
 	}
 	par_sum(s, NV);
-	double *out[4] = {R->traffic_halo, R->traffic_state, R->traffic_allgather,
-	                  R->traffic_forces};
+	double *out[NT] = {R->traffic_halo, R->traffic_ghosts, R->traffic_state,
+	                   R->traffic_allgather, R->traffic_forces};
 	for (int k = 0; k < NV; k++) {
-		double *o = k < 4 ? out[k] : R->seconds[k - 4];
+		double *o = k < NT ? out[k] : R->seconds[k - NT];
 		o[0] = top[k];
 		o[1] = xsum_round(&s[k]) / R->size;
 	}

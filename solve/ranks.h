@@ -56,10 +56,11 @@ typedef struct {
 } rank_links;
 
 /* What a rank spends its exchanges on: the crossing pairs' forces and the
- * halo's state (point to point, every step), the full gathers (every
- * particle's state, the pairs' histories for output, the crack log) and
- * the reductions (par.h). */
-enum { RANKS_FORCES, RANKS_HALO, RANKS_GATHERS, RANKS_REDUCTIONS, RANKS_NX };
+ * halo's state (point to point, every step), the ghosts (point to point,
+ * at a neighbour rebuild, with the gather of the ranks' boxes), the full
+ * gathers (every particle's state, the pairs' histories for output, the
+ * crack log) and the reductions (par.h). */
+enum { RANKS_FORCES, RANKS_HALO, RANKS_GHOSTS, RANKS_GATHERS, RANKS_REDUCTIONS, RANKS_NX };
 
 typedef struct {
 	int size, rank;
@@ -76,15 +77,16 @@ typedef struct {
 	int poison;                 /* DEM_RANKS_POISON: and NaN */
 	double recv_halo, recv_all; /* bytes of state received so far by halo
 	                               exchanges and by full gathers */
+	double recv_ghosts;         /* and with the ghosts */
 	double recv_forces;         /* bytes of crossing forces received so far */
 	double ngathers;            /* collective gathers (MPI_Allgather(v)) so far */
 	double sec[RANKS_NX];       /* wall seconds in each kind of exchange so far,
 	                               waiting for the peers included */
 	/* Bytes of state received per step of the run, the largest and the mean
-	 * over the ranks (ranks_traffic): by halo exchanges, in all (with the
-	 * full gathers), and what gathering every particle after every step
-	 * would receive. */
-	double traffic_halo[2], traffic_state[2], traffic_allgather[2];
+	 * over the ranks (ranks_traffic): by halo exchanges, as ghosts, in all
+	 * (with the full gathers), and what gathering every particle after
+	 * every step would receive. */
+	double traffic_halo[2], traffic_ghosts[2], traffic_state[2], traffic_allgather[2];
 	/* Likewise, the bytes of crossing forces received per step; the wall
 	 * seconds of the run in each kind of exchange; and, per step, the
 	 * reductions (MPI_Allreduce calls), their payload in bytes, and the

@@ -12,7 +12,8 @@
 static const char *const phase_names[] = {"neighbour", "bonds", "contacts", "integration",
                                           "output"};
 /* ranks.h, RANKS_FORCES ... */
-static const char *const exchange_names[RANKS_NX] = {"forces", "halo", "gathers", "reductions"};
+static const char *const exchange_names[RANKS_NX] = {"forces", "halo", "ghosts", "gathers",
+                                                     "reductions"};
 
 size_t engine_bytes(const engine *e)
 {
@@ -72,11 +73,11 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 			        bbal[1] > 0 ? bbal[0] / bbal[1] : 1);
 			fprintf(stderr,
 			        "  state received per rank and step: halo %.4g bytes at most, "
-			        "%.4g on average; with the full gathers %.4g, %.4g (every "
-			        "particle every step: %.4g, %.4g)\n",
-			        R->traffic_halo[0], R->traffic_halo[1], R->traffic_state[0],
-			        R->traffic_state[1], R->traffic_allgather[0],
-			        R->traffic_allgather[1]);
+			        "%.4g on average; ghosts %.4g, %.4g; in all, with the full "
+			        "gathers, %.4g, %.4g (every particle every step: %.4g, %.4g)\n",
+			        R->traffic_halo[0], R->traffic_halo[1], R->traffic_ghosts[0],
+			        R->traffic_ghosts[1], R->traffic_state[0], R->traffic_state[1],
+			        R->traffic_allgather[0], R->traffic_allgather[1]);
 			fprintf(stderr,
 			        "  crossing forces received per rank and step: %.4g bytes at most, "
 			        "%.4g on average; per step %.3g reductions of %.4g bytes in all, "
@@ -108,14 +109,16 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	json_num(j, "rank_bonds_max_over_mean", bbal[1] > 0 ? bbal[0] / bbal[1] : 1);
 	/* Bytes of particle state and of crossing forces each rank received per
 	 * step (ranks.h). */
-	static const char *const traffic[4][2] = {
+	static const char *const traffic[5][2] = {
 	    {"halo_bytes_per_step_max", "halo_bytes_per_step_mean"},
+	    {"ghost_bytes_per_step_max", "ghost_bytes_per_step_mean"},
 	    {"state_bytes_per_step_max", "state_bytes_per_step_mean"},
 	    {"allgather_bytes_per_step_max", "allgather_bytes_per_step_mean"},
 	    {"force_bytes_per_step_max", "force_bytes_per_step_mean"}};
-	const double *tv[4] = {e->ranks.traffic_halo, e->ranks.traffic_state,
-	                       e->ranks.traffic_allgather, e->ranks.traffic_forces};
-	for (int k = 0; k < 4; k++)
+	const double *tv[5] = {e->ranks.traffic_halo, e->ranks.traffic_ghosts,
+	                       e->ranks.traffic_state, e->ranks.traffic_allgather,
+	                       e->ranks.traffic_forces};
+	for (int k = 0; k < 5; k++)
 		for (int m = 0; m < 2; m++)
 			json_num(j, traffic[k][m], tv[k][m]);
 	json_num(j, "reductions_per_step", e->ranks.reductions_per_step);
