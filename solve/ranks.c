@@ -469,15 +469,20 @@ size_t ranks_share_ghosts(engine *e, double reach, int32_t *ghosts)
 	 * its box (two cells deep: a neighbour of its particle's cell). */
 	for (int u = 0; u < np; u++) {
 		const double *bq = box + 6 * peer[u];
-		int64_t *cl = xmalloc((R->p1 - R->p0 + 1) * sizeof *cl);
-		size_t m = 0;
+		int64_t *cl = NULL;
+		size_t m = 0, cap = 0;
 		for (size_t i = R->p0; i < R->p1; i++)
 			if (in_reach(P->x + 3 * i, bq, 2 * reach)) {
 				int64_t c[3];
 				cell_coords(&g, P->x + 3 * i, c);
+				if (m == cap) {
+					cap = cap ? 2 * cap : 1024;
+					cl = xrealloc(cl, cap * sizeof *cl);
+				}
 				cl[m++] = cell_id(&g, c);
 			}
-		qsort(cl, m, sizeof *cl, cmp_i64);
+		if (m)
+			qsort(cl, m, sizeof *cl, cmp_i64);
 		size_t k = 0;
 		for (size_t q = 0; q < m; q++)
 			if (!k || cl[q] != cl[k - 1])
@@ -493,12 +498,16 @@ size_t ranks_share_ghosts(engine *e, double reach, int32_t *ghosts)
 		size_t nc =
 		    receive_any(peer[u], TAG_CELLS, MPI_INT64_T, sizeof *cells, (void **)&cells);
 		const double *bq = box + 6 * peer[u];
-		double *o = xmalloc((10 * (R->p1 - R->p0) + 1) * sizeof *o);
-		size_t m = 0;
+		double *o = NULL;
+		size_t m = 0, cap = 0;
 		for (size_t i = R->p0; i < R->p1; i++) {
 			const double *x = P->x + 3 * i;
 			if (!in_reach(x, bq, reach) || !next_to(&g, x, cells, nc))
 				continue;
+			if (m == cap) {
+				cap = cap ? 2 * cap : 1024;
+				o = xrealloc(o, 10 * cap * sizeof *o);
+			}
 			o[10 * m] = (double)i;
 			for (int a = 0; a < 3; a++)
 				memcpy(o + 10 * m + 1 + 3 * a, arr[a] + 3 * i, 3 * sizeof *o);
