@@ -52,14 +52,18 @@ static int solve_main(int argc, char **argv)
 	    "write the history, snapshots, crack log and checkpoints to a run file. The case\n"
 	    "file (JSON) names the assembly, the material and the loading program; its keys\n"
 	    "are described in share/doc/solve.md.\n\n"
+	    "Under mpirun -np K (a solve built with MPI) the specimen is split among K\n"
+	    "ranks, each with its --threads; the run file is the same, bit for bit, on any\n"
+	    "number of ranks and threads, and --restart may use another K.\n\n"
 	    "Exit status: 0 complete or stopped by a stop rule, 1 error or diagnosed failure\n"
 	    "(the run file is kept, its status says why), 2 usage, 3 interrupted by a signal\n"
 	    "or a budget (continue with --restart).";
 	const cli_spec spec = {
 	    .usage = "solve [options] CASE.json | solve --restart RUN.h5 [options]",
 	    .summary = summary,
-	    .epilog = "Example:\n  solve --assembly runs/demo-ucs/assembly.h5 --output "
-	              "runs/demo-ucs/run.h5 share/cases/demo-ucs.json",
+	    .epilog = "Examples:\n  solve --assembly runs/demo-ucs/assembly.h5 --output "
+	              "runs/demo-ucs/run.h5 share/cases/demo-ucs.json\n"
+	              "  mpirun -np 4 solve --threads 2 --output run.h5 case.json",
 	    .opts = opts,
 	    .nopts = (int)(sizeof opts / sizeof opts[0]),
 	    .min_pos = 0,
