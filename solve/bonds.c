@@ -218,12 +218,10 @@ void bonds_share(engine *e, int k, int measure)
 	memset(e->scratch.acc + 6 * p0, 0, 6 * (p1 - p0) * sizeof *e->scratch.acc);
 	/* The crossing bonds of earlier shares that reach this one come first
 	 * in bond order: they add to their particle j here. */
-	for (int u = 0; u < k; u++)
-		for (size_t c = S->cfirst[u]; c < S->cfirst[u + 1]; c++) {
-			int32_t j = rec[S->cross[c]].j;
-			if ((size_t)j >= p0 && (size_t)j < p1)
-				add_to_j(e, j, S->part[c].f);
-		}
+	for (size_t q = S->infirst[k]; q < S->infirst[k + 1]; q++) {
+		size_t c = (size_t)S->in[q];
+		add_to_j(e, rec[S->cross[c]].j, S->part[c].f);
+	}
 	size_t slot = S->cfirst[k];
 	for (size_t blk = p0 / BLOCK; blk * BLOCK < p1; blk++) {
 		/* Summed in a local, which no store to the particles' sums can
@@ -303,11 +301,35 @@ void bonds_split(engine *e, int shares)
 			S->part = xmalloc((ncross + 1) * sizeof *S->part);
 		}
 	}
+	/* Each share's incoming crossing bonds, in bond order: a share scans
+	 * only its own, however many shares (and ranks) there are. */
+	S->infirst = xcalloc((size_t)shares + 2, sizeof *S->infirst);
+	S->in = xmalloc((ncross + 1) * sizeof *S->in);
+	int *to = xmalloc((ncross + 1) * sizeof *to);
+	for (size_t c = 0; c < ncross; c++) {
+		size_t j = (size_t)L->rec[S->cross[c]].j;
+		int lo = 0, hi = shares - 1; /* the last share whose first particle is at most j */
+		while (lo < hi) {
+			int mid = (lo + hi + 1) / 2;
+			if (S->pfirst[mid] <= j)
+				lo = mid;
+			else
+				hi = mid - 1;
+		}
+		to[c] = lo;
+		S->infirst[lo + 2]++;
+	}
+	for (int k = 0; k < shares; k++)
+		S->infirst[k + 2] += S->infirst[k + 1];
+	for (size_t c = 0; c < ncross; c++)
+		S->in[S->infirst[to[c] + 1]++] = (int32_t)c;
+	free(to);
 }
 
 void bonds_split_free(bond_split *s)
 {
 	free(s->pfirst), free(s->cfirst), free(s->cross), free(s->part), free(s->bfirst);
+	free(s->infirst), free(s->in);
 	memset(s, 0, sizeof *s);
 }
 

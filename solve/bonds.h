@@ -39,6 +39,9 @@ typedef struct {
 	size_t *pfirst;  /* [n + 1] first particle of each share */
 	size_t *cfirst;  /* [n + 1] first crossing bond of each share in cross */
 	int32_t *cross;  /* the crossing bonds, in bond order */
+	size_t *infirst; /* [n + 1] first of each share's in */
+	int32_t *in;     /* slots in cross of the bonds whose j each share holds,
+	                    in bond order */
 	bond_part *part; /* what each adds, this step */
 	size_t *bfirst;  /* [particle blocks + 1] first bond of each particle block */
 } bond_split;
