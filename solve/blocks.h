@@ -23,4 +23,19 @@ static inline size_t block_end(size_t k, size_t n)
 	return (k + 1) * BLOCK < n ? (k + 1) * BLOCK : n;
 }
 
+/* Of n runs of items starting at first[0..n) (increasing; runs may be
+ * empty), the one that holds item p: the last whose first is at most p. */
+static inline int run_of(const size_t *first, int n, size_t p)
+{
+	int lo = 0, hi = n - 1;
+	while (lo < hi) {
+		int mid = (lo + hi + 1) / 2;
+		if (first[mid] <= p)
+			lo = mid;
+		else
+			hi = mid - 1;
+	}
+	return lo;
+}
+
 #endif

@@ -307,17 +307,8 @@ void bonds_split(engine *e, int shares)
 	S->in = xmalloc((ncross + 1) * sizeof *S->in);
 	int *to = xmalloc((ncross + 1) * sizeof *to);
 	for (size_t c = 0; c < ncross; c++) {
-		size_t j = (size_t)L->rec[S->cross[c]].j;
-		int lo = 0, hi = shares - 1; /* the last share whose first particle is at most j */
-		while (lo < hi) {
-			int mid = (lo + hi + 1) / 2;
-			if (S->pfirst[mid] <= j)
-				lo = mid;
-			else
-				hi = mid - 1;
-		}
-		to[c] = lo;
-		S->infirst[lo + 2]++;
+		to[c] = run_of(S->pfirst, shares, (size_t)L->rec[S->cross[c]].j);
+		S->infirst[to[c] + 2]++;
 	}
 	for (int k = 0; k < shares; k++)
 		S->infirst[k + 2] += S->infirst[k + 1];

@@ -16,20 +16,8 @@
 #include "solve/par.h"
 #include "solve/ranks.h"
 
-/* The rank of particle p: the last rank whose first particle is at most p
- * (ranks may be empty). */
-static int rank_of(const rank_split *R, size_t p)
-{
-	int lo = 0, hi = R->size - 1;
-	while (lo < hi) {
-		int mid = (lo + hi + 1) / 2;
-		if (R->pfirst[mid] <= p)
-			lo = mid;
-		else
-			hi = mid - 1;
-	}
-	return lo;
-}
+/* The rank of particle p (ranks may be empty). */
+static int rank_of(const rank_split *R, size_t p) { return run_of(R->pfirst, R->size, p); }
 
 static void link_add(rank_links *ls, int peer, size_t idx)
 {
