@@ -54,7 +54,7 @@ void diagnose_nan(const engine *e, size_t i, char *msg, size_t n)
 	int count;
 	int64_t b = worst_pair(e, L, &who, &count);
 	if (b < 0) {
-		pairs_view v; /* the whole specimen's, after ranks_sync_pairs */
+		pairs_view v; /* the whole specimen's on rank 0 (ranks_gather_output) */
 		ranks_pairs(e, &v);
 		L = v.contacts;
 		what = "contact";

@@ -220,9 +220,10 @@ void ranks_exchange_forces(engine *e)
 
 #ifdef DEM_MPI
 /* Every rank's rows [first[q], first[q + 1]) of an array of rows of `row`
- * bytes gathered in place on every rank. */
+ * bytes gathered in place on rank root, or on every rank (ALL). */
+enum { ALL = -1 };
 static double ngathers_;
-static void gather_rows(void *base, const size_t *first, size_t row, int size)
+static void gather_rows(void *base, const size_t *first, size_t row, int size, int root)
 {
 	ngathers_++;
 	int *cnt = xmalloc((size_t)size * sizeof *cnt), *dsp = xmalloc((size_t)size * sizeof *dsp);
@@ -233,7 +234,16 @@ static void gather_rows(void *base, const size_t *first, size_t row, int size)
 		cnt[q] = (int)(first[q + 1] - first[q]);
 		dsp[q] = (int)first[q];
 	}
-	MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, base, cnt, dsp, t, MPI_COMM_WORLD);
+	int rank = par_rank();
+	if (root == ALL)
+		MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, base, cnt, dsp, t,
+		               MPI_COMM_WORLD);
+	else if (rank == root)
+		MPI_Gatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, base, cnt, dsp, t, root,
+		            MPI_COMM_WORLD);
+	else
+		MPI_Gatherv((char *)base + first[rank] * row, cnt[rank], t, NULL, NULL, NULL, t,
+		            root, MPI_COMM_WORLD);
 	MPI_Type_free(&t);
 	free(cnt), free(dsp);
 }
@@ -291,8 +301,9 @@ static void share_halo(engine *e)
 	R->sec[RANKS_HALO] += timer_now() - t0;
 }
 
-/* Every rank's particles' state on every rank. */
-static void gather_all(engine *e)
+/* Every rank's particles' state on every rank (ALL), or on rank root
+ * only: the other ranks' particles then stay stale everywhere else. */
+static void gather_all(engine *e, int root)
 {
 	rank_split *R = &e->ranks;
 	/* x, v and ω in one message: each rank's rows of [n][9]. */
@@ -303,14 +314,17 @@ static void gather_all(engine *e)
 	for (size_t i = R->p0; i < R->p1; i++)
 		for (int a = 0; a < 3; a++)
 			memcpy(R->state + 9 * i + 3 * a, arr[a] + 3 * i, 3 * sizeof *R->state);
-	gather_rows(R->state, R->pfirst, 9 * sizeof *R->state, R->size);
-	for (size_t i = 0; i < P->n; i++)
-		if (i < R->p0 || i >= R->p1)
-			for (int a = 0; a < 3; a++)
-				memcpy(arr[a] + 3 * i, R->state + 9 * i + 3 * a,
-				       3 * sizeof *R->state);
-	R->recv_all += state_bytes(P->n - (R->p1 - R->p0));
-	R->stale = 0;
+	gather_rows(R->state, R->pfirst, 9 * sizeof *R->state, R->size, root);
+	if (root == ALL || root == R->rank) {
+		for (size_t i = 0; i < P->n; i++)
+			if (i < R->p0 || i >= R->p1)
+				for (int a = 0; a < 3; a++)
+					memcpy(arr[a] + 3 * i, R->state + 9 * i + 3 * a,
+					       3 * sizeof *R->state);
+		R->recv_all += state_bytes(P->n - (R->p1 - R->p0));
+	}
+	if (root == ALL)
+		R->stale = 0;
 	R->sec[RANKS_GATHERS] += timer_now() - t0;
 }
 #endif
@@ -564,7 +578,7 @@ void ranks_gather_state(engine *e)
 {
 #ifdef DEM_MPI
 	if (e->ranks.size > 1 && e->ranks.stale)
-		gather_all(e);
+		gather_all(e, ALL);
 #else
 	(void)e;
 #endif
@@ -608,8 +622,8 @@ void ranks_share_cracks(engine *e, size_t first)
 		 * bond order (ranks own increasing particles, bonds go by i). */
 		memmove(cb->c + at[R->rank], cb->c + first, mine * sizeof *cb->c);
 		memmove(cb->bond + at[R->rank], cb->bond + first, mine * sizeof *cb->bond);
-		gather_rows(cb->c, at, sizeof *cb->c, R->size);
-		gather_rows(cb->bond, at, sizeof *cb->bond, R->size);
+		gather_rows(cb->c, at, sizeof *cb->c, R->size, ALL);
+		gather_rows(cb->bond, at, sizeof *cb->bond, R->size, ALL);
 		cb->n = total;
 	}
 	free(at);
@@ -630,8 +644,8 @@ static void gather_bonds(engine *e)
 	size_t *first = xmalloc(((size_t)R->size + 1) * sizeof *first);
 	for (int q = 0; q <= R->size; q++)
 		first[q] = e->pairs.split.bfirst[nblocks(R->pfirst[q])];
-	gather_rows(L->rec, first, sizeof *L->rec, R->size);
-	gather_rows(L->f, first, (size_t)L->fcols * sizeof *L->f, R->size);
+	gather_rows(L->rec, first, sizeof *L->rec, R->size, 0);
+	gather_rows(L->f, first, (size_t)L->fcols * sizeof *L->f, R->size, 0);
 	free(first);
 }
 
@@ -641,7 +655,7 @@ static void gather_list(const void *src, const size_t *at, size_t row, void *dst
 {
 	int size = par_size(), rank = par_rank();
 	memcpy((char *)dst + at[rank] * row, src, (at[rank + 1] - at[rank]) * row);
-	gather_rows(dst, at, row, size);
+	gather_rows(dst, at, row, size, 0);
 }
 
 /* Room for n rows in *cap. */
@@ -654,16 +668,17 @@ static int grow(size_t n, size_t *cap)
 }
 #endif
 
-void ranks_sync_pairs(engine *e)
+void ranks_gather_output(engine *e)
 {
 #ifdef DEM_MPI
 	rank_split *R = &e->ranks;
 	if (R->size == 1)
 		return;
+	gather_all(e, 0);
 	double t0 = timer_now();
 	gather_bonds(e);
 	/* Each rank's particles' positions at the last rebuild (checkpoints). */
-	gather_rows(e->p.x_ref, R->pfirst, 3 * sizeof *e->p.x_ref, R->size);
+	gather_rows(e->p.x_ref, R->pfirst, 3 * sizeof *e->p.x_ref, R->size, 0);
 	/* A rank's contacts are those of its particles i (the ones of its
 	 * particles j from earlier ranks come first in its list). */
 	const pairlist *C = &e->pairs.contacts;
@@ -689,9 +704,11 @@ void ranks_sync_pairs(engine *e)
 		}
 		gather_list(pl->pc[k], at, sizeof *pl->pc[k], R->all_pc[k]);
 		gather_list(pl->who[k], at, sizeof *pl->who[k], R->all_who[k]);
-		R->all_ncand[k] = at[R->size];
+		R->all_ncand[k] = R->rank == 0 ? at[R->size] : 0;
 		free(at);
 	}
+	if (R->rank > 0)
+		A->n = 0; /* rank 0's view (ranks.h) */
 	R->sec[RANKS_GATHERS] += timer_now() - t0;
 #else
 	(void)e;
@@ -727,7 +744,7 @@ size_t ranks_gather_list(int32_t *list, size_t mine)
 		return mine;
 	size_t *at = rank_rows(0, mine, size), total = at[size];
 	memmove(list + at[rank], list, mine * sizeof *list);
-	gather_rows(list, at, sizeof *list, size);
+	gather_rows(list, at, sizeof *list, size, ALL);
 	free(at);
 	return total;
 #else

@@ -20,7 +20,8 @@
  * its own j, whose forces it receives: every contact with an end of its
  * own, in the order one process lists them. Likewise the platen contacts
  * of its own particles. Checkpoints and diagnoses read the whole
- * specimen's lists, which ranks_sync_pairs gathers (ranks_pairs).
+ * specimen's lists, which ranks_gather_output gathers on rank 0
+ * (ranks_pairs).
  *
  * The other ranks' particles are stale between such exchanges until
  * ranks_gather_state brings every particle's state to every rank, which
@@ -94,7 +95,7 @@ typedef struct {
 	double traffic_forces[2], seconds[RANKS_NX][2];
 	double reductions_per_step, reduction_bytes_per_step, gathers_per_step;
 	/* Every rank's contacts and platen contacts, gathered for output
-	 * (ranks_sync_pairs, ranks_pairs). */
+	 * on rank 0 (ranks_gather_output, ranks_pairs). */
 	pairlist all_contacts;
 	size_t all_ncand[2], all_cap[2];
 	platen_contact *all_pc[2];
@@ -136,12 +137,15 @@ void ranks_gather_state(engine *e);
  * of e->out.cracks before the step) and those of the other ranks, in bond
  * order on every rank. */
 void ranks_share_cracks(engine *e, size_t first);
-/* Before output: every bond's history and force and every particle's
- * position at the last rebuild (x_ref) on every rank, and every contact
- * and platen contact in the lists ranks_pairs shows. Collective. */
-void ranks_sync_pairs(engine *e);
+/* Before output and the NaN diagnosis, on rank 0, which writes the run
+ * file: every particle's state and its position at the last rebuild
+ * (x_ref), every bond's history and force, and the whole specimen's
+ * contacts and platen contacts in the lists ranks_pairs shows. The other
+ * ranks send theirs and keep their own. Collective. */
+void ranks_gather_output(engine *e);
 /* The whole specimen's contacts and platen contacts: this rank's own lists
- * with one rank, else those of the last ranks_sync_pairs. */
+ * with one rank, else those of the last ranks_gather_output (empty but on
+ * rank 0). */
 void ranks_pairs(const engine *e, pairs_view *v);
 /* This rank's particles [*p0, *p1); before ranks_split (setup, where every
  * rank holds and computes every particle alike) all of them, and 0 is

@@ -87,8 +87,7 @@ static int snapshot(loop_state *L)
 		return 0;
 	L->last_snapshot_step = e->clock.step;
 	e->out.last_snapshot_strain = engine_strain(e);
-	ranks_gather_state(e);
-	ranks_sync_pairs(e);
+	ranks_gather_output(e);
 	return (L->w && output_snapshot(e, L->w)) || flush_now_and_then(L);
 }
 
@@ -117,8 +116,7 @@ static int checkpoint(loop_state *L)
 {
 	engine *e = L->e;
 	L->last_checkpoint = timer_now();
-	ranks_gather_state(e);
-	ranks_sync_pairs(e);
+	ranks_gather_output(e);
 	if (write_cracks(L))
 		return -1;
 	return L->w && (run_flush(L->w) || checkpoint_write(e, run_hid(L->w)));
@@ -264,7 +262,7 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 	char why[512], diag[1024];
 	boundary_track_peak(e);
 	if (e->sums.particles.bad < (double)e->p.n) {
-		ranks_sync_pairs(e);
+		ranks_gather_output(e);
 		diagnose_nan(e, (size_t)e->sums.particles.bad, diag, sizeof diag);
 		if (measure)
 			history(L);
