@@ -19,6 +19,7 @@
 #include "solve/boundary.h"
 #include "solve/engine.h"
 #include "solve/measure.h"
+#include "solve/par.h"
 #include "solve/platens.h"
 #include "solve/ranks.h"
 #include "solve/surface.h"
@@ -35,23 +36,30 @@ static double ramped(const engine *e, double from, double to)
 	return f >= 1 ? to : from + (to - from) * f;
 }
 
+/* The end layers: the particles within `thickness` of the specimen's ends,
+ * each rank's own flagged by it (ranks.h), from the ends over all ranks. */
 static void select_layers(engine *e, double thickness)
 {
 	particles *P = &e->p;
+	size_t p0, p1;
+	ranks_own(e, &p0, &p1);
 	double lo = INFINITY, hi = -INFINITY;
-	double *z = xmalloc((P->n + 1) * sizeof *z);
-	for (size_t i = 0; i < P->n; i++) {
-		z[i] = 0;
+	double *z = xmalloc((p1 - p0 + 1) * sizeof *z);
+	for (size_t i = p0; i < p1; i++) {
+		double zi = 0;
 		for (int k = 0; k < 3; k++)
-			z[i] += (P->x[3 * i + k] - e->frame.center[k]) * e->frame.axis[k];
-		lo = fmin(lo, z[i] - P->r[i]);
-		hi = fmax(hi, z[i] + P->r[i]);
+			zi += (P->x[3 * i + k] - e->frame.center[k]) * e->frame.axis[k];
+		z[i - p0] = zi;
+		lo = fmin(lo, zi - P->r[i]);
+		hi = fmax(hi, zi + P->r[i]);
 	}
-	for (size_t i = 0; i < P->n; i++) {
+	par_min(&lo, 1);
+	par_max(&hi, 1);
+	for (size_t i = p0; i < p1; i++) {
 		P->flag[i] &= (uint8_t) ~(PF_LAYER_BOTTOM | PF_LAYER_TOP);
-		if (z[i] - P->r[i] <= lo + thickness)
+		if (z[i - p0] - P->r[i] <= lo + thickness)
 			P->flag[i] |= PF_LAYER_BOTTOM;
-		else if (z[i] + P->r[i] >= hi - thickness)
+		else if (z[i - p0] + P->r[i] >= hi - thickness)
 			P->flag[i] |= PF_LAYER_TOP;
 	}
 	free(z);
@@ -61,7 +69,6 @@ static void select_layers(engine *e, double thickness)
 void boundary_begin_stage(engine *e)
 {
 	const stage *s = current(e);
-	ranks_gather_state(e); /* the end layers read every particle */
 	int was = e->bc.pl.active;
 	e->bc.pl.active = uses_platens(s->axial);
 	if (e->bc.pl.active != was)

@@ -677,8 +677,10 @@ void ranks_gather_output(engine *e)
 	gather_all(e, 0);
 	double t0 = timer_now();
 	gather_bonds(e);
-	/* Each rank's particles' positions at the last rebuild (checkpoints). */
+	/* Each rank's particles' positions at the last rebuild and flags (the
+	 * end layers: checkpoints). */
 	gather_rows(e->p.x_ref, R->pfirst, 3 * sizeof *e->p.x_ref, R->size, 0);
+	gather_rows(e->p.flag, R->pfirst, sizeof *e->p.flag, R->size, 0);
 	/* A rank's contacts are those of its particles i (the ones of its
 	 * particles j from earlier ranks come first in its list). */
 	const pairlist *C = &e->pairs.contacts;

@@ -138,8 +138,8 @@ void ranks_gather_state(engine *e);
  * order on every rank. */
 void ranks_share_cracks(engine *e, size_t first);
 /* Before output and the NaN diagnosis, on rank 0, which writes the run
- * file: every particle's state and its position at the last rebuild
- * (x_ref), every bond's history and force, and the whole specimen's
+ * file: every particle's state, its position at the last rebuild (x_ref)
+ * and its flags, every bond's history and force, and the whole specimen's
  * contacts and platen contacts in the lists ranks_pairs shows. The other
  * ranks send theirs and keep their own. Collective. */
 void ranks_gather_output(engine *e);

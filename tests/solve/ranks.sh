@@ -4,11 +4,11 @@
 # on K' (share/doc/solve.md, "Several machines"): a UCS of the paper's
 # cement to its stress drop (end layers, cracks, snapshots, checkpoints)
 # on 1, 2 x 2 threads, and 3 ranks continued on 2; a confined triaxial
-# with an unload-reload cycle on 4; a Brazilian test on 7. same_run.py
-# compares every dataset and attribute but the creation time and the
-# wall-clock rate. The runs on several ranks poison the particles they do
-# not receive each step (DEM_RANKS_POISON, solve/ranks.h), so a read of
-# one shows as a NaN or a difference.
+# with an unload-reload cycle on 4 continued on 3; a Brazilian test on 7.
+# same_run.py compares every dataset and attribute but the creation time
+# and the wall-clock rate. The runs on several ranks poison the particles
+# they do not receive each step (DEM_RANKS_POISON, solve/ranks.h), so a
+# read of one shows as a NaN or a difference.
 # Usage: ranks.sh BIN_DIR TMP_DIR MPIEXEC
 set -eu
 bin=$1 tmp=$2 mpiexec=$3
@@ -58,7 +58,10 @@ cat > tri.json <<JSON
  "stop": {"steps": 1500}}
 JSON
 "$bin/solve" --quiet --threads 1 --output tri1.h5 tri.json
-ranks 4 --threads 1 --output tri4.h5 tri.json
+# Interrupted in its loading stage, after the end layers were chosen, and
+# continued on 3 ranks.
+ranks 4 --threads 1 --max-steps 700 --output tri4.h5 tri.json
+ranks 3 --threads 1 --restart tri4.h5
 same tri1.h5 tri4.h5
 # A Brazilian test (a disc of about 1 700 spheres between platens, to
 # its first cracks) on 7 ranks.
