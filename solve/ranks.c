@@ -636,7 +636,7 @@ void ranks_share_cracks(engine *e, size_t first)
 #ifdef DEM_MPI
 /* The bonds each rank owns, those of its particles i (listed by i, a
  * rank's first particle a block boundary or the particle count), gathered
- * in place. */
+ * in place on rank 0. */
 static void gather_bonds(engine *e)
 {
 	const rank_split *R = &e->ranks;
@@ -650,7 +650,7 @@ static void gather_bonds(engine *e)
 }
 
 /* Every rank's rows (at: rank_rows) of `row` bytes, this rank's at src,
- * gathered in rank order into dst. */
+ * gathered in rank order into dst on rank 0. */
 static void gather_list(const void *src, const size_t *at, size_t row, void *dst)
 {
 	int size = par_size(), rank = par_rank();
