@@ -36,6 +36,52 @@ typedef struct {
 
 _Static_assert((int)BATCH == (int)LAW_LANES, "a batch of pairs is a batch of the laws' lanes");
 
+/* The relative motion of one pair: its normal n, distance d, s = d / (r_i +
+ * r_j), u_n, u̇_n, Δu_s and its tangential history t turned into the current
+ * contact plane. */
+typedef struct {
+	double n[3], d, s;
+	double un, vn, dus[3], t[3];
+} pair_motion;
+
+/* The motion of a pair from dx = x_j - x_i, dv = v_j - v_i, the spins, the
+ * radii, d0 and the last step's tangential history t: the one expression of
+ * it, so the batches and the fused loops of the laws (law.force_pairs)
+ * agree to the bit. */
+static inline pair_motion pair_motion_of(const double dx[3], const double dv[3], const double wi[3],
+                                         const double wj[3], double ri, double rj, double d0,
+                                         const double t[3], double dt)
+{
+	pair_motion k;
+	double d = sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
+	double inv = 1 / d, s = d / (ri + rj);
+	double n0 = dx[0] * inv, n1 = dx[1] * inv, n2 = dx[2] * inv;
+	double ai = s * ri, aj = s * rj;
+	double ws0 = aj * wj[0] + ai * wi[0], ws1 = aj * wj[1] + ai * wi[1],
+	       ws2 = aj * wj[2] + ai * wi[2];
+	double vc0 = dv[0] - (ws1 * n2 - ws2 * n1), vc1 = dv[1] - (ws2 * n0 - ws0 * n2),
+	       vc2 = dv[2] - (ws0 * n1 - ws1 * n0);
+	double vcn = vc0 * n0 + vc1 * n1 + vc2 * n2;
+	k.un = d - d0;
+	k.vn = dv[0] * n0 + dv[1] * n1 + dv[2] * n2;
+	k.dus[0] = (vc0 - vcn * n0) * dt;
+	k.dus[1] = (vc1 - vcn * n1) * dt;
+	k.dus[2] = (vc2 - vcn * n2) * dt;
+	double spin =
+	    0.5 * dt * ((wi[0] + wj[0]) * n0 + (wi[1] + wj[1]) * n1 + (wi[2] + wj[2]) * n2);
+	double tn = t[0] * n0 + t[1] * n1 + t[2] * n2;
+	double u0 = t[0] - tn * n0, u1 = t[1] - tn * n1, u2 = t[2] - tn * n2;
+	k.t[0] = u0 + spin * (n1 * u2 - n2 * u1);
+	k.t[1] = u1 + spin * (n2 * u0 - n0 * u2);
+	k.t[2] = u2 + spin * (n0 * u1 - n1 * u0);
+	k.n[0] = n0;
+	k.n[1] = n1;
+	k.n[2] = n2;
+	k.d = d;
+	k.s = s;
+	return k;
+}
+
 /* Kinematics of the nq pairs rec[idx[0..nq)] (rec[0..nq) when idx is NULL)
  * into the pair and kinematics lanes of B (B->n = nq), with their
  * tangential histories rotated into B->t.
@@ -67,35 +113,22 @@ static inline void batch_kinematics(const double *restrict x, const double *rest
 		B->d0[q] = b->d0;
 	}
 	for (int q = 0; q < nq; q++) {
-		double d = sqrt(dx[0][q] * dx[0][q] + dx[1][q] * dx[1][q] + dx[2][q] * dx[2][q]);
-		double inv = 1 / d, s = d / (B->ri[q] + B->rj[q]);
-		double n0 = dx[0][q] * inv, n1 = dx[1][q] * inv, n2 = dx[2][q] * inv;
-		double ai = s * B->ri[q], aj = s * B->rj[q];
-		double ws0 = aj * wj[0][q] + ai * wi[0][q], ws1 = aj * wj[1][q] + ai * wi[1][q],
-		       ws2 = aj * wj[2][q] + ai * wi[2][q];
-		double vc0 = dv[0][q] - (ws1 * n2 - ws2 * n1),
-		       vc1 = dv[1][q] - (ws2 * n0 - ws0 * n2),
-		       vc2 = dv[2][q] - (ws0 * n1 - ws1 * n0);
-		double vcn = vc0 * n0 + vc1 * n1 + vc2 * n2;
-		B->un[q] = d - B->d0[q];
-		B->vn[q] = dv[0][q] * n0 + dv[1][q] * n1 + dv[2][q] * n2;
-		B->dus[0][q] = (vc0 - vcn * n0) * dt;
-		B->dus[1][q] = (vc1 - vcn * n1) * dt;
-		B->dus[2][q] = (vc2 - vcn * n2) * dt;
-		double spin = 0.5 * dt *
-		              ((wi[0][q] + wj[0][q]) * n0 + (wi[1][q] + wj[1][q]) * n1 +
-		               (wi[2][q] + wj[2][q]) * n2);
-		double t0 = B->t[0][q], t1 = B->t[1][q], t2 = B->t[2][q];
-		double tn = t0 * n0 + t1 * n1 + t2 * n2;
-		double u0 = t0 - tn * n0, u1 = t1 - tn * n1, u2 = t2 - tn * n2;
-		B->t[0][q] = u0 + spin * (n1 * u2 - n2 * u1);
-		B->t[1][q] = u1 + spin * (n2 * u0 - n0 * u2);
-		B->t[2][q] = u2 + spin * (n0 * u1 - n1 * u0);
-		g->n[0][q] = n0;
-		g->n[1][q] = n1;
-		g->n[2][q] = n2;
-		g->d[q] = d;
-		g->s[q] = s;
+		double dxq[3] = {dx[0][q], dx[1][q], dx[2][q]},
+		       dvq[3] = {dv[0][q], dv[1][q], dv[2][q]},
+		       wiq[3] = {wi[0][q], wi[1][q], wi[2][q]},
+		       wjq[3] = {wj[0][q], wj[1][q], wj[2][q]},
+		       tq[3] = {B->t[0][q], B->t[1][q], B->t[2][q]};
+		pair_motion k =
+		    pair_motion_of(dxq, dvq, wiq, wjq, B->ri[q], B->rj[q], B->d0[q], tq, dt);
+		B->un[q] = k.un;
+		B->vn[q] = k.vn;
+		for (int c = 0; c < 3; c++) {
+			B->dus[c][q] = k.dus[c];
+			B->t[c][q] = k.t[c];
+			g->n[c][q] = k.n[c];
+		}
+		g->d[q] = k.d;
+		g->s[q] = k.s;
 	}
 }
 
@@ -123,18 +156,104 @@ static inline void batch_history_store(bond *restrict rec, const int32_t *restri
 	}
 }
 
-/* The force on i and the torque per unit radius of lane q of a batch from
- * the law's output: the torque on i is (a_i n) × F_s = r_i (d / (r_i + r_j))
- * n × F_s, on j r_j times the same vector (Eq. 4). */
-static inline void batch_force(const law_batch *B, const batch_geom *g, int q, double f[6])
+/* The force on i and the torque per unit radius of a pair of normal n and
+ * s = d / (r_i + r_j) from its normal force fn and shear force fs: the
+ * torque on i is (a_i n) × F_s = r_i (d / (r_i + r_j)) n × F_s, on j r_j
+ * times the same vector (Eq. 4). */
+static inline void pair_force(const double n[3], double s, double fn, const double fs[3],
+                              double f[6])
 {
-	double n[3] = {g->n[0][q], g->n[1][q], g->n[2][q]}, s = g->s[q];
-	double fs[3] = {B->fs[0][q], B->fs[1][q], B->fs[2][q]};
 	for (int c = 0; c < 3; c++)
-		f[c] = B->fn[q] * n[c] + fs[c];
+		f[c] = fn * n[c] + fs[c];
 	f[3] = s * (n[1] * fs[2] - n[2] * fs[1]);
 	f[4] = s * (n[2] * fs[0] - n[0] * fs[2]);
 	f[5] = s * (n[0] * fs[1] - n[1] * fs[0]);
+}
+
+/* The same for lane q of a batch from the law's output. */
+static inline void batch_force(const law_batch *B, const batch_geom *g, int q, double f[6])
+{
+	double n[3] = {g->n[0][q], g->n[1][q], g->n[2][q]};
+	double fs[3] = {B->fs[0][q], B->fs[1][q], B->fs[2][q]};
+	pair_force(n, g->s[q], B->fn[q], fs, f);
+}
+
+/* A batch of bonds with the particles they join, as law.force_pairs reads
+ * them: the bonds rec[idx[0..n)], the particles' arrays (engine.h), the
+ * time step. */
+struct law_pairs {
+	const double *x, *v, *w, *r, *m;
+	const bond *rec;
+	const int32_t *idx;
+	int n;
+	double dt;
+};
+
+/* What law.force_pairs gives for each lane q that stays on the law's
+ * elastic branch (elastic[q] != 0; nothing for the others): the force on i
+ * and the torque per unit radius (pair_force), the viscous energy
+ * u̇_n f_viscous Δt, and the bond's new history. */
+struct law_fused {
+	int32_t elastic[LAW_LANES];
+	double f[6][LAW_LANES];
+	double e_viscous[LAW_LANES];
+	double t[3][LAW_LANES], h[LAW_NHIST][LAW_LANES];
+	int32_t state[LAW_LANES];
+};
+
+/* The parameters of a law's force_pairs loop (a function with restrict
+ * pointers, so the compiler knows the outputs alias none of the inputs and
+ * can vectorise it), and the law_pairs *in that fills them. */
+#define LAW_PAIRS_PARAMS                                                                  \
+	const double *restrict x, const double *restrict v, const double *restrict w,     \
+	    const double *restrict r, const double *restrict m, const bond *restrict rec, \
+	    const int32_t *restrict idx, int n, double dt
+#define LAW_PAIRS_ARGS(in) \
+	(in)->x, (in)->v, (in)->w, (in)->r, (in)->m, (in)->rec, (in)->idx, (in)->n, (in)->dt
+
+/* The motion of the pair of bond b (pair_motion_of). */
+static inline pair_motion law_pairs_motion(const double *restrict x, const double *restrict v,
+                                           const double *restrict w, const double *restrict r,
+                                           const bond *restrict b, double dt)
+{
+	int32_t i = b->i, j = b->j;
+	double dx[3], dv[3], wi[3], wj[3], t[3];
+	for (int c = 0; c < 3; c++) {
+		t[c] = b->t[c];
+		dx[c] = x[3 * j + c] - x[3 * i + c];
+		dv[c] = v[3 * j + c] - v[3 * i + c];
+		wi[c] = w[3 * i + c];
+		wj[c] = w[3 * j + c];
+	}
+	return pair_motion_of(dx, dv, wi, wj, r[i], r[j], b->d0, t, dt);
+}
+
+/* The states of the bonds rec[idx[0..n)] as 32-bit lanes, read one by one
+ * (there is no vector gather of bytes). */
+static inline void law_pairs_states(const bond *restrict rec, const int32_t *restrict idx, int n,
+                                    int32_t state[LAW_LANES])
+{
+	for (int q = 0; q < n; q++)
+		state[q] = rec[idx[q]].state;
+}
+
+/* Lane q of a law_fused from the law's forces fn (its viscous part fv) and
+ * fs on the pair k, and the bond's new history. */
+static inline void law_fused_put(law_fused *o, int q, int32_t elastic, const pair_motion *k,
+                                 double fn, double fv, const double fs[3], double dt,
+                                 const double t[3], const double h[LAW_NHIST], int32_t state)
+{
+	double f[6];
+	pair_force(k->n, k->s, fn, fs, f);
+	o->elastic[q] = elastic;
+	for (int c = 0; c < 6; c++)
+		o->f[c][q] = f[c];
+	o->e_viscous[q] = fv * k->vn * dt;
+	for (int c = 0; c < 3; c++)
+		o->t[c][q] = t[c];
+	for (int c = 0; c < LAW_NHIST; c++)
+		o->h[c][q] = h[c];
+	o->state[q] = state;
 }
 
 #endif

@@ -30,6 +30,7 @@
 #include "lib/err.h"
 #include "lib/states.h"
 #include "lib/vec3.h"
+#include "solve/kinematics.h"
 #include "solve/law.h"
 #include "solve/laws/area.h"
 #include "solve/laws/cundall.h"
@@ -191,6 +192,42 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void linear_batch(const law_pa
 	LAW_BATCH_REST(linear_force_one, p, B, elastic);
 }
 
+/* force_pairs: linear_batch's vector loop, from the particles' state to
+ * the forces in one pass (kinematics.h). */
+DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
+linear_pairs_loop(const law_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
+{
+	(void)m;
+	double alpha = p->area.alpha, tau = p->tau, mu1 = p->mu1, sigma_t = p->sigma_t;
+	int32_t state[LAW_LANES];
+	law_pairs_states(rec, idx, n, state);
+	int count = 0;
+	for (int q = 0; q < n; q++) {
+		const bond *b = &rec[idx[q]];
+		pair_motion k = law_pairs_motion(x, v, w, r, b, dt);
+		double h[LAW_NHIST] = {b->h[0], b->h[1], b->h[2]};
+		double kn = h[0], ks = h[1], cn = h[2], un = k.un;
+		double t[3] = {k.t[0] + k.dus[0], k.t[1] + k.dus[1], k.t[2] + k.dus[2]};
+		double area = area_of_radii(alpha, r[b->i], r[b->j]);
+		double fe = kn * un;
+		double fs[3] = {ks * t[0], ks * t[1], ks * t[2]};
+		double ff = fs[0] * fs[0] + fs[1] * fs[1] + fs[2] * fs[2];
+		double shear_limit = tau * area + mu1 * (fe < 0 ? -fe : 0);
+		int32_t ok = (state[q] < BOND_BROKEN_TENSION) & !(fe > sigma_t * area) &
+		             !(ff > shear_limit * shear_limit);
+		double fv = cn * k.vn;
+		law_fused_put(o, q, ok, &k, fe + fv, fv, fs, dt, t, h, state[q]);
+		count += ok;
+	}
+	return count;
+}
+
+DEM_VECTOR_CLONES __attribute__((flatten)) static int
+linear_pairs(const law_params *p, const law_pairs *in, law_fused *o)
+{
+	return linear_pairs_loop(p, LAW_PAIRS_ARGS(in), o);
+}
+
 static double linear_energy(const law_params *p, const law_pair *q, const bond *b, double un)
 {
 	(void)q;
@@ -220,6 +257,7 @@ const law law_linear = {
     .init = linear_init,
     .force = linear_force,
     .force_batch = linear_batch,
+    .force_pairs = linear_pairs,
     .energy = linear_energy,
     .damage = linear_damage,
     .h_dropped = 0,

@@ -1,9 +1,15 @@
 /* force_batch gives exactly what force gives bond by bond: the same forces,
  * failures and histories, bit for bit, for every law along random paths that
- * visit every branch. */
+ * visit every branch. And force_pairs, where a law has it, gives for the
+ * lanes it computes exactly what the engine's staged path gives
+ * (batch_kinematics, force_batch, batch_force), and leaves the other bonds
+ * as they were. */
 #include "tests/laws/drive.h"
 
+#include <math.h>
+
 #include "lib/rng.h"
+#include "solve/kinematics.h"
 
 enum { NB = 64, NSTEP = 300 };
 
@@ -18,6 +24,10 @@ static const char *materials[][2] = {
               " \"shear_strength\": 8.5e6, \"mu1\": 0.3, \"mu2\": 0.4, \"LCS1\": 8.5e6,"
               " \"LCS2\": 9e6, \"LCS3\": 11e6, \"YRC1\": 3, \"YRC2\": 9, \"YRC3\": 24,"
               " \"delta_n\": 0, \"delta_s\": 0.5, \"criterion\": \"coupled\"}"},
+    {"linear", "{\"name\": \"m\", \"law\": \"linear\", \"density\": 2500,"
+               " \"E\": 10e9, \"nu\": 0.2, \"tensile_strength\": 5e6,"
+               " \"shear_strength\": 10e6, \"mu1\": 0.3, \"mu2\": 0.5, \"xi\": 0.05,"
+               " \"alpha\": 1}"},
     {"jcfpm", "{\"name\": \"m\", \"law\": \"jcfpm\", \"density\": 2500,"
               " \"E\": 17e9, \"ks_ratio\": 0.15, \"tensile_strength\": 3.163e6,"
               " \"cohesion\": 9e6, \"friction_angle_deg\": 34.25, \"interaction_range\": 1.4}"},
@@ -140,9 +150,124 @@ static void run(const char *name, const char *json)
 	L->free(p);
 }
 
+/* force_pairs against the staged path along random motions of NB pairs of
+ * spheres (sphere 2q and 2q + 1 for bond q), the bonds carried on by the
+ * staged path. */
+static void run_pairs(const char *name, const char *json)
+{
+	const law *L = law_find(name);
+	if (!L->force_pairs)
+		return;
+	law_params *p = drive_parse(L, json, name);
+	CHECK(p != NULL);
+	if (!p)
+		return;
+	law_packing pk = {.porosity = 0.15, .coordination = 7};
+	L->setup(p, &pk);
+	rng g;
+	rng_seed(&g, 7);
+	enum { NP = 2 * NB };
+	static double x[3 * NP], v[3 * NP], w[3 * NP], r[NP], m[NP];
+	static bond rec[NB], before[NB], fused[NB];
+	double un[NB], scale[NB], dt = 1e-6;
+	for (int q = 0; q < NB; q++) {
+		for (int k = 0; k < 2; k++) {
+			r[2 * q + k] = rng_range(&g, 0.5e-3, 2e-3);
+			m[2 * q + k] = 2e3 * r[2 * q + k] * r[2 * q + k] * r[2 * q + k];
+		}
+		law_pair pair = {.ri = r[2 * q],
+		                 .rj = r[2 * q + 1],
+		                 .mi = m[2 * q],
+		                 .mj = m[2 * q + 1],
+		                 .d0 = (r[2 * q] + r[2 * q + 1]) * rng_range(&g, 0.92, 1.08)};
+		rec[q] = drive_bond(L, p, &pair);
+		rec[q].i = 2 * q;
+		rec[q].j = 2 * q + 1;
+		rec[q].d0 = pair.d0;
+		scale[q] = pair.d0 * rng_range(&g, 1e-5, 3e-3);
+		un[q] = 0;
+	}
+	int32_t idx[NB];
+	for (int q = 0; q < NB; q++)
+		idx[q] = NB - 1 - q; /* not in order */
+	int lanes[2] = {0, 0};
+	for (int s = 0; s < NSTEP; s++) {
+		for (int q = 0; q < NB; q++) {
+			un[q] += scale[q] * rng_range(&g, -1.0, 0.9);
+			double u[3], l = 0;
+			for (int c = 0; c < 3; c++) {
+				u[c] = rng_range(&g, -1.0, 1.0);
+				l += u[c] * u[c];
+			}
+			l = sqrt(l);
+			for (int c = 0; c < 3; c++) {
+				x[6 * q + c] = rng_range(&g, -0.1, 0.1);
+				x[6 * q + 3 + c] = x[6 * q + c] + (rec[q].d0 + un[q]) * u[c] / l;
+				for (int k = 0; k < 2; k++) {
+					v[6 * q + 3 * k + c] =
+					    0.5 * scale[q] / dt * rng_range(&g, -1.0, 1.0);
+					w[6 * q + 3 * k + c] = 0.5 * scale[q] / dt / r[2 * q + k] *
+					                       rng_range(&g, -1.0, 1.0);
+				}
+			}
+		}
+		memcpy(before, rec, sizeof rec);
+		memcpy(fused, rec, sizeof rec);
+		int same = 1;
+		for (int q0 = 0; q0 < NB; q0 += LAW_LANES) {
+			int nq = NB - q0 < LAW_LANES ? NB - q0 : LAW_LANES;
+			const int32_t *ix = idx + q0;
+			law_batch B;
+			batch_geom geo;
+			batch_kinematics(x, v, w, r, m, rec, ix, nq, dt, &B, &geo);
+			batch_history_load(rec, ix, &B);
+			L->force_batch(p, &B);
+			batch_history_store(rec, ix, &B);
+			law_pairs in = {.x = x,
+			                .v = v,
+			                .w = w,
+			                .r = r,
+			                .m = m,
+			                .rec = fused,
+			                .idx = ix,
+			                .n = nq,
+			                .dt = dt};
+			law_fused o;
+			int count = L->force_pairs(p, &in, &o), elastic = 0;
+			for (int q = 0; q < nq; q++) {
+				bond *b = &fused[ix[q]];
+				same &= memcmp(b, &before[ix[q]], sizeof *b) == 0;
+				lanes[!o.elastic[q]]++;
+				if (!o.elastic[q])
+					continue;
+				elastic++;
+				double f[6], ev = B.fn_viscous[q] * B.vn[q] * dt;
+				batch_force(&B, &geo, q, f);
+				for (int c = 0; c < 6; c++)
+					same &= memcmp(&f[c], &o.f[c][q], sizeof f[c]) == 0;
+				same &= memcmp(&ev, &o.e_viscous[q], sizeof ev) == 0;
+				same &= B.e_damage[q] == 0 && B.e_friction[q] == 0 && !B.failed[q];
+				for (int c = 0; c < 3; c++)
+					b->t[c] = o.t[c][q];
+				for (int c = 0; c < LAW_NHIST; c++)
+					b->h[c] = o.h[c][q];
+				b->state = (uint8_t)o.state[q];
+				same &= same_bond(b, &rec[ix[q]]);
+			}
+			same &= count == elastic;
+		}
+		CHECK(same);
+	}
+	/* Both kinds of lanes were met. */
+	CHECK(lanes[0] > 0 && lanes[1] > 0);
+	L->free(p);
+}
+
 int main(void)
 {
 	for (size_t k = 0; k < sizeof materials / sizeof materials[0]; k++)
 		run(materials[k][0], materials[k][1]);
+	for (size_t k = 0; k < sizeof materials / sizeof materials[0]; k++)
+		run_pairs(materials[k][0], materials[k][1]);
 	return check_done();
 }
