@@ -46,6 +46,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "solve/kinematics.h"
 #include "solve/laws/area.h"
 #include "solve/laws/damage_hardening.h"
 #include "solve/laws/shear.h"
@@ -259,6 +260,57 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void onate_batch(const law_par
 	LAW_BATCH_REST(onate_force, lp, B, elastic);
 }
 
+/* force_pairs: onate_batch's vector loops as one, from the particles'
+ * state to the forces in one pass (kinematics.h). */
+DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
+onate_pairs_loop(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
+{
+	int32_t state[LAW_LANES];
+	law_pairs_states(rec, idx, n, state);
+	int count = 0;
+	for (int q = 0; q < n; q++) {
+		const bond *b = &rec[idx[q]];
+		pair_motion k = law_pairs_motion(x, v, w, r, b, dt);
+		double h[LAW_NHIST] = {b->h[0], b->h[1], b->h[2]};
+		law_pair pair = {
+		    .ri = r[b->i], .rj = r[b->j], .mi = m[b->i], .mj = m[b->j], .d0 = b->d0};
+		/* normal: dh_normal on the curve's first segment */
+		double A = area_of_radii(p->area.alpha, pair.ri, pair.rj), inv_d = 1 / pair.d0;
+		double h0 = h[0], h2 = h[2];
+		double c = -(k.un * inv_d), e = 0.0 - c;
+		int32_t loading = c > h2;
+		double tension = p->q.E0 * e * dh_secant(h0, p->q.delta_n);
+		double sigma = loading ? -(p->q.E0 * c) : e <= 0 ? p->q.E0 * e : tension;
+		int32_t load_ok = !(c > p->eps[0]),
+		        unload_ok = !(h2 > p->eps[0]) & (e <= p->q.eps_t);
+		int32_t elastic = (loading & load_ok) | ((1 - loading) & unload_ok);
+		double fn = A * sigma;
+		h[2] = (elastic & loading) ? c : h2;
+		/* shear, viscous force */
+		double kn = A * p->q.E0 * (1 / pair.d0), ks = kn * p->ks_over_kn;
+		double fnc = fn < 0 ? -fn : 0;
+		double t[3] = {k.t[0] + k.dus[0], k.t[1] + k.dus[1], k.t[2] + k.dus[2]};
+		double strength = p->tau * A + p->mu1 * fnc;
+		double coupled = p->tau * A * (1 - law_min(1, e / p->q.eps_t));
+		strength = ((p->coupled != 0) & (e > 0)) ? coupled : strength;
+		double us = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+		double h1 = h[1];
+		int32_t ok = elastic & (state[q] < BOND_BROKEN_TENSION) & !(ks * us > strength);
+		double ss = ks * dh_secant(h1, p->delta_s);
+		double fs[3] = {t[0] * ss, t[1] * ss, t[2] * ss};
+		double fv = dh_cn(&p->q, &pair, A, kn) * k.vn;
+		int32_t st = (h[0] > 0) | (h[1] > 0) ? BOND_DAMAGED : BOND_INTACT;
+		law_fused_put(o, q, ok, &k, fn + fv, fv, fs, dt, t, h, st);
+		count += ok;
+	}
+	return count;
+}
+
+static int onate_pairs(const law_params *p, const law_pairs *in, law_fused *o)
+{
+	return onate_pairs_loop((const onate_params *)p, LAW_PAIRS_ARGS(in), o);
+}
+
 static double onate_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)
 {
 	const onate_params *p = (const onate_params *)lp;
@@ -283,6 +335,7 @@ const law law_onate = {
     .init = shear_new_bond,
     .force = onate_force,
     .force_batch = onate_batch,
+    .force_pairs = onate_pairs,
     .energy = onate_energy,
     .damage = dh_damage,
     .h_dropped = 3,
