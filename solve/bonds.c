@@ -211,15 +211,28 @@ static void bonds_compute(engine *e, const int32_t *idx, int nq, int measure, cr
 		part[lane[k]] = rp[k];
 }
 
+/* Six doubles added to a particle's sums a (force, torque per unit radius)
+ * as three vectors of two (which any x86-64 has), built in registers: the
+ * same additions, each sum's in the same order, in fewer instructions. */
+typedef double acc_v2 __attribute__((vector_size(16)));
+static inline void acc_add(double *a, double d0, double d1, double d2, double d3, double d4,
+                           double d5)
+{
+	acc_v2 d[3] = {{d0, d1}, {d2, d3}, {d4, d5}};
+	for (int k = 0; k < 3; k++) {
+		acc_v2 x;
+		memcpy(&x, a + 2 * k, sizeof x);
+		x += d[k];
+		memcpy(a + 2 * k, &x, sizeof x);
+	}
+}
+
 /* The force of a bond (i, j) on j (-f) and its torque per unit radius added
  * to j's sums. */
 static inline void add_to_j(engine *e, int32_t j, const double f[6])
 {
-	double *aj = e->scratch.acc + 6 * j, rj = e->p.r[j];
-	for (int c = 0; c < 3; c++) {
-		aj[c] += -f[c];
-		aj[3 + c] += rj * f[3 + c];
-	}
+	double rj = e->p.r[j];
+	acc_add(e->scratch.acc + 6 * j, -f[0], -f[1], -f[2], rj * f[3], rj * f[4], rj * f[5]);
 }
 
 /* Bond b's part added to its block's sums s, its force on i kept (L->f), and
@@ -239,11 +252,9 @@ static inline void bond_add(engine *e, size_t b, const bond_part *o, int measure
 		s->count[o->state]++;
 	}
 	memcpy(L->f + 3 * b, o->f, 3 * sizeof *o->f);
-	double *ai = e->scratch.acc + 6 * bd->i, ri = e->p.r[bd->i];
-	for (int c = 0; c < 3; c++) {
-		ai[c] += o->f[c];
-		ai[3 + c] += ri * o->f[3 + c];
-	}
+	double ri = e->p.r[bd->i];
+	const double *f = o->f;
+	acc_add(e->scratch.acc + 6 * bd->i, f[0], f[1], f[2], ri * f[3], ri * f[4], ri * f[5]);
 	if (both)
 		add_to_j(e, bd->j, o->f);
 }
@@ -275,7 +286,7 @@ static inline void bonds_prefetch(const engine *e, size_t b0)
 		__builtin_prefetch(p);
 }
 
-void bonds_share(engine *e, int k, int measure)
+DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 {
 	bond_split *S = &e->pairs.split;
 	const bond *rec = e->pairs.bonds.rec;
