@@ -159,16 +159,13 @@ DEM_VECTOR_CLONES static void bonds_staged(engine *e, const int32_t *idx, int nq
 	}
 }
 
-/* The same, through the law's force_pairs when it has one (and the step
- * measures nothing): the lanes on the law's elastic branch from its one
- * loop, the others as bonds_staged computes them. */
-static void bonds_compute(engine *e, const int32_t *idx, int nq, int measure, crack_buf *cb,
-                          bond_part *part)
+/* The nq bonds idx[0..nq) through the law's force_pairs (kinematics.h):
+ * the lanes on its elastic branch (o->elastic[q]) from its one loop, their
+ * records updated; the others as bonds_staged computes them, into
+ * part[q]. */
+static void bonds_fused(engine *e, const int32_t *idx, int nq, crack_buf *cb, law_fused *o,
+                        bond_part *part)
 {
-	if (measure || !e->law->force_pairs) {
-		bonds_staged(e, idx, nq, measure, cb, part);
-		return;
-	}
 	const particles *P = &e->p;
 	bond *rec = e->pairs.bonds.rec;
 	law_pairs in = {.x = P->x,
@@ -180,35 +177,55 @@ static void bonds_compute(engine *e, const int32_t *idx, int nq, int measure, cr
 	                .idx = idx,
 	                .n = nq,
 	                .dt = e->clock.dt};
-	law_fused o;
-	int elastic = e->law->force_pairs(e->lp, &in, &o);
+	int elastic = e->law->force_pairs(e->lp, &in, o);
 	int32_t rest[BATCH] = {0}, lane[BATCH];
 	int nr = 0;
 	for (int q = 0; q < nq; q++) {
-		if (!o.elastic[q]) {
+		if (!o->elastic[q]) {
 			rest[nr] = idx[q];
 			lane[nr++] = q;
 			continue;
 		}
 		bond *b = &rec[idx[q]];
 		for (int c = 0; c < 3; c++)
-			b->t[c] = o.t[c][q];
-		for (int c = 0; c < LAW_NHIST; c++)
-			b->h[c] = o.h[c][q];
-		b->state = (uint8_t)o.state[q];
-		bond_part *d = &part[q];
-		for (int c = 0; c < 6; c++)
-			d->f[c] = o.f[c][q];
-		d->e_damage = 0;
-		d->e_friction = 0;
-		d->e_viscous = o.e_viscous[q];
+			b->t[c] = o->t[c][q];
+		if (o->history) {
+			for (int c = 0; c < LAW_NHIST; c++)
+				b->h[c] = o->h[c][q];
+			b->state = (uint8_t)o->state[q];
+		}
 	}
 	if (elastic == nq)
 		return;
 	bond_part rp[BATCH];
-	bonds_staged(e, rest, nr, measure, cb, rp);
+	bonds_staged(e, rest, nr, 0, cb, rp);
 	for (int k = 0; k < nr; k++)
 		part[lane[k]] = rp[k];
+}
+
+/* Whether this step's bonds go through the law's force_pairs: when it has
+ * one and the step measures nothing. */
+static int bonds_use_fused(const engine *e, int measure) { return !measure && e->law->force_pairs; }
+
+/* What each of the nq bonds idx[0..nq) adds, into part[0..nq). */
+static void bonds_compute(engine *e, const int32_t *idx, int nq, int measure, crack_buf *cb,
+                          bond_part *part)
+{
+	if (!bonds_use_fused(e, measure)) {
+		bonds_staged(e, idx, nq, measure, cb, part);
+		return;
+	}
+	law_fused o;
+	bonds_fused(e, idx, nq, cb, &o, part);
+	for (int q = 0; q < nq; q++)
+		if (o.elastic[q]) {
+			bond_part *d = &part[q];
+			for (int c = 0; c < 6; c++)
+				d->f[c] = o.f[c][q];
+			d->e_damage = 0;
+			d->e_friction = 0;
+			d->e_viscous = o.e_viscous[q];
+		}
 }
 
 /* Six doubles added to a particle's sums a (force, torque per unit radius)
@@ -235,13 +252,23 @@ static inline void add_to_j(engine *e, int32_t j, const double f[6])
 	acc_add(e->scratch.acc + 6 * j, -f[0], -f[1], -f[2], rj * f[3], rj * f[4], rj * f[5]);
 }
 
-/* Bond b's part added to its block's sums s, its force on i kept (L->f), and
- * its force and torque added to particle i and, when both, to j. */
-static inline void bond_add(engine *e, size_t b, const bond_part *o, int measure, pair_sums *s,
-                            int both)
+/* Bond b's force f on i kept (L->f), and its force and torque added to
+ * particle i and, when both, to j. */
+static inline void bond_add_force(engine *e, size_t b, const double f[6], int both)
 {
 	pairlist *L = &e->pairs.bonds;
 	const bond *bd = &L->rec[b];
+	memcpy(L->f + 3 * b, f, 3 * sizeof *f);
+	double ri = e->p.r[bd->i];
+	acc_add(e->scratch.acc + 6 * bd->i, f[0], f[1], f[2], ri * f[3], ri * f[4], ri * f[5]);
+	if (both)
+		add_to_j(e, bd->j, f);
+}
+
+/* Bond b's part added to its block's sums s, and its force (bond_add_force). */
+static inline void bond_add(engine *e, size_t b, const bond_part *o, int measure, pair_sums *s,
+                            int both)
+{
 	s->e_damage += o->e_damage;
 	s->e_friction += o->e_friction;
 	s->e_viscous += o->e_viscous;
@@ -251,12 +278,19 @@ static inline void bond_add(engine *e, size_t b, const bond_part *o, int measure
 			s->love[c] += o->love[c];
 		s->count[o->state]++;
 	}
-	memcpy(L->f + 3 * b, o->f, 3 * sizeof *o->f);
-	double ri = e->p.r[bd->i];
-	const double *f = o->f;
-	acc_add(e->scratch.acc + 6 * bd->i, f[0], f[1], f[2], ri * f[3], ri * f[4], ri * f[5]);
-	if (both)
-		add_to_j(e, bd->j, o->f);
+	bond_add_force(e, b, o->f, both);
+}
+
+/* The same for lane q of force_pairs' output, a bond of the share: it
+ * dissipates nothing but its viscous energy (adding the zeros would leave
+ * the sums as they are: started at +0, a sum is never -0). */
+static inline void bond_add_fused(engine *e, size_t b, const law_fused *o, int q, pair_sums *s)
+{
+	s->e_viscous += o->e_viscous[q];
+	double f[6];
+	for (int c = 0; c < 6; c++)
+		f[c] = o->f[c][q];
+	bond_add_force(e, b, f, 1);
 }
 
 void bonds_cross(engine *e, int k, int measure)
@@ -302,6 +336,7 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 		add_to_j(e, rec[S->cross[c]].j, S->part[c].f);
 	}
 	size_t slot = S->cfirst[k];
+	int fused = bonds_use_fused(e, measure);
 	for (size_t blk = p0 / BLOCK; blk * BLOCK < p1; blk++) {
 		/* Summed in a local, which no store to the particles' sums can
 		 * alias, so its members stay in registers. */
@@ -316,12 +351,19 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 			for (size_t b = b0; b < b1; b++)
 				if ((size_t)rec[b].j < p1)
 					idx[nq++] = (int32_t)b;
-			bonds_compute(e, idx, nq, measure, cb, part);
+			law_fused o;
+			if (fused)
+				bonds_fused(e, idx, nq, cb, &o, part);
+			else
+				bonds_staged(e, idx, nq, measure, cb, part);
 			int q = 0;
 			for (size_t b = b0; b < b1; b++) {
-				int own = (size_t)rec[b].j < p1;
-				bond_add(e, b, own ? &part[q++] : &S->part[slot++], measure, s,
-				         own);
+				if ((size_t)rec[b].j >= p1)
+					bond_add(e, b, &S->part[slot++], measure, s, 0);
+				else if (fused && o.elastic[q])
+					bond_add_fused(e, b, &o, q++, s);
+				else
+					bond_add(e, b, &part[q++], measure, s, 1);
 			}
 		}
 		e->scratch.bblock[blk] = sums;

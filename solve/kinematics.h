@@ -194,6 +194,7 @@ struct law_pairs {
  * and the torque per unit radius (pair_force), the viscous energy
  * u̇_n f_viscous Δt, and the bond's new history. */
 struct law_fused {
+	int history; /* whether h and state may have changed (else only t) */
 	int32_t elastic[LAW_LANES];
 	double f[6][LAW_LANES];
 	double e_viscous[LAW_LANES];

@@ -212,6 +212,7 @@ jcfpm_pairs_loop(const jcfpm_params *restrict p, LAW_PAIRS_PARAMS, law_fused *re
 	(void)m;
 	int32_t state[LAW_LANES];
 	law_pairs_states(rec, idx, n, state);
+	o->history = 0;
 	int count = 0;
 	for (int q = 0; q < n; q++) {
 		const bond *b = &rec[idx[q]];

@@ -201,6 +201,7 @@ linear_pairs_loop(const law_params *restrict p, LAW_PAIRS_PARAMS, law_fused *res
 	double alpha = p->area.alpha, tau = p->tau, mu1 = p->mu1, sigma_t = p->sigma_t;
 	int32_t state[LAW_LANES];
 	law_pairs_states(rec, idx, n, state);
+	o->history = 0;
 	int count = 0;
 	for (int q = 0; q < n; q++) {
 		const bond *b = &rec[idx[q]];

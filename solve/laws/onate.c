@@ -267,6 +267,7 @@ onate_pairs_loop(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *re
 {
 	int32_t state[LAW_LANES];
 	law_pairs_states(rec, idx, n, state);
+	o->history = 1;
 	int count = 0;
 	for (int q = 0; q < n; q++) {
 		const bond *b = &rec[idx[q]];
