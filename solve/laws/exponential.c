@@ -32,6 +32,7 @@
  */
 #include <stdlib.h>
 
+#include "solve/kinematics.h"
 #include "solve/laws/area.h"
 #include "solve/laws/damage_hardening.h"
 #include "solve/laws/shear.h"
@@ -137,6 +138,59 @@ static inline void exp_force(const law_params *lp, const law_pair *pair, bond *b
 
 LAW_BATCH(exp, exp_force)
 
+/* force_pairs: the lanes of bonds that stay on their elastic branches (no
+ * damage growing, no plastic flow, no failure: the first part of the
+ * loading curve, strain below eps_max now and at the historical maximum, a
+ * tension below the limit strain, a shear force within the Mohr-Coulomb
+ * limit) from the particles' state to the forces in one vectorised pass
+ * (kinematics.h), with exp_force's expressions, so the same to the bit;
+ * every other lane goes through exp_force. */
+DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
+exp_pairs_loop(const exp_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
+{
+	int32_t state[LAW_LANES];
+	law_pairs_states(rec, idx, n, state);
+	o->history = 1;
+	int count = 0;
+	for (int q = 0; q < n; q++) {
+		const bond *b = &rec[idx[q]];
+		pair_motion k = law_pairs_motion(x, v, w, r, b, dt);
+		double h[LAW_NHIST] = {b->h[0], b->h[1], b->h[2]};
+		law_pair pair = {
+		    .ri = r[b->i], .rj = r[b->j], .mi = m[b->i], .mj = m[b->j], .d0 = b->d0};
+		/* normal: dh_normal on the curve's first part */
+		double inv_d = 1 / pair.d0, A = area_of_radii(1, pair.ri, pair.rj),
+		       kn = A * p->q.E0 * inv_d;
+		double ks = kn * p->ks_over_kn;
+		double h0 = h[0], h2 = h[2];
+		double c = -(k.un * inv_d), e = 0.0 - c;
+		int32_t loading = c > h2;
+		double tension = p->q.E0 * e * dh_secant(h0, p->q.delta_n);
+		double sigma = loading ? -(p->q.E0 * c) : e <= 0 ? p->q.E0 * e : tension;
+		int32_t load_ok = !(c > p->eps_max),
+		        unload_ok = !(h2 > p->eps_max) & (e <= p->q.eps_t);
+		int32_t elastic = (loading & load_ok) | ((1 - loading) & unload_ok);
+		double fn = A * sigma;
+		h[2] = (elastic & loading) ? c : h2;
+		/* shear: shear_mohr_coulomb within its limit */
+		double t[3] = {k.t[0] + k.dus[0], k.t[1] + k.dus[1], k.t[2] + k.dus[2]};
+		double limit = p->cohesion * A + -fn * p->tan_i,
+		       f = ks * sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+		int32_t ok = elastic & (state[q] < BOND_BROKEN_TENSION) & (f <= limit);
+		double fs[3] = {t[0] * ks, t[1] * ks, t[2] * ks};
+		double fv = dh_cn(&p->q, &pair, A, kn) * k.vn;
+		int32_t st = h[0] > 0 ? BOND_DAMAGED : BOND_INTACT;
+		law_fused_put(o, q, ok, &k, fn + fv, fv, fs, dt, t, h, st);
+		count += ok;
+	}
+	return count;
+}
+
+static int exp_pairs(const law_params *p, const law_pairs *in, law_fused *o)
+{
+	return exp_pairs_loop((const exp_params *)p, LAW_PAIRS_ARGS(in), o);
+}
+
 static double exp_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)
 {
 	const exp_params *p = (const exp_params *)lp;
@@ -159,6 +213,7 @@ const law law_exponential = {
     .init = shear_new_bond,
     .force = exp_force,
     .force_batch = exp_batch,
+    .force_pairs = exp_pairs,
     .energy = exp_energy,
     .damage = dh_damage,
     .h_dropped = 3,
