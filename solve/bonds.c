@@ -162,9 +162,9 @@ DEM_VECTOR_CLONES static void bonds_staged(engine *e, const int32_t *idx, int nq
 /* The nq bonds idx[0..nq) through the law's force_pairs (kinematics.h):
  * the lanes on its elastic branch (o->elastic[q]) from its one loop, their
  * records updated; the others as bonds_staged computes them, into
- * part[q]. */
-static void bonds_fused(engine *e, const int32_t *idx, int nq, crack_buf *cb, law_fused *o,
-                        bond_part *part)
+ * part[q]. Returns the count of elastic lanes. */
+static int bonds_fused(engine *e, const int32_t *idx, int nq, crack_buf *cb, law_fused *o,
+                       bond_part *part)
 {
 	const particles *P = &e->p;
 	bond *rec = e->pairs.bonds.rec;
@@ -196,11 +196,12 @@ static void bonds_fused(engine *e, const int32_t *idx, int nq, crack_buf *cb, la
 		}
 	}
 	if (elastic == nq)
-		return;
+		return elastic;
 	bond_part rp[BATCH];
 	bonds_staged(e, rest, nr, 0, cb, rp);
 	for (int k = 0; k < nr; k++)
 		part[lane[k]] = rp[k];
+	return elastic;
 }
 
 /* Whether this step's bonds go through the law's force_pairs: when it has
@@ -320,6 +321,10 @@ static inline void bonds_prefetch(const engine *e, size_t b0)
 		__builtin_prefetch(p);
 }
 
+/* The steps a batch mostly off the law's elastic branch goes the staged
+ * way before it tries force_pairs again (bond_split.staged). */
+enum { STAGED_STEPS = 16 };
+
 DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 {
 	bond_split *S = &e->pairs.split;
@@ -336,7 +341,7 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 		add_to_j(e, rec[S->cross[c]].j, S->part[c].f);
 	}
 	size_t slot = S->cfirst[k];
-	int fused = bonds_use_fused(e, measure);
+	int fused_law = bonds_use_fused(e, measure);
 	for (size_t blk = p0 / BLOCK; blk * BLOCK < p1; blk++) {
 		/* Summed in a local, which no store to the particles' sums can
 		 * alias, so its members stay in registers. */
@@ -351,11 +356,21 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 			for (size_t b = b0; b < b1; b++)
 				if ((size_t)rec[b].j < p1)
 					idx[nq++] = (int32_t)b;
+			/* A batch that was mostly off the law's elastic branch
+			 * (broken, damaging, flowing bonds, whose lanes are
+			 * computed twice: by force_pairs, then staged) goes the
+			 * staged way for STAGED_STEPS steps, then tries again. */
+			int fused = fused_law && !S->staged[b0];
 			law_fused o;
-			if (fused)
-				bonds_fused(e, idx, nq, cb, &o, part);
-			else
+			if (fused) {
+				int elastic = bonds_fused(e, idx, nq, cb, &o, part);
+				if (2 * elastic < nq)
+					S->staged[b0] = STAGED_STEPS;
+			} else {
 				bonds_staged(e, idx, nq, measure, cb, part);
+				if (fused_law)
+					S->staged[b0]--;
+			}
 			int q = 0;
 			for (size_t b = b0; b < b1; b++) {
 				if ((size_t)rec[b].j >= p1)
@@ -377,6 +392,7 @@ void bonds_split(engine *e, int shares)
 	size_t n = e->p.n, nblk = nblocks(n);
 	bonds_split_free(S);
 	S->bfirst = xmalloc((nblk + 1) * sizeof *S->bfirst);
+	S->staged = xcalloc(L->n + 1, sizeof *S->staged);
 	for (size_t blk = 0, b = 0; blk <= nblk; blk++) {
 		while (b < L->n && (size_t)L->rec[b].i < blk * BLOCK)
 			b++;
@@ -442,7 +458,7 @@ void bonds_split(engine *e, int shares)
 void bonds_split_free(bond_split *s)
 {
 	free(s->pfirst), free(s->cfirst), free(s->cross), free(s->part), free(s->bfirst);
-	free(s->infirst), free(s->in);
+	free(s->infirst), free(s->in), free(s->staged);
 	memset(s, 0, sizeof *s);
 }
 
