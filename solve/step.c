@@ -231,6 +231,91 @@ static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 	advance(e, i, vn, wn, ext, s);
 }
 
+/* Whether particle i moves freely under its forces alone (move_free, then
+ * advance, with no external force): no platen, confinement, end layer or
+ * radial constraint acts on it. */
+static inline int moves_freely(const engine *e, size_t i)
+{
+	const particles *P = &e->p;
+	uint8_t flag = P->flag[i];
+	return P->pslot[0][i] < 0 && P->pslot[1][i] < 0 &&
+	       !(P->surf[i] >= 0 && e->bc.loads.lateral == LATERAL_PRESSURE) &&
+	       !(flag & PF_CONSTRAINED) &&
+	       !(e->bc.loads.layers && (flag & (PF_LAYER_BOTTOM | PF_LAYER_TOP)));
+}
+
+/* What move_free and advance compute for the free particles of a block
+ * (with the vector form of the damping), lane by lane: the new state and
+ * each particle's terms of the block's sums, added in particle order
+ * afterwards. */
+typedef struct {
+	int32_t i[BLOCK];
+	double F[3][BLOCK], T[3][BLOCK];
+	double v[3][BLOCK], w[3][BLOCK], x[3][BLOCK];
+	double damped[BLOCK], ke[BLOCK], ke_new[BLOCK], vv[BLOCK], work[BLOCK], d2[BLOCK];
+	double finite[BLOCK]; /* the sum whose finiteness advance checks */
+} free_lanes;
+
+/* move_free (DAMPING_VECTOR) and advance with ext = 0 for the nf particles
+ * fl->i[0..nf) of forces fl->F, fl->T, with their expressions, in a loop
+ * the compiler can vectorise (the division of damp computed whatever the
+ * speed, its result used only where it is positive, as damp uses it). */
+DEM_VECTOR_CLONES __attribute__((noinline)) static void
+integrate_free(const double *restrict X, const double *restrict V, const double *restrict W,
+               const double *restrict R, const double *restrict M, const double *restrict XR,
+               double dt, double alpha_t, double alpha_r, free_lanes *restrict fl, int nf)
+{
+	for (int q = 0; q < nf; q++) {
+		int32_t i = fl->i[q];
+		double F[3], T[3], v[3], w[3], x[3], xr[3];
+		for (int c = 0; c < 3; c++) {
+			F[c] = fl->F[c][q];
+			T[c] = fl->T[c][q];
+			v[c] = V[3 * i + c];
+			w[c] = W[3 * i + c];
+			x[c] = X[3 * i + c];
+			xr[c] = XR[3 * i + c];
+		}
+		double mass = M[i], ri = R[i];
+		double im = 1 / mass, ii = 1 / (0.4 * mass * ri * ri);
+		double fa = sqrt(dot3(F, F)), va = sqrt(dot3(v, v));
+		double cfv = -alpha_t * fa / va, cf = va > 0 ? cfv : 0;
+		double ta = sqrt(dot3(T, T)), wa = sqrt(dot3(w, w));
+		double ctv = -alpha_r * ta / wa, ct = wa > 0 ? ctv : 0;
+		double fd[3], td[3], vn[3], wn[3];
+		for (int c = 0; c < 3; c++) {
+			fd[c] = cf * v[c];
+			td[c] = ct * w[c];
+		}
+		for (int c = 0; c < 3; c++) {
+			vn[c] = v[c] + dt * im * (F[c] + fd[c]);
+			wn[c] = w[c] + dt * ii * (T[c] + td[c]);
+		}
+		fl->damped[q] =
+		    0.5 * dt * (dot3(fd, v) + dot3(fd, vn) + dot3(td, w) + dot3(td, wn));
+		double inertia = 0.4 * mass * ri * ri;
+		fl->ke[q] = 0.5 * (mass * dot3(v, vn) + inertia * dot3(w, wn));
+		double vv = dot3(vn, vn);
+		fl->vv[q] = vv;
+		fl->ke_new[q] = 0.5 * (mass * vv + inertia * dot3(wn, wn));
+		fl->work[q] =
+		    0.5 * dt * (0.0 * (v[0] + vn[0]) + 0.0 * (v[1] + vn[1]) + 0.0 * (v[2] + vn[2]));
+		double d2 = 0;
+		for (int c = 0; c < 3; c++) {
+			x[c] += dt * vn[c];
+			double dx = x[c] - xr[c];
+			d2 += dx * dx;
+		}
+		fl->d2[q] = d2;
+		fl->finite[q] = x[0] + x[1] + x[2] + wn[0] + wn[1] + wn[2];
+		for (int c = 0; c < 3; c++) {
+			fl->v[c][q] = vn[c];
+			fl->w[c][q] = wn[c];
+			fl->x[c][q] = x[c];
+		}
+	}
+}
+
 DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
 {
 	size_t n = e->p.n;
@@ -238,8 +323,51 @@ DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
 	memset(s, 0, sizeof *s);
 	s->bad = (double)n;
 	size_t hi = block_end(k, n);
-	for (size_t i = k * BLOCK; i < hi; i++)
-		integrate_one(e, (int32_t)i, measure, s);
+	if (e->cs->damping_form != DAMPING_VECTOR) {
+		for (size_t i = k * BLOCK; i < hi; i++)
+			integrate_one(e, (int32_t)i, measure, s);
+		return;
+	}
+	/* The free particles all together (integrate_free), the others one by
+	 * one; every particle's terms added to the sums in particle order. */
+	particles *P = &e->p;
+	free_lanes fl;
+	int nf = 0;
+	for (size_t i = k * BLOCK; i < hi; i++) {
+		if (!moves_freely(e, i))
+			continue;
+		const double *acc = e->scratch.acc + 6 * i;
+		double F[3] = {acc[0], acc[1], acc[2]}, T[3] = {acc[3], acc[4], acc[5]};
+		gather(&e->pairs.contacts, (int32_t)i, P->r[i], F, T);
+		for (int c = 0; c < 3; c++) {
+			fl.F[c][nf] = F[c];
+			fl.T[c][nf] = T[c];
+		}
+		fl.i[nf++] = (int32_t)i;
+	}
+	integrate_free(P->x, P->v, P->w, P->r, P->m, P->x_ref, e->clock.dt, e->cs->alpha_t,
+	               e->cs->alpha_r, &fl, nf);
+	int q = 0;
+	for (size_t i = k * BLOCK; i < hi; i++) {
+		if (q == nf || fl.i[q] != (int32_t)i) {
+			integrate_one(e, (int32_t)i, measure, s);
+			continue;
+		}
+		s->e_damped -= fl.damped[q];
+		s->ke += fl.ke[q];
+		s->ke_new += fl.ke_new[q];
+		s->v2max = fl.vv[q] > s->v2max ? fl.vv[q] : s->v2max;
+		s->e_work += fl.work[q];
+		s->disp2 = fl.d2[q] > s->disp2 ? fl.d2[q] : s->disp2;
+		for (int c = 0; c < 3; c++) {
+			P->v[3 * i + c] = fl.v[c][q];
+			P->w[3 * i + c] = fl.w[c][q];
+			P->x[3 * i + c] = fl.x[c][q];
+		}
+		if (!(isfinite(fl.finite[q])) && s->bad > (double)i)
+			s->bad = (double)i;
+		q++;
+	}
 }
 
 /* The particles of share k (bonds.h). */
