@@ -52,7 +52,6 @@ int main(int argc, char **argv)
 	CHECK(e.pairs.bonds.n > 0);
 	double *m0 = xmalloc(e.p.n * sizeof *m0);
 	memcpy(m0, e.p.m, e.p.n * sizeof *m0);
-	int touching = 0;
 	for (int round = 0; round < 32; round++) {
 		if (round == 16) {
 			e.pairs.bonds.n = 0; /* every near pair a contact */
@@ -69,12 +68,10 @@ int main(int argc, char **argv)
 		size_t worst;
 		double crit = timestep_critical(&e, 1, &worst);
 		CHECK(isfinite(crit) && crit > 0 && worst < e.p.n);
-		touching += crit < INFINITY;
 		if (par_rank() == 0)
 			printf("bound %a %d\n", crit, e.p.orig[worst]);
 	}
 	free(m0);
-	CHECK(touching == 32);
 	engine_free(&e);
 	case_free(&c);
 	assembly_free(&a);
