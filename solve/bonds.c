@@ -321,9 +321,12 @@ static inline void bonds_prefetch(const engine *e, size_t b0)
 		__builtin_prefetch(p);
 }
 
-/* The steps a batch mostly off the law's elastic branch goes the staged
- * way before it tries force_pairs again (bond_split.staged). */
-enum { STAGED_STEPS = 16 };
+/* The steps a batch with more than a quarter of its lanes off the law's
+ * elastic branch goes the staged way before it tries force_pairs again
+ * (bond_split.staged): such lanes cost force_pairs' loop and then the
+ * staged path's, which beyond about four lanes of sixteen is more than the
+ * staged path's for the whole batch. */
+enum { STAGED_STEPS = 64 };
 
 DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 {
@@ -356,7 +359,7 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 			for (size_t b = b0; b < b1; b++)
 				if ((size_t)rec[b].j < p1)
 					idx[nq++] = (int32_t)b;
-			/* A batch that was mostly off the law's elastic branch
+			/* A batch that was largely off the law's elastic branch
 			 * (broken, damaging, flowing bonds, whose lanes are
 			 * computed twice: by force_pairs, then staged) goes the
 			 * staged way for STAGED_STEPS steps, then tries again. */
@@ -364,7 +367,7 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 			law_fused o;
 			if (fused) {
 				int elastic = bonds_fused(e, idx, nq, cb, &o, part);
-				if (2 * elastic < nq)
+				if (4 * elastic < 3 * nq)
 					S->staged[b0] = STAGED_STEPS;
 			} else {
 				bonds_staged(e, idx, nq, measure, cb, part);

@@ -46,8 +46,8 @@ typedef struct {
 	size_t *bfirst;  /* [particle blocks + 1] first bond of each particle block */
 	/* [bonds] at the first bond of each batch of bonds_share: 0 when the
 	 * batch goes through the law's force_pairs, else the steps left that
-	 * it goes the staged way (most of its lanes were off the law's elastic
-	 * branch). Only the speed depends on it. */
+	 * it goes the staged way (more than a quarter of its lanes were off
+	 * the law's elastic branch). Only the speed depends on it. */
 	uint8_t *staged;
 } bond_split;
 
