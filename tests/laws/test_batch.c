@@ -89,15 +89,25 @@ static void from_lane(const law_batch *B, int q, bond *b, law_out *o)
 	o->failed = B->failed[q];
 }
 
+/* The law's parameters from json, set up for a packing (NULL, and a failed
+ * check, when they do not parse). */
+static law_params *law_ready(const law *L, const char *json, const char *name)
+{
+	law_params *p = drive_parse(L, json, name);
+	CHECK(p != NULL);
+	if (p) {
+		law_packing pk = {.porosity = 0.15, .coordination = 7};
+		L->setup(p, &pk);
+	}
+	return p;
+}
+
 static void run(const char *name, const char *json)
 {
 	const law *L = law_find(name);
-	law_params *p = drive_parse(L, json, name);
-	CHECK(p != NULL);
+	law_params *p = law_ready(L, json, name);
 	if (!p)
 		return;
-	law_packing pk = {.porosity = 0.15, .coordination = 7};
-	L->setup(p, &pk);
 	rng g;
 	rng_seed(&g, 42);
 	static law_pair pair[NB];
@@ -158,12 +168,9 @@ static void run_pairs(const char *name, const char *json)
 	const law *L = law_find(name);
 	if (!L->force_pairs)
 		return;
-	law_params *p = drive_parse(L, json, name);
-	CHECK(p != NULL);
+	law_params *p = law_ready(L, json, name);
 	if (!p)
 		return;
-	law_packing pk = {.porosity = 0.15, .coordination = 7};
-	L->setup(p, &pk);
 	rng g;
 	rng_seed(&g, 7);
 	enum { NP = 2 * NB };
