@@ -129,18 +129,6 @@ static uLong pairs_crc(uLong c, const pairlist *l, int contacts, const old_bonds
 	           : crc(c, l->f, (size_t)l->fcols * l->n * sizeof *l->f);
 }
 
-/* The engine's own contact lists as a view (ranks.h): the whole specimen's
- * after a checkpoint has been read, before contacts_restore. */
-static void own_lists(const engine *e, pairs_view *v)
-{
-	v->contacts = &e->pairs.contacts;
-	for (int k = 0; k < 2; k++) {
-		v->ncand[k] = e->bc.pl.ncand[k];
-		v->pc[k] = e->bc.pl.pc[k];
-		v->who[k] = e->bc.pl.who[k];
-	}
-}
-
 static int64_t state_crc(engine *e, const pairs_view *v, const old_bonds *old)
 {
 	uLong c = crc32_z(0, Z_NULL, 0);
@@ -609,7 +597,7 @@ int checkpoint_read_file(engine *e, hid_t f)
 			             BOND_BROKEN_SHEAR);
 	int64_t sum = 0;
 	pairs_view v;
-	own_lists(e, &v);
+	ranks_own_pairs(e, &v); /* as read: the whole specimen's */
 	if (!rc && (h5_read_attr_i64(g, "checksum", &sum) ||
 	            sum != state_crc(e, &v, is_old ? &old : NULL)))
 		rc = err_set("%s: the checkpoint's data do not match its checksum (damaged, or "

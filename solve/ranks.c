@@ -717,15 +717,28 @@ void ranks_gather_output(engine *e)
 #endif
 }
 
+void ranks_own_pairs(const engine *e, pairs_view *v)
+{
+	v->contacts = &e->pairs.contacts;
+	for (int k = 0; k < 2; k++) {
+		v->ncand[k] = e->bc.pl.ncand[k];
+		v->pc[k] = e->bc.pl.pc[k];
+		v->who[k] = e->bc.pl.who[k];
+	}
+}
+
 void ranks_pairs(const engine *e, pairs_view *v)
 {
 	const rank_split *R = &e->ranks;
-	int all = R->size > 1;
-	v->contacts = all ? &R->all_contacts : &e->pairs.contacts;
+	if (R->size == 1) {
+		ranks_own_pairs(e, v);
+		return;
+	}
+	v->contacts = &R->all_contacts;
 	for (int k = 0; k < 2; k++) {
-		v->ncand[k] = all ? R->all_ncand[k] : e->bc.pl.ncand[k];
-		v->pc[k] = all ? R->all_pc[k] : e->bc.pl.pc[k];
-		v->who[k] = all ? R->all_who[k] : e->bc.pl.who[k];
+		v->ncand[k] = R->all_ncand[k];
+		v->pc[k] = R->all_pc[k];
+		v->who[k] = R->all_who[k];
 	}
 }
 

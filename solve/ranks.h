@@ -147,6 +147,9 @@ void ranks_gather_output(engine *e);
  * with one rank, else those of the last ranks_gather_output (empty but on
  * rank 0). */
 void ranks_pairs(const engine *e, pairs_view *v);
+/* This rank's own contact and platen lists as a view (after a checkpoint
+ * is read, before contacts_restore, the whole specimen's). */
+void ranks_own_pairs(const engine *e, pairs_view *v);
 /* This rank's particles [*p0, *p1); before ranks_split (setup, where every
  * rank holds and computes every particle alike) all of them, and 0 is
  * returned, else 1: what the rank computes from its own particles must then
