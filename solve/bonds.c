@@ -16,6 +16,7 @@
 #include "solve/kinematics.h"
 #include "solve/measure.h"
 #include "solve/pairlist.h"
+#include "solve/par.h"
 
 /* Whether the centre of one of spheres i, j lies inside the other. */
 static int nested(const particles *P, size_t i, int32_t j)
@@ -52,20 +53,52 @@ int bonds_form(engine *e)
 			free(cp.i), free(cp.j), free(cp.d);
 			return rc;
 		}
+	e->pairs.formed = cp;
+	e->pairs.nbonds = cp.n;
+	return 0;
+}
+
+static void formed_free(cells_pairs *cp)
+{
+	free(cp->i), free(cp->j), free(cp->d);
+	memset(cp, 0, sizeof *cp);
+}
+
+/* The ends of bond b of the whole specimen: as formed, or (one rank, every
+ * record its own) from its record. */
+static void bond_ends(const engine *e, size_t b, int32_t *i, int32_t *j)
+{
+	const cells_pairs *cp = &e->pairs.formed;
+	*i = cp->i ? cp->i[b] : e->pairs.bonds.rec[b].i;
+	*j = cp->i ? cp->j[b] : e->pairs.bonds.rec[b].j;
+}
+
+/* The records of bonds [b0, b1) of the whole specimen as this rank's (the
+ * formed list released), or, after that, the records it holds (one rank:
+ * all of them). */
+static void bonds_keep(engine *e, size_t b0, size_t b1)
+{
 	pairlist *L = &e->pairs.bonds;
-	L->rec = xmalloc((cp.n + 1) * sizeof *L->rec);
-	for (size_t b = 0; b < cp.n; b++) {
-		bond *bd = &L->rec[L->n++];
-		memset(bd, 0, sizeof *bd);
-		bd->i = cp.i[b];
-		bd->j = cp.j[b];
-		bd->d0 = cp.d[b];
+	cells_pairs *cp = &e->pairs.formed;
+	if (!cp->i) {
+		if (b1 - b0 != L->n || (L->n && b0 != e->pairs.bond0))
+			fatal("the bonds are split again on other ranks than they were formed for");
+		e->pairs.bond0 = b0;
+		return;
 	}
-	free(cp.i), free(cp.j), free(cp.d);
-	L->cap = L->n;
+	pairlist_free(L);
+	L->n = L->cap = b1 - b0;
+	L->rec = xcalloc(L->n + 1, sizeof *L->rec);
+	for (size_t b = b0; b < b1; b++) {
+		bond *bd = &L->rec[b - b0];
+		bd->i = cp->i[b];
+		bd->j = cp->j[b];
+		bd->d0 = cp->d[b];
+	}
 	L->fcols = 3;
 	L->f = xcalloc(3 * L->n + 1, sizeof *L->f);
-	return 0;
+	e->pairs.bond0 = b0;
+	formed_free(cp);
 }
 
 /* The law's pair description of bond b (for init and constants). */
@@ -75,9 +108,9 @@ static law_pair pair_of(const particles *P, const bond *b)
 	    .ri = P->r[b->i], .rj = P->r[b->j], .mi = P->m[b->i], .mj = P->m[b->j], .d0 = b->d0};
 }
 
-void engine_bond_entry(const engine *e, size_t b, int32_t ends[2], law_const *c)
+void engine_bond_entry(const engine *e, const pairlist *L, size_t b, int32_t ends[2], law_const *c)
 {
-	const bond *bd = &e->pairs.bonds.rec[b];
+	const bond *bd = &L->rec[b];
 	int32_t oi = e->p.orig[bd->i], oj = e->p.orig[bd->j];
 	ends[0] = oi < oj ? oi : oj;
 	ends[1] = oi < oj ? oj : oi;
@@ -89,10 +122,19 @@ void engine_bond_entry(const engine *e, size_t b, int32_t ends[2], law_const *c)
 
 void bonds_init_history(engine *e)
 {
+	const particles *P = &e->p;
+	double xi = e->cs->mat.damping;
 	for (size_t b = 0; b < e->pairs.bonds.n; b++) {
-		law_pair q = pair_of(&e->p, &e->pairs.bonds.rec[b]);
-		e->law->init(e->lp, &q, &e->pairs.bonds.rec[b]);
+		bond *bd = &e->pairs.bonds.rec[b];
+		law_pair q = pair_of(P, bd);
+		e->law->init(e->lp, &q, bd);
+		law_const c;
+		e->law->constants(e->lp, &q, &c);
+		double mij = q.mi * q.mj / (q.mi + q.mj);
+		xi = fmax(xi, c.cn / (2 * sqrt(mij * c.kn)));
 	}
+	par_max(&xi, 1);
+	e->clock.xi_max = xi;
 }
 
 /* A failure as a crack record, with the force the bond carried before it. */
@@ -107,6 +149,7 @@ static void record_crack(engine *e, crack_buf *cb, size_t b, int mode, const bat
 	const bond *bd = &e->pairs.bonds.rec[b];
 	const particles *P = &e->p;
 	const double *f = e->pairs.bonds.f + 3 * b;
+	b += e->pairs.bond0; /* its place in the whole specimen's bond order */
 	double fn = f[0] * n[0] + f[1] * n[1] + f[2] * n[2];
 	double fs[3] = {f[0] - fn * n[0], f[1] - fn * n[1], f[2] - fn * n[2]};
 	int32_t oi = P->orig[bd->i], oj = P->orig[bd->j];
@@ -333,7 +376,7 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 	bond_split *S = &e->pairs.split;
 	const bond *rec = e->pairs.bonds.rec;
 	crack_buf *cb = &e->out.thread_cracks[omp_get_thread_num()];
-	size_t p0 = S->pfirst[k], p1 = S->pfirst[k + 1];
+	size_t p0 = S->pfirst[k], p1 = S->pfirst[k + 1], base = e->pairs.bond0;
 	if (p0 == p1)
 		return;
 	memset(e->scratch.acc + 6 * p0, 0, 6 * (p1 - p0) * sizeof *e->scratch.acc);
@@ -341,7 +384,7 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 	 * in bond order: they add to their particle j here. */
 	for (size_t q = S->infirst[k]; q < S->infirst[k + 1]; q++) {
 		size_t c = (size_t)S->in[q];
-		add_to_j(e, rec[S->cross[c]].j, S->part[c].f);
+		add_to_j(e, S->cj[c], S->part[c].f);
 	}
 	size_t slot = S->cfirst[k];
 	int fused_law = bonds_use_fused(e, measure);
@@ -349,8 +392,8 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 		/* Summed in a local, which no store to the particles' sums can
 		 * alias, so its members stay in registers. */
 		pair_sums sums = {0}, *s = &sums;
-		size_t hi = S->bfirst[blk + 1];
-		for (size_t b0 = S->bfirst[blk]; b0 < hi; b0 += BATCH) {
+		size_t hi = S->bfirst[blk + 1] - base;
+		for (size_t b0 = S->bfirst[blk] - base; b0 < hi; b0 += BATCH) {
 			size_t b1 = hi - b0 < BATCH ? hi : b0 + BATCH;
 			int32_t idx[BATCH];
 			bond_part part[BATCH];
@@ -391,13 +434,12 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 void bonds_split(engine *e, int shares)
 {
 	bond_split *S = &e->pairs.split;
-	const pairlist *L = &e->pairs.bonds;
-	size_t n = e->p.n, nblk = nblocks(n);
+	size_t n = e->p.n, nblk = nblocks(n), nb = e->pairs.nbonds;
 	bonds_split_free(S);
 	S->bfirst = xmalloc((nblk + 1) * sizeof *S->bfirst);
-	S->staged = xcalloc(L->n + 1, sizeof *S->staged);
 	for (size_t blk = 0, b = 0; blk <= nblk; blk++) {
-		while (b < L->n && (size_t)L->rec[b].i < blk * BLOCK)
+		int32_t i, j;
+		while (b < nb && (bond_ends(e, b, &i, &j), (size_t)i < blk * BLOCK))
 			b++;
 		S->bfirst[blk] = b;
 	}
@@ -410,7 +452,7 @@ void bonds_split(engine *e, int shares)
 	S->n = shares;
 	S->pfirst = xmalloc(((size_t)shares + 1) * sizeof *S->pfirst);
 	S->cfirst = xmalloc(((size_t)shares + 1) * sizeof *S->cfirst);
-	double total = (double)(n + L->n);
+	double total = (double)(n + nb);
 	S->pfirst[0] = 0;
 	for (int k = 1, blk = 0; k < shares; k++) {
 		while ((size_t)blk < nblk &&
@@ -420,48 +462,101 @@ void bonds_split(engine *e, int shares)
 		S->pfirst[k] = first > S->pfirst[k - 1] ? first : S->pfirst[k - 1];
 	}
 	S->pfirst[shares] = n;
-	size_t ncross = 0;
-	for (int pass = 0; pass < 2; pass++) {
-		ncross = 0;
-		for (int k = 0; k < shares; k++) {
-			S->cfirst[k] = ncross;
-			size_t p1 = S->pfirst[k + 1];
-			if (S->pfirst[k] == p1)
+	/* Every share's crossing bonds, in bond order (bonds_own keeps this
+	 * rank's). */
+	size_t cap = 0;
+	for (int k = 0; k < shares; k++) {
+		S->cfirst[k] = S->ncross;
+		size_t p1 = S->pfirst[k + 1];
+		for (size_t b = S->bfirst[S->pfirst[k] / BLOCK]; S->pfirst[k] < p1 && b < nb; b++) {
+			int32_t i, j;
+			bond_ends(e, b, &i, &j);
+			if ((size_t)i >= p1)
+				break;
+			if ((size_t)j < p1)
 				continue;
-			for (size_t b = S->bfirst[S->pfirst[k] / BLOCK];
-			     b < L->n && (size_t)L->rec[b].i < p1; b++)
-				if ((size_t)L->rec[b].j >= p1) {
-					if (pass)
-						S->cross[ncross] = (int32_t)b;
-					ncross++;
-				}
-		}
-		S->cfirst[shares] = ncross;
-		if (!pass) {
-			S->cross = xmalloc((ncross + 1) * sizeof *S->cross);
-			S->part = xmalloc((ncross + 1) * sizeof *S->part);
+			if (S->ncross == cap) {
+				cap = cap ? 2 * cap : 1024;
+				S->cross = xrealloc(S->cross, cap * sizeof *S->cross);
+				S->ci = xrealloc(S->ci, cap * sizeof *S->ci);
+				S->cj = xrealloc(S->cj, cap * sizeof *S->cj);
+			}
+			S->cross[S->ncross] = (int32_t)b;
+			S->ci[S->ncross] = i;
+			S->cj[S->ncross++] = j;
 		}
 	}
-	/* Each share's incoming crossing bonds, in bond order: a share scans
-	 * only its own, however many shares (and ranks) there are. */
-	S->infirst = xcalloc((size_t)shares + 2, sizeof *S->infirst);
-	S->in = xmalloc((ncross + 1) * sizeof *S->in);
-	int *to = xmalloc((ncross + 1) * sizeof *to);
-	for (size_t c = 0; c < ncross; c++) {
-		to[c] = run_of(S->pfirst, shares, (size_t)L->rec[S->cross[c]].j);
-		S->infirst[to[c] + 2]++;
+	S->cfirst[shares] = S->ncross;
+}
+
+/* Slot c's share in [s0, s1) by its particle j, or -1. */
+static int slot_share(const bond_split *S, size_t c, int s0, int s1)
+{
+	if ((size_t)S->cj[c] < S->pfirst[s0] || (size_t)S->cj[c] >= S->pfirst[s1])
+		return -1;
+	return run_of(S->pfirst, S->n, (size_t)S->cj[c]);
+}
+
+void bonds_own(engine *e, int s0, int s1)
+{
+	bond_split *S = &e->pairs.split;
+	size_t p0 = S->pfirst[s0], p1 = S->pfirst[s1];
+	size_t c0 = S->cfirst[s0], c1 = S->cfirst[s1];
+	size_t b0 = S->bfirst[nblocks(p0)], b1 = S->bfirst[nblocks(p1)];
+	/* The slots of the shares [s0, s1), then the incoming ones: the earlier
+	 * shares' (bond order) whose j is in [p0, p1). */
+	size_t m = c1 - c0;
+	for (size_t c = 0; c < c0; c++)
+		m += (size_t)S->cj[c] >= p0 && (size_t)S->cj[c] < p1;
+	int32_t *cross = xmalloc((m + 1) * sizeof *cross), *ci = xmalloc((m + 1) * sizeof *ci),
+	        *cj = xmalloc((m + 1) * sizeof *cj);
+	m = 0;
+	for (size_t c = c0; c < c1; c++, m++) {
+		cross[m] = S->cross[c] - (int32_t)b0;
+		ci[m] = S->ci[c];
+		cj[m] = S->cj[c];
 	}
-	for (int k = 0; k < shares; k++)
+	for (size_t c = 0; c < c0; c++)
+		if ((size_t)S->cj[c] >= p0 && (size_t)S->cj[c] < p1) {
+			cross[m] = -1;
+			ci[m] = S->ci[c];
+			cj[m++] = S->cj[c];
+		}
+	free(S->cross), free(S->ci), free(S->cj);
+	S->cross = cross, S->ci = ci, S->cj = cj;
+	S->ncross = m;
+	for (int k = 0; k <= S->n; k++)
+		S->cfirst[k] = k < s0 ? 0 : k > s1 ? c1 - c0 : S->cfirst[k] - c0;
+	S->part = xrealloc(S->part, (m + 1) * sizeof *S->part);
+	/* Each share's incoming slots in bond order: the earlier ranks' first,
+	 * then this rank's earlier shares'. A share scans only its own,
+	 * however many shares (and ranks) there are. */
+	free(S->infirst), free(S->in);
+	S->infirst = xcalloc((size_t)S->n + 2, sizeof *S->infirst);
+	S->in = xmalloc((m + 1) * sizeof *S->in);
+	size_t own = c1 - c0;
+	for (size_t c = 0; c < m; c++) {
+		int k = slot_share(S, c, s0, s1);
+		if (k >= 0)
+			S->infirst[k + 2]++;
+	}
+	for (int k = 0; k < S->n; k++)
 		S->infirst[k + 2] += S->infirst[k + 1];
-	for (size_t c = 0; c < ncross; c++)
-		S->in[S->infirst[to[c] + 1]++] = (int32_t)c;
-	free(to);
+	for (size_t q = 0; q < m; q++) {
+		size_t c = q < m - own ? own + q : q - (m - own);
+		int k = slot_share(S, c, s0, s1);
+		if (k >= 0)
+			S->in[S->infirst[k + 1]++] = (int32_t)c;
+	}
+	bonds_keep(e, b0, b1);
+	free(S->staged);
+	S->staged = xcalloc(e->pairs.bonds.n + 1, sizeof *S->staged);
 }
 
 void bonds_split_free(bond_split *s)
 {
-	free(s->pfirst), free(s->cfirst), free(s->cross), free(s->part), free(s->bfirst);
-	free(s->infirst), free(s->in), free(s->staged);
+	free(s->pfirst), free(s->cfirst), free(s->cross), free(s->ci), free(s->cj), free(s->part);
+	free(s->bfirst), free(s->infirst), free(s->in), free(s->staged);
 	memset(s, 0, sizeof *s);
 }
 

@@ -8,6 +8,7 @@
 
 #include "lib/runfile.h"
 #include "solve/law.h"
+#include "solve/pairlist.h"
 
 typedef struct engine engine;
 
@@ -33,17 +34,27 @@ typedef struct {
  * in bond order, whatever the shares: a share computes its bonds in order
  * and adds each force to both ends; the bonds that reach into a later share
  * ("crossing") are computed first, before any share adds, and kept, so the
- * later share adds them before its own, where bond order puts them. */
+ * later share adds them before its own, where bond order puts them.
+ *
+ * The crossing bonds have slots: first those of this rank's shares (all of
+ * them with one rank), share by share from cfirst[s0] = 0 to cfirst[s1] =
+ * cfirst[n] (ranks.h), then those of earlier ranks' shares whose j is this
+ * rank's ("incoming": their forces come from the rank of i), in bond order,
+ * up to ncross. */
 typedef struct {
-	int n;           /* shares */
-	size_t *pfirst;  /* [n + 1] first particle of each share */
-	size_t *cfirst;  /* [n + 1] first crossing bond of each share in cross */
-	int32_t *cross;  /* the crossing bonds, in bond order */
-	size_t *infirst; /* [n + 1] first of each share's in */
-	int32_t *in;     /* slots in cross of the bonds whose j each share holds,
-	                    in bond order */
-	bond_part *part; /* what each adds, this step */
-	size_t *bfirst;  /* [particle blocks + 1] first bond of each particle block */
+	int n;            /* shares */
+	size_t *pfirst;   /* [n + 1] first particle of each share */
+	size_t *cfirst;   /* [n + 1] first slot of each share (this rank's) */
+	size_t ncross;    /* slots */
+	int32_t *cross;   /* [ncross] the bond of each slot in pairs.bonds, or -1
+	                     (incoming) */
+	int32_t *ci, *cj; /* [ncross] the particles of each slot's bond */
+	size_t *infirst;  /* [n + 1] first of each share's in */
+	int32_t *in;      /* slots of the bonds whose j each share holds, in bond
+	                     order */
+	bond_part *part;  /* what each slot's bond adds, this step */
+	size_t *bfirst;   /* [particle blocks + 1] first bond of each particle
+	                     block, in the whole specimen's bond order */
 	/* [bonds] at the first bond of each batch of bonds_share: 0 when the
 	 * batch goes through the law's force_pairs, else the steps left that
 	 * it goes the staged way (more than a quarter of its lanes were off
@@ -51,12 +62,20 @@ typedef struct {
 	uint8_t *staged;
 } bond_split;
 
-/* Bonds between the particles within the law's range (Eq. 16). */
+/* Bonds between the particles within the law's range (Eq. 16), as
+ * e->pairs.formed, until bonds_own keeps a rank's records. */
 int bonds_form(engine *e);
+/* The history of this rank's bonds at the start, and the largest fraction
+ * of critical damping of any bond (Eq. 13) into e->clock.xi_max.
+ * Collective. */
 void bonds_init_history(engine *e);
 /* Split the particles into shares for the step's threads (after the bonds
- * have formed). */
+ * have formed; again later only with one rank). */
 void bonds_split(engine *e, int shares);
+/* Keep this rank's part of the split, the shares [s0, s1) (ranks_split):
+ * the records of their bonds, their crossing bonds' slots and the incoming
+ * ones. */
+void bonds_own(engine *e, int s0, int s1);
 void bonds_split_free(bond_split *s);
 /* This step's forces of the crossing bonds of share k, inside the step's
  * parallel region (before a barrier). */
@@ -66,8 +85,9 @@ void bonds_cross(engine *e, int k, int measure);
 void bonds_share(engine *e, int k, int measure);
 /* Move this step's failures to e->out.cracks, in bond order. */
 void bonds_collect_cracks(engine *e);
-/* Bond b's ends in the assembly's numbering (ends[0] < ends[1]) and, when c
- * is not NULL, its elastic constants. */
-void engine_bond_entry(const engine *e, size_t b, int32_t ends[2], law_const *c);
+/* Bond b of L (this rank's bonds or the whole specimen's, ranks_pairs): its
+ * ends in the assembly's numbering (ends[0] < ends[1]) and, when c is not
+ * NULL, its elastic constants. */
+void engine_bond_entry(const engine *e, const pairlist *L, size_t b, int32_t ends[2], law_const *c);
 
 #endif

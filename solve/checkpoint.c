@@ -148,7 +148,7 @@ static int64_t state_crc(engine *e, const pairs_view *v, const old_bonds *old)
 	c = crc(c, P->flag, n * sizeof *P->flag);
 	c = crc(c, e->bc.surf.idx, e->bc.surf.n * sizeof *e->bc.surf.idx);
 	c = crc(c, e->bc.surf.area, e->bc.surf.n * sizeof *e->bc.surf.area);
-	c = pairs_crc(c, &e->pairs.bonds, 0, old);
+	c = pairs_crc(c, v->bonds, 0, old);
 	c = pairs_crc(c, v->contacts, 1, NULL);
 	for (size_t b = 0; yade_contacts(e) && b < v->contacts->n; b++)
 		c = crc(c, &v->contacts->rec[b].d0, sizeof(double));
@@ -356,8 +356,8 @@ int checkpoint_write(engine *e, hid_t file)
 	     put(g, "flag", H5T_NATIVE_UINT8, P->flag, n, 0) ||
 	     put(g, "surface_particle", H5T_NATIVE_INT32, e->bc.surf.idx, e->bc.surf.n, 0) ||
 	     put(g, "surface_area", H5T_NATIVE_DOUBLE, e->bc.surf.area, e->bc.surf.n, 0) ||
-	     put_fields(g, bond_fields, 3, &e->pairs.bonds) ||
-	     put(g, "bond_force", H5T_NATIVE_DOUBLE, e->pairs.bonds.f, e->pairs.bonds.n, 3) ||
+	     put_fields(g, bond_fields, 3, v.bonds) ||
+	     put(g, "bond_force", H5T_NATIVE_DOUBLE, v.bonds->f, v.bonds->n, 3) ||
 	     put_fields(g, contact_fields, 4, v.contacts) ||
 	     (yade_contacts(e) && put_field(g, &contact_start, v.contacts->rec, v.contacts->n)) ||
 	     write_platens(g, e, &v) || h5_attr_i64(g, "checksum", state_crc(e, &v, NULL)) ||
@@ -377,6 +377,20 @@ static int get(hid_t g, const char *name, hid_t type, void *dst, size_t rows, si
 	memcpy(dst, buf, rows * (cols ? cols : 1) * H5Tget_size(type));
 	free(buf);
 	return 0;
+}
+
+/* This rank's bonds' histories and forces from the whole specimen's. */
+static void keep_bonds(engine *e, const pairlist *all)
+{
+	pairlist *L = &e->pairs.bonds;
+	for (size_t b = 0; b < L->n; b++) {
+		const bond *a = &all->rec[e->pairs.bond0 + b];
+		bond *r = &L->rec[b];
+		memcpy(r->t, a->t, sizeof r->t);
+		memcpy(r->h, a->h, sizeof r->h);
+		r->state = a->state;
+	}
+	memcpy(L->f, all->f + 3 * e->pairs.bond0, 3 * L->n * sizeof *L->f);
 }
 
 /* The columns of a two-dimensional dataset, or 0. */
@@ -399,9 +413,8 @@ static size_t columns(hid_t g, const char *name)
  * checkpoint's (*is_old set; its arrays kept in *old for the checksum)
  * holds a fourth history column, the last u_n, in the slot the law names
  * (law.h_dropped), and the torque per unit radius after each force. */
-static int read_bond_h_f(hid_t g, engine *e, old_bonds *old, int *is_old)
+static int read_bond_h_f(hid_t g, const engine *e, pairlist *L, old_bonds *old, int *is_old)
 {
-	pairlist *L = &e->pairs.bonds;
 	size_t nb = L->n;
 	*is_old = columns(g, "bond_h") == OLD_NHIST;
 	if (!*is_old)
@@ -568,7 +581,12 @@ int checkpoint_read_file(engine *e, hid_t f)
 	for (int k = 0; k < 2; k++)
 		e->bc.pl.ncand[k] = count[1 + k];
 	particles *P = &e->p;
-	size_t n = P->n, nb = e->pairs.bonds.n;
+	size_t n = P->n, nb = e->pairs.nbonds;
+	/* The whole specimen's bonds as read (ranks.h: each rank keeps its
+	 * own). */
+	pairlist all = {.n = nb, .cap = nb, .fcols = 3};
+	all.rec = xcalloc(nb + 1, sizeof *all.rec);
+	all.f = xcalloc(3 * nb + 1, sizeof *all.f);
 	old_bonds old = {NULL, NULL};
 	int is_old = 0;
 	int32_t *orig = rc ? NULL : xmalloc((n + 1) * sizeof *orig);
@@ -585,28 +603,30 @@ int checkpoint_read_file(engine *e, hid_t f)
 	     get(g, "w", H5T_NATIVE_DOUBLE, P->w, n, 3) ||
 	     get(g, "x_ref", H5T_NATIVE_DOUBLE, P->x_ref, n, 3) ||
 	     get(g, "flag", H5T_NATIVE_UINT8, P->flag, n, 0) ||
-	     get_field(g, &bond_fields[0], e->pairs.bonds.rec, nb) ||
-	     get_field(g, &bond_fields[2], e->pairs.bonds.rec, nb) ||
-	     read_bond_h_f(g, e, &old, &is_old) || read_surface(g, e) ||
+	     get_field(g, &bond_fields[0], all.rec, nb) ||
+	     get_field(g, &bond_fields[2], all.rec, nb) ||
+	     read_bond_h_f(g, e, &all, &old, &is_old) || read_surface(g, e) ||
 	     read_pairs(g, e, count[0]) || read_platens(g, e);
 	for (size_t b = 0; !rc && b < nb; b++)
-		if (e->pairs.bonds.rec[b].state > BOND_BROKEN_SHEAR)
+		if (all.rec[b].state > BOND_BROKEN_SHEAR)
 			rc = err_set("%s: checkpoint dataset 'bond_state': value %d at row %zu: "
 			             "expected a bond state from %d to %d",
-			             path, e->pairs.bonds.rec[b].state, b, BOND_INTACT,
-			             BOND_BROKEN_SHEAR);
+			             path, all.rec[b].state, b, BOND_INTACT, BOND_BROKEN_SHEAR);
 	int64_t sum = 0;
 	pairs_view v;
 	ranks_own_pairs(e, &v); /* as read: the whole specimen's */
+	v.bonds = &all;
 	if (!rc && (h5_read_attr_i64(g, "checksum", &sum) ||
 	            sum != state_crc(e, &v, is_old ? &old : NULL)))
 		rc = err_set("%s: the checkpoint's data do not match its checksum (damaged, or "
 		             "written by an older version): not restartable",
 		             path);
 	if (!rc) { /* what this rank keeps of the whole specimen's lists */
+		keep_bonds(e, &all);
 		contacts_restore(e);
 		platens_restore(e);
 	}
+	pairlist_free(&all);
 	free(old.h), free(old.f);
 	H5Gclose(g);
 	return rc ? -1 : 0;

@@ -23,20 +23,36 @@
 #include "solve/platens.h"
 #include "solve/ranks.h"
 
-/* Whether i < j are bonded: a binary search of the bonds, sorted by (i, j). */
+/* Whether the pair (a, b) comes before (i, j) in pair order. */
+static int before(int32_t a, int32_t b, int32_t i, int32_t j) { return a < i || (a == i && b < j); }
+
+/* Whether i < j are bonded: a binary search of this rank's bonds (those of
+ * its particles i) or, for an earlier rank's i, of the incoming crossing
+ * bonds (bonds.h), both sorted by (i, j). */
 static int bonded(const engine *e, int32_t i, int32_t j)
 {
 	const pairlist *B = &e->pairs.bonds;
-	size_t lo = 0, hi = B->n;
-	while (lo < hi) {
+	const bond_split *S = &e->pairs.split;
+	size_t p0, p1, lo, hi;
+	ranks_own(e, &p0, &p1);
+	if ((size_t)i >= p0) {
+		for (lo = 0, hi = B->n; lo < hi;) {
+			size_t mid = lo + (hi - lo) / 2;
+			if (before(B->rec[mid].i, B->rec[mid].j, i, j))
+				lo = mid + 1;
+			else
+				hi = mid;
+		}
+		return lo < B->n && B->rec[lo].i == i && B->rec[lo].j == j;
+	}
+	for (lo = S->cfirst[S->n], hi = S->ncross; lo < hi;) {
 		size_t mid = lo + (hi - lo) / 2;
-		const bond *b = &B->rec[mid];
-		if (b->i < i || (b->i == i && b->j < j))
+		if (before(S->ci[mid], S->cj[mid], i, j))
 			lo = mid + 1;
 		else
 			hi = mid;
 	}
-	return lo < B->n && B->rec[lo].i == i && B->rec[lo].j == j;
+	return lo < S->ncross && S->ci[lo] == i && S->cj[lo] == j;
 }
 
 static void reserve(pairlist *l, size_t n, size_t np)

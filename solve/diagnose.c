@@ -48,14 +48,14 @@ static int64_t worst_pair(const engine *e, const pairlist *L, size_t *who, int *
 void diagnose_nan(const engine *e, size_t i, char *msg, size_t n)
 {
 	const particles *P = &e->p;
-	const pairlist *L = &e->pairs.bonds;
+	pairs_view v; /* the whole specimen's on rank 0 (ranks_gather_output) */
+	ranks_pairs(e, &v);
+	const pairlist *L = v.bonds;
 	const char *what = "bond", *law = e->law->name;
 	size_t who;
 	int count;
 	int64_t b = worst_pair(e, L, &who, &count);
 	if (b < 0) {
-		pairs_view v; /* the whole specimen's on rank 0 (ranks_gather_output) */
-		ranks_pairs(e, &v);
 		L = v.contacts;
 		what = "contact";
 		law = "contact";
@@ -79,10 +79,12 @@ void diagnose_nan(const engine *e, size_t i, char *msg, size_t n)
 	         p < q ? p : q, p < q ? q : p, law);
 }
 
-/* Bound on ω of particle i times the time step (2 is the stability limit). */
+/* Bound on ω of particle i from its bonds times the time step (2 is the
+ * stability limit). Collective. */
 static double omega_dt(const engine *e, size_t i)
 {
-	return sqrt(timestep_bond_omega2(e, i)) * e->clock.dt;
+	int count;
+	return sqrt(timestep_bond_omega2(e, i, &count)) * e->clock.dt;
 }
 
 /* The fastest particle at t + dt/2 and its squared speed. */
@@ -158,12 +160,12 @@ int diagnose_timestep(engine *e, char *msg, size_t n)
 	const particles *P = &e->p;
 	/* The contacts of a particle are on its rank's list (ranks.h). */
 	ranks_own(e, &p0, &p1);
-	int nc = worst >= p0 && worst < p1 ? pairlist_count(&e->pairs.contacts, worst) : 0;
+	int nc = worst >= p0 && worst < p1 ? pairlist_count(&e->pairs.contacts, worst) : 0, nb;
 	par_max_int(&nc, 1);
+	timestep_bond_omega2(e, worst, &nb);
 	snprintf(msg, n,
 	         "stopped: time step %g s above the stable limit %g s at step %" PRId64
 	         ": particle %d has %d bonds and %d contacts (lower time_step.safety)",
-	         e->clock.dt, crit, e->clock.step, P->orig[worst],
-	         pairlist_count(&e->pairs.bonds, worst), nc);
+	         e->clock.dt, crit, e->clock.step, P->orig[worst], nb, nc);
 	return 1;
 }

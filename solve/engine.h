@@ -65,7 +65,15 @@ static inline double particle_inv_i(const particles *P, size_t i)
 
 /* Bonds and contacts, and the neighbour search that finds contacts. */
 typedef struct {
-	pairlist bonds, contacts, contacts_old;
+	/* This rank's bonds, those of its particles i (ranks.h): the bonds
+	 * [bond0, bond0 + bonds.n) of the whole specimen's nbonds, sorted by
+	 * (i, j). */
+	pairlist bonds;
+	size_t bond0, nbonds;
+	/* Between bonds_form and ranks_split: every bond's ends and length, of
+	 * which each rank then keeps its own as records. */
+	cells_pairs formed;
+	pairlist contacts, contacts_old;
 	bond_split split; /* the shares of the particles and bonds among threads */
 	cells grid;
 	double skin;      /* m, Verlet skin of the contact list */

@@ -10,18 +10,21 @@
 #include "solve/bonds.h"
 #include "solve/measure.h"
 #include "solve/output.h"
+#include "solve/ranks.h"
 
 /* Rows of the bond table (run_fill). */
 static void bond_rows(void *ctx, int f, size_t at, size_t m, void *buf)
 {
 	const engine *e = ctx;
+	pairs_view v; /* the whole specimen's (ranks_gather_output) */
+	ranks_pairs(e, &v);
 	int32_t *iv = buf;
 	double *dv = buf;
 	for (size_t k = 0; k < m; k++) {
 		int32_t ends[2];
 		law_const c;
 		int ends_only = f == BTAB_I || f == BTAB_J;
-		engine_bond_entry(e, at + k, ends, ends_only ? NULL : &c);
+		engine_bond_entry(e, v.bonds, at + k, ends, ends_only ? NULL : &c);
 		switch (f) {
 		case BTAB_I:
 			iv[k] = ends[0];
@@ -30,7 +33,7 @@ static void bond_rows(void *ctx, int f, size_t at, size_t m, void *buf)
 			iv[k] = ends[1];
 			break;
 		case BTAB_D0:
-			dv[k] = e->pairs.bonds.rec[at + k].d0;
+			dv[k] = v.bonds->rec[at + k].d0;
 			break;
 		case BTAB_AREA:
 			dv[k] = c.area;
@@ -47,7 +50,7 @@ static void bond_rows(void *ctx, int f, size_t at, size_t m, void *buf)
 
 int output_bonds(const engine *e, run_writer *w)
 {
-	return run_write_bonds_fill(w, e->pairs.bonds.n, bond_rows, (void *)e);
+	return run_write_bonds_fill(w, e->pairs.nbonds, bond_rows, (void *)e);
 }
 
 typedef struct {
@@ -61,7 +64,9 @@ static void snapshot_rows(void *ctx, int f, size_t at, size_t m, void *buf)
 {
 	const snapshot_ctx *c = ctx;
 	const particles *P = &c->e->p;
-	const pairlist *B = &c->e->pairs.bonds;
+	pairs_view v; /* the whole specimen's (ranks_gather_output) */
+	ranks_pairs(c->e, &v);
+	const pairlist *B = v.bonds;
 	double *dv = buf;
 	if (f == SNAP_X || f == SNAP_V || f == SNAP_W) {
 		const double *src = f == SNAP_X ? P->x : f == SNAP_V ? P->v : P->w;
@@ -101,7 +106,7 @@ int output_snapshot(const engine *e, run_writer *w)
 	                  .strain_axial = engine_strain(e),
 	                  .stress_axial = engine_stress(e),
 	                  .n = P->n,
-	                  .nbonds = e->pairs.bonds.n};
+	                  .nbonds = e->pairs.nbonds};
 	snapshot_ctx c = {e, xmalloc((P->n + 1) * sizeof *c.internal)};
 	for (size_t i = 0; i < P->n; i++)
 		c.internal[P->orig[i]] = (int32_t)i;

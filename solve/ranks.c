@@ -71,12 +71,12 @@ static int cmp_size(const void *a, const void *b)
  * order (so the sender's list and the receiver's match). */
 static void halo_links(const engine *e, const rank_links *b, const rank_links *c, rank_links *h)
 {
-	const bond *brec = e->pairs.bonds.rec, *crec = e->pairs.contacts.rec;
-	const int32_t *cross = e->pairs.split.cross;
+	const bond *crec = e->pairs.contacts.rec;
+	const int32_t *cj = e->pairs.split.cj;
 	links_clear(h);
 	for (int k = 0; k < b->n; k++)
 		for (size_t q = 0; q < b->l[k].n; q++)
-			link_add(h, b->l[k].peer, (size_t)brec[cross[b->l[k].idx[q]]].j);
+			link_add(h, b->l[k].peer, (size_t)cj[b->l[k].idx[q]]);
 	for (int k = 0; k < c->n; k++)
 		for (size_t q = 0; q < c->l[k].n; q++)
 			link_add(h, c->l[k].peer, (size_t)crec[c->l[k].idx[q]].j);
@@ -96,7 +96,6 @@ void ranks_split(engine *e)
 {
 	rank_split *R = &e->ranks;
 	const bond_split *S = &e->pairs.split;
-	const bond *rec = e->pairs.bonds.rec;
 	ranks_free(R);
 	R->size = par_size();
 	R->rank = par_rank();
@@ -111,18 +110,16 @@ void ranks_split(engine *e)
 	R->p1 = S->pfirst[R->s1];
 	R->blk0 = nblocks(R->p0);
 	R->blk1 = R->p1 > R->p0 ? nblocks(R->p1) : R->blk0;
-	for (int u = 0, src = 0; u < S->n; u++) {
-		while ((size_t)u >= (size_t)(src + 1) * (size_t)S->n / (size_t)R->size)
-			src++;
-		for (size_t c = S->cfirst[u]; c < S->cfirst[u + 1]; c++) {
-			int dst = rank_of(R, (size_t)rec[S->cross[c]].j);
-			if (src == dst)
-				continue;
-			if (src == R->rank)
-				link_add(&R->bsend, dst, c);
-			else if (dst == R->rank)
-				link_add(&R->brecv, src, c);
-		}
+	bonds_own(e, R->s0, R->s1);
+	/* This rank's crossing bonds whose j is another rank's send it their
+	 * forces; the incoming ones receive theirs from the rank of their i.
+	 * Both lists go in bond order, so sender's and receiver's match. */
+	for (size_t c = 0; c < S->ncross; c++) {
+		int ri = rank_of(R, (size_t)S->ci[c]), rj = rank_of(R, (size_t)S->cj[c]);
+		if (ri == R->rank && rj != R->rank)
+			link_add(&R->bsend, rj, c);
+		else if (rj == R->rank && ri != R->rank)
+			link_add(&R->brecv, ri, c);
 	}
 	links_buffers(&R->bsend, 6);
 	links_buffers(&R->brecv, 6);
@@ -220,10 +217,12 @@ void ranks_exchange_forces(engine *e)
 
 #ifdef DEM_MPI
 /* Every rank's rows [first[q], first[q + 1]) of an array of rows of `row`
- * bytes gathered in place on rank root, or on every rank (ALL). */
+ * bytes gathered on rank root into base, or on every rank (ALL); this
+ * rank's rows are at `mine` (base is read only where the rows gather). */
 enum { ALL = -1 };
 static double ngathers_;
-static void gather_rows(void *base, const size_t *first, size_t row, int size, int root)
+static void gather_rows_from(const void *mine, void *base, const size_t *first, size_t row,
+                             int size, int root)
 {
 	ngathers_++;
 	int *cnt = xmalloc((size_t)size * sizeof *cnt), *dsp = xmalloc((size_t)size * sizeof *dsp);
@@ -235,6 +234,11 @@ static void gather_rows(void *base, const size_t *first, size_t row, int size, i
 		dsp[q] = (int)first[q];
 	}
 	int rank = par_rank();
+	if (root == ALL || rank == root) {
+		char *place = (char *)base + first[rank] * row;
+		if (place != mine)
+			memmove(place, mine, (size_t)cnt[rank] * row);
+	}
 	if (root == ALL)
 		MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, base, cnt, dsp, t,
 		               MPI_COMM_WORLD);
@@ -242,10 +246,15 @@ static void gather_rows(void *base, const size_t *first, size_t row, int size, i
 		MPI_Gatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, base, cnt, dsp, t, root,
 		            MPI_COMM_WORLD);
 	else
-		MPI_Gatherv((char *)base + first[rank] * row, cnt[rank], t, NULL, NULL, NULL, t,
-		            root, MPI_COMM_WORLD);
+		MPI_Gatherv(mine, cnt[rank], t, NULL, NULL, NULL, t, root, MPI_COMM_WORLD);
 	MPI_Type_free(&t);
 	free(cnt), free(dsp);
+}
+
+/* The same with this rank's rows in place in base. */
+static void gather_rows(void *base, const size_t *first, size_t row, int size, int root)
+{
+	gather_rows_from((char *)base + first[par_rank()] * row, base, first, row, size, root);
 }
 #endif
 
@@ -310,19 +319,23 @@ static void gather_all(engine *e, int root)
 	particles *P = &e->p;
 	double *const arr[3] = {P->x, P->v, P->w};
 	double t0 = timer_now();
-	R->state = xrealloc(R->state, (9 * P->n + 1) * sizeof *R->state);
+	/* Where the rows gather, room for all of them; else for its own. */
+	int whole = root == ALL || root == R->rank;
+	double *state = xmalloc((9 * (whole ? P->n : R->p1 - R->p0) + 1) * sizeof *state);
+	double *mine = state + (whole ? 9 * R->p0 : 0);
 	for (size_t i = R->p0; i < R->p1; i++)
 		for (int a = 0; a < 3; a++)
-			memcpy(R->state + 9 * i + 3 * a, arr[a] + 3 * i, 3 * sizeof *R->state);
-	gather_rows(R->state, R->pfirst, 9 * sizeof *R->state, R->size, root);
-	if (root == ALL || root == R->rank) {
+			memcpy(mine + 9 * (i - R->p0) + 3 * a, arr[a] + 3 * i, 3 * sizeof *state);
+	gather_rows_from(mine, state, R->pfirst, 9 * sizeof *state, R->size, root);
+	if (whole) {
 		for (size_t i = 0; i < P->n; i++)
 			if (i < R->p0 || i >= R->p1)
 				for (int a = 0; a < 3; a++)
-					memcpy(arr[a] + 3 * i, R->state + 9 * i + 3 * a,
-					       3 * sizeof *R->state);
+					memcpy(arr[a] + 3 * i, state + 9 * i + 3 * a,
+					       3 * sizeof *state);
 		R->recv_all += state_bytes(P->n - (R->p1 - R->p0));
 	}
+	free(state);
 	if (root == ALL)
 		R->stale = 0;
 	R->sec[RANKS_GATHERS] += timer_now() - t0;
@@ -546,29 +559,46 @@ size_t ranks_share_ghosts(engine *e, double reach, int32_t *ghosts)
 #endif
 }
 
-void ranks_share_contact_values(engine *e, double *v)
-{
 #ifdef DEM_MPI
-	rank_split *R = &e->ranks;
-	if (R->size == 1)
-		return;
-	MPI_Request *req = xmalloc((size_t)(R->csend.n + R->crecv.n + 1) * sizeof *req);
+/* For each entry of the links `send`, the value v[idx] this rank holds sent
+ * to the peer, into v[idx] of the matching entry of its links `recv`. */
+static void share_values(rank_links *send, rank_links *recv, double *v, int tag)
+{
+	MPI_Request *req = xmalloc((size_t)(send->n + recv->n + 1) * sizeof *req);
 	int nreq = 0;
-	for (int k = 0; k < R->crecv.n; k++)
-		MPI_Irecv(R->crecv.l[k].buf, (int)R->crecv.l[k].n, MPI_DOUBLE, R->crecv.l[k].peer,
-		          TAG_VALUES, MPI_COMM_WORLD, &req[nreq++]);
-	for (int k = 0; k < R->csend.n; k++) {
-		rank_link *l = &R->csend.l[k];
+	for (int k = 0; k < recv->n; k++)
+		MPI_Irecv(recv->l[k].buf, (int)recv->l[k].n, MPI_DOUBLE, recv->l[k].peer, tag,
+		          MPI_COMM_WORLD, &req[nreq++]);
+	for (int k = 0; k < send->n; k++) {
+		rank_link *l = &send->l[k];
 		for (size_t q = 0; q < l->n; q++)
 			l->buf[q] = v[l->idx[q]];
-		MPI_Isend(l->buf, (int)l->n, MPI_DOUBLE, l->peer, TAG_VALUES, MPI_COMM_WORLD,
+		MPI_Isend(l->buf, (int)l->n, MPI_DOUBLE, l->peer, tag, MPI_COMM_WORLD,
 		          &req[nreq++]);
 	}
 	MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE);
 	free(req);
-	for (int k = 0; k < R->crecv.n; k++)
-		for (size_t q = 0; q < R->crecv.l[k].n; q++)
-			v[R->crecv.l[k].idx[q]] = R->crecv.l[k].buf[q];
+	for (int k = 0; k < recv->n; k++)
+		for (size_t q = 0; q < recv->l[k].n; q++)
+			v[recv->l[k].idx[q]] = recv->l[k].buf[q];
+}
+#endif
+
+void ranks_share_contact_values(engine *e, double *v)
+{
+#ifdef DEM_MPI
+	if (e->ranks.size > 1)
+		share_values(&e->ranks.csend, &e->ranks.crecv, v, TAG_VALUES);
+#else
+	(void)e, (void)v;
+#endif
+}
+
+void ranks_share_bond_values(engine *e, double *v)
+{
+#ifdef DEM_MPI
+	if (e->ranks.size > 1)
+		share_values(&e->ranks.bsend, &e->ranks.brecv, v, TAG_VALUES);
 #else
 	(void)e, (void)v;
 #endif
@@ -634,33 +664,19 @@ void ranks_share_cracks(engine *e, size_t first)
 }
 
 #ifdef DEM_MPI
-/* The bonds each rank owns, those of its particles i (listed by i, a
- * rank's first particle a block boundary or the particle count), gathered
- * in place on rank 0. */
-static void gather_bonds(engine *e)
-{
-	const rank_split *R = &e->ranks;
-	pairlist *L = &e->pairs.bonds;
-	size_t *first = xmalloc(((size_t)R->size + 1) * sizeof *first);
-	for (int q = 0; q <= R->size; q++)
-		first[q] = e->pairs.split.bfirst[nblocks(R->pfirst[q])];
-	gather_rows(L->rec, first, sizeof *L->rec, R->size, 0);
-	gather_rows(L->f, first, (size_t)L->fcols * sizeof *L->f, R->size, 0);
-	free(first);
-}
-
 /* Every rank's rows (at: rank_rows) of `row` bytes, this rank's at src,
- * gathered in rank order into dst on rank 0. */
+ * gathered in rank order into dst on rank 0 (the other ranks' dst is not
+ * read). */
 static void gather_list(const void *src, const size_t *at, size_t row, void *dst)
 {
-	int size = par_size(), rank = par_rank();
-	memcpy((char *)dst + at[rank] * row, src, (at[rank + 1] - at[rank]) * row);
-	gather_rows(dst, at, row, size, 0);
+	gather_rows_from(src, dst, at, row, par_size(), 0);
 }
 
-/* Room for n rows in *cap. */
+/* Room on rank 0 for the n rows gathered there in *cap. */
 static int grow(size_t n, size_t *cap)
 {
+	if (par_rank() > 0)
+		n = 0;
 	if (n <= *cap && *cap)
 		return 0;
 	*cap = n + n / 4 + 16;
@@ -676,7 +692,24 @@ void ranks_gather_output(engine *e)
 		return;
 	gather_all(e, 0);
 	double t0 = timer_now();
-	gather_bonds(e);
+	/* A rank's bonds are those of its particles i, in bond order: rank
+	 * 0's come first, and its list grows to hold the others after them
+	 * until ranks_release_output. */
+	pairlist *B = &e->pairs.bonds;
+	size_t *at = rank_rows(0, B->n, R->size);
+	if (R->rank == 0) {
+		B->cap = at[R->size];
+		B->rec = xrealloc(B->rec, (B->cap + 1) * sizeof *B->rec);
+		B->f = xrealloc(B->f, (3 * B->cap + 1) * sizeof *B->f);
+	}
+	gather_rows_from(B->rec, B->rec, at, sizeof *B->rec, R->size, 0);
+	gather_rows_from(B->f, B->f, at, 3 * sizeof *B->f, R->size, 0);
+	R->all_bonds = (pairlist){.n = R->rank == 0 ? at[R->size] : 0,
+	                          .cap = 0, /* not its own */
+	                          .rec = B->rec,
+	                          .f = B->f,
+	                          .fcols = 3};
+	free(at);
 	/* Each rank's particles' positions at the last rebuild and flags (the
 	 * end layers: checkpoints). */
 	gather_rows(e->p.x_ref, R->pfirst, 3 * sizeof *e->p.x_ref, R->size, 0);
@@ -686,7 +719,7 @@ void ranks_gather_output(engine *e)
 	const pairlist *C = &e->pairs.contacts;
 	pairlist *A = &R->all_contacts;
 	size_t c0 = e->scratch.cfirst[R->blk0];
-	size_t *at = rank_rows(0, e->scratch.cfirst[R->blk1] - c0, R->size);
+	at = rank_rows(0, e->scratch.cfirst[R->blk1] - c0, R->size);
 	if (grow(at[R->size], &A->cap)) {
 		A->rec = xrealloc(A->rec, A->cap * sizeof *A->rec);
 		A->f = xrealloc(A->f, 6 * A->cap * sizeof *A->f);
@@ -717,8 +750,21 @@ void ranks_gather_output(engine *e)
 #endif
 }
 
+void ranks_release_output(engine *e)
+{
+	rank_split *R = &e->ranks;
+	pairlist *B = &e->pairs.bonds;
+	if (R->size == 1 || B->cap == B->n)
+		return;
+	B->cap = B->n;
+	B->rec = xrealloc(B->rec, (B->n + 1) * sizeof *B->rec);
+	B->f = xrealloc(B->f, (3 * B->n + 1) * sizeof *B->f);
+	memset(&R->all_bonds, 0, sizeof R->all_bonds);
+}
+
 void ranks_own_pairs(const engine *e, pairs_view *v)
 {
+	v->bonds = &e->pairs.bonds;
 	v->contacts = &e->pairs.contacts;
 	for (int k = 0; k < 2; k++) {
 		v->ncand[k] = e->bc.pl.ncand[k];
@@ -734,6 +780,7 @@ void ranks_pairs(const engine *e, pairs_view *v)
 		ranks_own_pairs(e, v);
 		return;
 	}
+	v->bonds = &R->all_bonds;
 	v->contacts = &R->all_contacts;
 	for (int k = 0; k < 2; k++) {
 		v->ncand[k] = R->all_ncand[k];
@@ -781,7 +828,7 @@ void ranks_balance(const engine *e, double particles[2], double bonds[2])
 		bonds[0] = nb > bonds[0] ? nb : bonds[0];
 	}
 	particles[1] = (double)e->p.n / R->size;
-	bonds[1] = (double)e->pairs.bonds.n / R->size;
+	bonds[1] = (double)e->pairs.nbonds / R->size;
 }
 
 void ranks_traffic_start(engine *e)
@@ -795,7 +842,7 @@ void ranks_traffic_start(engine *e)
 	par_tally_reset();
 }
 
-void ranks_traffic(engine *e, double steps)
+void ranks_traffic(engine *e, double steps, const double memory[2])
 {
 	rank_split *R = &e->ranks;
 	/* The run's own, before the reductions here. */
@@ -807,11 +854,14 @@ void ranks_traffic(engine *e, double steps)
 #endif
 	double own = (double)(R->p1 - R->p0), per = steps > 0 ? 1 / steps : 0;
 	R->sec[RANKS_REDUCTIONS] = red.seconds;
-	enum { NT = 5, NV = NT + RANKS_NX };
-	double v[NV] = {R->recv_halo * per, R->recv_ghosts * per,
+	enum { NT = 7, NV = NT + RANKS_NX };
+	double v[NV] = {R->recv_halo * per,
+	                R->recv_ghosts * per,
 	                (R->recv_halo + R->recv_ghosts + R->recv_all) * per,
 	                R->size > 1 ? state_bytes(e->p.n) - state_bytes((size_t)own) : 0,
-	                R->recv_forces * per};
+	                R->recv_forces * per,
+	                memory[0],
+	                memory[1]};
 	for (int k = 0; k < RANKS_NX; k++)
 		v[NT + k] = R->sec[k];
 	double top[NV];
@@ -823,8 +873,9 @@ void ranks_traffic(engine *e, double steps)
 		xsum_add(&s[k], v[k]);
 	}
 	par_sum(s, NV);
-	double *out[NT] = {R->traffic_halo, R->traffic_ghosts, R->traffic_state,
-	                   R->traffic_allgather, R->traffic_forces};
+	double *out[NT] = {R->traffic_halo,      R->traffic_ghosts, R->traffic_state,
+	                   R->traffic_allgather, R->traffic_forces, R->memory_state,
+	                   R->memory_rss};
 	for (int k = 0; k < NV; k++) {
 		double *o = k < NT ? out[k] : R->seconds[k - NT];
 		o[0] = top[k];
@@ -837,7 +888,7 @@ void ranks_traffic(engine *e, double steps)
 
 void ranks_free(rank_split *r)
 {
-	free(r->pfirst), free(r->state);
+	free(r->pfirst);
 	pairlist_free(&r->all_contacts);
 	for (int k = 0; k < 2; k++)
 		free(r->all_pc[k]), free(r->all_who[k]);

@@ -29,9 +29,12 @@
  * diagnoses). The lateral surface and the gauge read each rank's own
  * particles and combine the ranks' parts (surface.c). With
  * DEM_RANKS_POISON=1 in the environment the stale particles' x, v and ω
- * are NaN instead, so that a read that misses an exchange shows. The
- * histories of bonds and contacts live with the rank of their i and are
- * gathered only for output. */
+ * are NaN instead, so that a read that misses an exchange shows.
+ *
+ * The bonds and contacts, with their histories, live with the rank of
+ * their i: a rank holds the records of its own bonds only, and of the
+ * crossing bonds it receives their ends (bonds.h). Rank 0 gathers the
+ * others' for output, after its own, and lets them go after it. */
 #ifndef DEM_RANKS_H
 #define DEM_RANKS_H
 
@@ -73,7 +76,6 @@ typedef struct {
 	rank_links csend, crecv;    /* crossing contacts' forces */
 	rank_links hsend, hrecv;    /* the halo: particles whose x, v, ω go to
 	                               (come from) each peer, in increasing order */
-	double *state;              /* [n][9] x, v, ω: what ranks_gather_state sends */
 	int stale;                  /* other ranks' particles beyond the halo are old */
 	int poison;                 /* DEM_RANKS_POISON: and NaN */
 	double recv_halo, recv_all; /* bytes of state received so far by halo
@@ -94,18 +96,23 @@ typedef struct {
 	 * collective gathers, which every rank makes alike. */
 	double traffic_forces[2], seconds[RANKS_NX][2];
 	double reductions_per_step, reduction_bytes_per_step, gathers_per_step;
-	/* Every rank's contacts and platen contacts, gathered for output
-	 * on rank 0 (ranks_gather_output, ranks_pairs). */
-	pairlist all_contacts;
+	/* Each rank's engine state and peak resident size in bytes, the
+	 * largest and the mean over the ranks (ranks_traffic). */
+	double memory_state[2], memory_rss[2];
+	/* Every rank's bonds (a view of rank 0's own list, grown to hold
+	 * them), contacts and platen contacts, gathered for output on rank 0
+	 * (ranks_gather_output, ranks_pairs). */
+	pairlist all_bonds, all_contacts;
 	size_t all_ncand[2], all_cap[2];
 	platen_contact *all_pc[2];
 	int32_t *all_who[2];
 } rank_split;
 
-/* The contacts and platen contacts of the whole specimen, in the order one
- * process holds them: what checkpoints write and diagnoses read. */
+/* The bonds, contacts and platen contacts of the whole specimen, in the
+ * order one process holds them: what output and checkpoints write and
+ * diagnoses read. */
 typedef struct {
-	const pairlist *contacts;
+	const pairlist *bonds, *contacts;
 	size_t ncand[2];
 	const platen_contact *pc[2];
 	const int32_t *who[2];
@@ -130,6 +137,9 @@ size_t ranks_share_ghosts(engine *e, double reach, int32_t *ghosts);
 /* For each crossing contact (ranks_contacts), the value v[c] the rank of
  * its i holds sent to the rank of its j, into v[c] there. Collective. */
 void ranks_share_contact_values(engine *e, double *v);
+/* The same for each crossing bond's slot (bonds.h): the value the rank of
+ * its i holds sent to the rank of its j. Collective. */
+void ranks_share_bond_values(engine *e, double *v);
 /* Every particle's current state on every rank, if some are stale: first
  * thing of whatever reads particles beyond the halo. Collective. */
 void ranks_gather_state(engine *e);
@@ -139,16 +149,20 @@ void ranks_gather_state(engine *e);
 void ranks_share_cracks(engine *e, size_t first);
 /* Before output and the NaN diagnosis, on rank 0, which writes the run
  * file: every particle's state, its position at the last rebuild (x_ref)
- * and its flags, every bond's history and force, and the whole specimen's
- * contacts and platen contacts in the lists ranks_pairs shows. The other
+ * and its flags, and the whole specimen's bonds (with their histories and
+ * forces), contacts and platen contacts in the lists ranks_pairs shows. The other
  * ranks send theirs and keep their own. Collective. */
 void ranks_gather_output(engine *e);
-/* The whole specimen's contacts and platen contacts: this rank's own lists
- * with one rank, else those of the last ranks_gather_output (empty but on
- * rank 0). */
+/* After the output: rank 0's list of bonds back to its own (the others'
+ * were gathered after them). */
+void ranks_release_output(engine *e);
+/* The whole specimen's bonds, contacts and platen contacts: this rank's
+ * own lists with one rank, else those of the last ranks_gather_output
+ * (empty but on rank 0). */
 void ranks_pairs(const engine *e, pairs_view *v);
-/* This rank's own contact and platen lists as a view (after a checkpoint
- * is read, before contacts_restore, the whole specimen's). */
+/* This rank's own bond, contact and platen lists as a view (after a
+ * checkpoint is read, before contacts_restore, the whole specimen's
+ * contacts). */
 void ranks_own_pairs(const engine *e, pairs_view *v);
 /* This rank's particles [*p0, *p1); before ranks_split (setup, where every
  * rank holds and computes every particle alike) all of them, and 0 is
@@ -165,8 +179,10 @@ void ranks_balance(const engine *e, double particles[2], double bonds[2]);
 void ranks_traffic_start(engine *e);
 /* The traffic per step over the `steps` steps since ranks_traffic_start,
  * and the time in each exchange, into e->ranks.traffic_*, .seconds and the
- * counts per step. Collective. */
-void ranks_traffic(engine *e, double steps);
+ * counts per step; and this rank's memory (its engine state and peak
+ * resident size, bytes) with the other ranks', into .memory_*.
+ * Collective. */
+void ranks_traffic(engine *e, double steps, const double memory[2]);
 void ranks_free(rank_split *r);
 
 #endif

@@ -34,7 +34,7 @@ size_t engine_bytes(const engine *e)
 	return bytes;
 }
 
-static long peak_rss(void)
+long report_peak_rss(void)
 {
 	struct rusage u;
 	return getrusage(RUSAGE_SELF, &u) == 0 ? u.ru_maxrss * 1024L : 0;
@@ -43,17 +43,17 @@ static long peak_rss(void)
 /* Resident size before any input is read: the program and its libraries. */
 static long rss_start;
 
-void report_start(void) { rss_start = peak_rss(); }
+void report_start(void) { rss_start = report_peak_rss(); }
 
 void report_print(const engine *e, int64_t step0, const char *status, const run_opts *o)
 {
 	double steps = (double)(e->clock.step - step0), wall = e->tm.total[TM_TOTAL];
-	double n = (double)e->p.n, nb = (double)e->pairs.bonds.n;
+	double n = (double)e->p.n, nb = (double)e->pairs.nbonds;
 	double rate = wall > 0 ? steps * n / wall : 0;
 	double ns_bond = steps > 0 && nb > 0 ? 1e9 * e->tm.total[TM_BONDS] / (steps * nb) : 0;
 	double ns_bond_cpu = steps > 0 && nb > 0 ? 1e9 * e->tm.cpu[TM_BONDS] / (steps * nb) : 0;
 	size_t state = engine_bytes(e);
-	long rss = peak_rss();
+	long rss = report_peak_rss();
 	double pbal[2], bbal[2];
 	ranks_balance(e, pbal, bbal);
 	if (!o->quiet) {
@@ -84,6 +84,11 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 			        "%.3g collective gathers\n",
 			        R->traffic_forces[0], R->traffic_forces[1], R->reductions_per_step,
 			        R->reduction_bytes_per_step, R->gathers_per_step);
+			fprintf(stderr,
+			        "  memory per rank: engine state %.4g MB at most, %.4g on average; "
+			        "peak resident %.4g MB, %.4g\n",
+			        1e-6 * R->memory_state[0], 1e-6 * R->memory_state[1],
+			        1e-6 * R->memory_rss[0], 1e-6 * R->memory_rss[1]);
 			fprintf(stderr, "  exchanges per rank, largest and mean over the ranks "
 			                "(waiting for the others included):");
 			for (int k = 0; k < RANKS_NX; k++)
@@ -124,6 +129,10 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	json_num(j, "reductions_per_step", e->ranks.reductions_per_step);
 	json_num(j, "reduction_bytes_per_step", e->ranks.reduction_bytes_per_step);
 	json_num(j, "gathers_per_step", e->ranks.gathers_per_step);
+	json_num(j, "rank_state_bytes_max", e->ranks.memory_state[0]);
+	json_num(j, "rank_state_bytes_mean", e->ranks.memory_state[1]);
+	json_num(j, "rank_peak_rss_bytes_max", e->ranks.memory_rss[0]);
+	json_num(j, "rank_peak_rss_bytes_mean", e->ranks.memory_rss[1]);
 	/* Wall seconds of the run per kind of exchange (ranks.h), the largest
 	 * and the mean over the ranks; they overlap the phases. */
 	cJSON *xmax = cJSON_AddObjectToObject(j, "exchange_seconds_max");

@@ -12,6 +12,8 @@
 size_t engine_bytes(const engine *e);
 /* Note the resident size at start (before the inputs): call first in main. */
 void report_start(void);
+/* The largest resident size so far, bytes. */
+long report_peak_rss(void);
 void report_print(const engine *e, int64_t step0, const char *status, const run_opts *o);
 
 #endif

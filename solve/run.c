@@ -88,7 +88,9 @@ static int snapshot(loop_state *L)
 	L->last_snapshot_step = e->clock.step;
 	e->out.last_snapshot_strain = engine_strain(e);
 	ranks_gather_output(e);
-	return (L->w && output_snapshot(e, L->w)) || flush_now_and_then(L);
+	int rc = (L->w && output_snapshot(e, L->w)) || flush_now_and_then(L);
+	ranks_release_output(e);
+	return rc;
 }
 
 static int snapshot_due(loop_state *L)
@@ -117,9 +119,10 @@ static int checkpoint(loop_state *L)
 	engine *e = L->e;
 	L->last_checkpoint = timer_now();
 	ranks_gather_output(e);
-	if (write_cracks(L))
-		return -1;
-	return L->w && (run_flush(L->w) || checkpoint_write(e, run_hid(L->w)));
+	int rc =
+	    write_cracks(L) || (L->w && (run_flush(L->w) || checkpoint_write(e, run_hid(L->w))));
+	ranks_release_output(e);
+	return rc ? -1 : 0;
 }
 
 /* Whether a checkpoint is due by the step count (agreed) or by rank 0's
@@ -364,7 +367,8 @@ static int run_loop(engine *e, run_writer *w, const run_opts *o)
 	for (int k = 0; k < AFILE_NSIGNALS; k++)
 		sigaction(afile_signals[k], &old[k], NULL);
 	phase_stop(&e->tm, TM_TOTAL);
-	ranks_traffic(e, (double)(e->clock.step - L.step0));
+	ranks_traffic(e, (double)(e->clock.step - L.step0),
+	              (double[2]){(double)engine_bytes(e), (double)report_peak_rss()});
 	if (L.code == RUN_FAILED && par_rank() == 0)
 		fprintf(stderr, "%s: %s\n", err_program_name(), L.status);
 	if (par_rank() == 0)
@@ -392,8 +396,10 @@ static run_writer *create(engine *e, const dem_assembly *a, const run_opts *o)
 static int bonds_then_loop(engine *e, run_writer *w, const run_opts *o)
 {
 	phase_start(&e->tm, TM_SETUP);
+	ranks_gather_output(e);
 	if (w && output_bonds(e, w))
 		fatal(NULL);
+	ranks_release_output(e);
 	phase_stop(&e->tm, TM_SETUP);
 	return run_loop(e, w, o);
 }

@@ -160,25 +160,7 @@ static law_packing packing_of(const engine *e, const dem_assembly *a)
 	             : a->geom.volume > 0         ? vs / a->geom.volume
 	                                          : 0.64;
 	return (law_packing){.porosity = 1 - phi,
-	                     .coordination = 2.0 * (double)e->pairs.bonds.n / (double)e->p.n};
-}
-
-/* The largest fraction of critical damping of the bonds (Eq. 13). */
-static void bond_damping(engine *e)
-{
-	particles *P = &e->p;
-	double xi = e->cs->mat.damping;
-	for (size_t b = 0; b < e->pairs.bonds.n; b++) {
-		const bond *bd = &e->pairs.bonds.rec[b];
-		int32_t i = bd->i, j = bd->j;
-		law_pair q = {
-		    .ri = P->r[i], .rj = P->r[j], .mi = P->m[i], .mj = P->m[j], .d0 = bd->d0};
-		law_const c;
-		e->law->constants(e->lp, &q, &c);
-		double mij = P->m[i] * P->m[j] / (P->m[i] + P->m[j]);
-		xi = fmax(xi, c.cn / (2 * sqrt(mij * c.kn)));
-	}
-	e->clock.xi_max = xi;
+	                     .coordination = 2.0 * (double)e->pairs.nbonds / (double)e->p.n};
 }
 
 static void geometry_sizes(engine *e, const dem_assembly *a)
@@ -227,8 +209,6 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 		return -1;
 	law_packing pk = packing_of(e, a);
 	e->law->setup(e->lp, &pk);
-	bonds_init_history(e);
-	bond_damping(e);
 	platens_init(e);
 	if (cs->surface_bin > 0 && cs->surface_bin < 0.2 * e->frame.r_mean)
 		return err_set("surface.bin %g m: expected at least a tenth of the mean sphere "
@@ -249,16 +229,19 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 		               par_size(), e->p.n, BLOCK, e->pairs.split.n,
 		               e->pairs.split.n > 1 ? "s" : "");
 	ranks_split(e);
+	bonds_init_history(e);
 	e->prog.peak = e->prog.stage_peak = -INFINITY;
 	boundary_begin_stage(e);
 	contacts_rebuild(e);
 	size_t worst;
 	e->clock.dt_crit = timestep_critical(e, 1, &worst);
-	if (cs->dt > 0 && cs->dt > e->clock.dt_crit)
+	if (cs->dt > 0 && cs->dt > e->clock.dt_crit) {
+		int nb;
+		timestep_bond_omega2(e, worst, &nb);
 		return err_set("time step %g s above the stable limit %g s, set by particle %d "
 		               "(radius %g m, %d bonds): lower time_step.dt or leave it out",
-		               cs->dt, e->clock.dt_crit, e->p.orig[worst], e->p.r[worst],
-		               pairlist_count(&e->pairs.bonds, worst));
+		               cs->dt, e->clock.dt_crit, e->p.orig[worst], e->p.r[worst], nb);
+	}
 	if (!isfinite(e->clock.dt_crit) && !(cs->dt > 0))
 		return err_set("no bond or contact: the critical time step is undefined "
 		               "(give time_step.dt)");
@@ -285,7 +268,7 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 		    stderr,
 		    "%s: %zu particles, %zu bonds (%.2f per particle, law %s); time step %.4g s "
 		    "= %.3g x critical %.4g s (Eq. 11-15, set by particle %d)\n",
-		    err_program_name(), e->p.n, e->pairs.bonds.n, pk.coordination, e->law->name,
+		    err_program_name(), e->p.n, e->pairs.nbonds, pk.coordination, e->law->name,
 		    e->clock.dt, e->clock.dt / e->clock.dt_crit, e->clock.dt_crit,
 		    e->p.orig[worst]);
 	return 0;
@@ -298,6 +281,7 @@ void engine_free(engine *e)
 	free(P->flag), free(P->surf);
 	free(P->orig), free(P->pslot[0]), free(P->pslot[1]);
 	pairlist_free(&e->pairs.bonds);
+	free(e->pairs.formed.i), free(e->pairs.formed.j), free(e->pairs.formed.d);
 	pairlist_free(&e->pairs.contacts);
 	pairlist_free(&e->pairs.contacts_old);
 	platens_free(&e->bc.pl);

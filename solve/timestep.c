@@ -90,37 +90,48 @@ static double bond_omega2(const engine *e, size_t b)
 	                   1 / particle_inv_i(P, (size_t)j), ai, aj);
 }
 
-double timestep_bond_omega2(const engine *e, size_t i)
+double timestep_bond_omega2(const engine *e, size_t i, int *count)
 {
-	double sum = 0;
-	for (size_t b = 0; b < e->pairs.bonds.n; b++) {
-		const bond *bd = &e->pairs.bonds.rec[b];
-		if ((size_t)bd->i == i || (size_t)bd->j == i)
-			sum += bond_omega2(e, b);
-	}
-	return sum;
+	/* Each bond is one rank's: the sums over every rank's are the whole
+	 * specimen's (exact, so the same on any number of ranks). */
+	xsum s[2];
+	xsum_clear(&s[0]), xsum_clear(&s[1]);
+	const pairlist *L = &e->pairs.bonds;
+	for (size_t b = 0; b < L->n; b++)
+		if ((size_t)L->rec[b].i == i || (size_t)L->rec[b].j == i) {
+			xsum_add(&s[0], bond_omega2(e, b));
+			xsum_add(&s[1], 1);
+		}
+	par_sum(s, 2);
+	*count = (int)xsum_round(&s[1]);
+	return xsum_round(&s[0]);
 }
 
 double timestep_critical(engine *e, int with_contacts, size_t *worst)
 {
 	const particles *P = &e->p;
+	const pairlist *L = &e->pairs.bonds;
 	size_t p0, p1;
 	ranks_own(e, &p0, &p1);
 	/* Each of this rank's particles' bound from its bonds, summed in bond
-	 * order: first those of earlier ranks' particles i (the crossing bonds
-	 * it receives, in bond order, ranks.h), then those of its own. */
+	 * order: first those of earlier ranks' particles i (the incoming
+	 * crossing bonds, whose bounds come from the ranks of their i, in bond
+	 * order, bonds.h), then those of its own. */
 	double *bw2 = xcalloc(P->n + 1, sizeof *bw2);
 	const bond_split *S = &e->pairs.split;
-	const rank_links *in = &e->ranks.brecv;
-	for (int k = 0; k < in->n; k++)
-		for (size_t q = 0; q < in->l[k].n; q++) {
-			size_t b = (size_t)S->cross[in->l[k].idx[q]];
-			bw2[e->pairs.bonds.rec[b].j] += bond_omega2(e, b);
-		}
-	for (size_t b = S->bfirst[nblocks(p0)]; b < S->bfirst[nblocks(p1)]; b++) {
+	double *cw2 = xcalloc(S->ncross + 1, sizeof *cw2);
+	for (size_t c = 0; c < S->ncross; c++)
+		if (S->cross[c] >= 0)
+			cw2[c] = bond_omega2(e, (size_t)S->cross[c]);
+	ranks_share_bond_values(e, cw2);
+	for (size_t c = 0; c < S->ncross; c++)
+		if (S->cross[c] < 0)
+			bw2[S->cj[c]] += cw2[c];
+	free(cw2);
+	for (size_t b = 0; b < L->n; b++) {
 		double w2 = bond_omega2(e, b);
-		bw2[e->pairs.bonds.rec[b].i] += w2;
-		bw2[e->pairs.bonds.rec[b].j] += w2;
+		bw2[L->rec[b].i] += w2;
+		bw2[L->rec[b].j] += w2;
 	}
 	/* Each contact's, from the rank of its i. */
 	const pairlist *C = &e->pairs.contacts;

@@ -14,8 +14,10 @@
 
 #include "lib/err.h"
 #include "lib/rng.h"
+#include "solve/bonds.h"
 #include "solve/contacts.h"
 #include "solve/par.h"
+#include "solve/ranks.h"
 #include "solve/timestep.h"
 #include "tests/check.h"
 #include "tests/solve/fixture.h"
@@ -53,8 +55,10 @@ int main(int argc, char **argv)
 	double *m0 = xmalloc(e.p.n * sizeof *m0);
 	memcpy(m0, e.p.m, e.p.n * sizeof *m0);
 	for (int round = 0; round < 32; round++) {
-		if (round == 16) {
-			e.pairs.bonds.n = 0; /* every near pair a contact */
+		if (round == 16) { /* no bonds: every near pair a contact */
+			e.pairs.bonds.n = e.pairs.nbonds = 0;
+			bonds_split(&e, e.pairs.split.n);
+			ranks_split(&e);
 			contacts_rebuild(&e);
 		}
 		for (size_t i = 0; i < e.p.n; i++)
