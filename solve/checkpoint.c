@@ -17,6 +17,7 @@
 #include "solve/checkpoint.h"
 #include "solve/contacts.h"
 #include "solve/pairlist.h"
+#include "solve/par.h"
 #include "solve/ranks.h"
 
 typedef struct {
@@ -241,13 +242,13 @@ static int put_field(hid_t g, const field *f, const bond *rec, size_t n)
 	return 0;
 }
 
-/* Read one field of n records (the dataset must have exactly n rows). */
-static int get_field(hid_t g, const field *f, bond *rec, size_t n)
+/* Open dataset `name` of g, which must have exactly n rows of cols columns
+ * (0: one-dimensional), or -1 with the error set. */
+static hid_t open_rows(hid_t g, const char *name, size_t n, size_t cols)
 {
-	size_t cols = f->cols > 1 ? f->cols : 0;
-	if (!h5_exists(g, f->name))
-		return err_set("%s: checkpoint dataset '%s': missing", h5_name(g), f->name);
-	hid_t d = H5Dopen2(g, f->name, H5P_DEFAULT);
+	if (!h5_exists(g, name))
+		return err_set("%s: checkpoint dataset '%s': missing", h5_name(g), name);
+	hid_t d = H5Dopen2(g, name, H5P_DEFAULT);
 	hid_t sp = H5Dget_space(d);
 	hsize_t dims[2] = {0, 0};
 	int rank = H5Sget_simple_extent_ndims(sp);
@@ -257,14 +258,25 @@ static int get_field(hid_t g, const field *f, bond *rec, size_t n)
 	if (rank != (cols ? 2 : 1) || dims[0] != n || (cols && dims[1] != cols)) {
 		H5Dclose(d);
 		return err_set("%s: checkpoint dataset '%s': wrong shape (expected %zu rows)",
-		               h5_name(g), f->name, n);
+		               h5_name(g), name, n);
 	}
+	return d;
+}
+
+/* Rows [first, first + rows) of one field of n records (the dataset must
+ * have exactly n rows) into rec[0 .. rows). */
+static int get_field(hid_t g, const field *f, bond *rec, size_t first, size_t rows, size_t n)
+{
+	size_t cols = f->cols > 1 ? f->cols : 0;
+	hid_t d = open_rows(g, f->name, n, cols);
+	if (d < 0)
+		return -1;
 	size_t row = f->cols * f->size;
 	unsigned char *buf = xmalloc(PIECE * row);
 	herr_t rc = 0;
-	for (size_t at = 0; rc >= 0 && at < n; at += PIECE) {
-		size_t m = n - at < PIECE ? n - at : PIECE;
-		rc = h5_slab(d, h5type(f->type), at, m, cols, buf, 0);
+	for (size_t at = 0; rc >= 0 && at < rows; at += PIECE) {
+		size_t m = rows - at < PIECE ? rows - at : PIECE;
+		rc = h5_slab(d, h5type(f->type), first + at, m, cols, buf, 0);
 		for (size_t k = 0; rc >= 0 && k < m; k++)
 			memcpy((unsigned char *)&rec[at + k] + f->offset, buf + k * row, row);
 	}
@@ -272,6 +284,21 @@ static int get_field(hid_t g, const field *f, bond *rec, size_t n)
 	H5Dclose(d);
 	if (rc < 0)
 		return err_set("%s: checkpoint dataset '%s': unreadable", h5_name(g), f->name);
+	return 0;
+}
+
+/* Rows [first, first + rows) of a dataset of exactly n rows of cols
+ * doubles into dst. */
+static int get_rows(hid_t g, const char *name, double *dst, size_t first, size_t rows, size_t n,
+                    size_t cols)
+{
+	hid_t d = open_rows(g, name, n, cols);
+	if (d < 0)
+		return -1;
+	herr_t rc = rows ? h5_slab(d, H5T_NATIVE_DOUBLE, first, rows, cols, dst, 0) : 0;
+	H5Dclose(d);
+	if (rc < 0)
+		return err_set("%s: checkpoint dataset '%s': unreadable", h5_name(g), name);
 	return 0;
 }
 
@@ -379,20 +406,6 @@ static int get(hid_t g, const char *name, hid_t type, void *dst, size_t rows, si
 	return 0;
 }
 
-/* This rank's bonds' histories and forces from the whole specimen's. */
-static void keep_bonds(engine *e, const pairlist *all)
-{
-	pairlist *L = &e->pairs.bonds;
-	for (size_t b = 0; b < L->n; b++) {
-		const bond *a = &all->rec[e->pairs.bond0 + b];
-		bond *r = &L->rec[b];
-		memcpy(r->t, a->t, sizeof r->t);
-		memcpy(r->h, a->h, sizeof r->h);
-		r->state = a->state;
-	}
-	memcpy(L->f, all->f + 3 * e->pairs.bond0, 3 * L->n * sizeof *L->f);
-}
-
 /* The columns of a two-dimensional dataset, or 0. */
 static size_t columns(hid_t g, const char *name)
 {
@@ -413,21 +426,23 @@ static size_t columns(hid_t g, const char *name)
  * checkpoint's (*is_old set; its arrays kept in *old for the checksum)
  * holds a fourth history column, the last u_n, in the slot the law names
  * (law.h_dropped), and the torque per unit radius after each force. */
-static int read_bond_h_f(hid_t g, const engine *e, pairlist *L, old_bonds *old, int *is_old)
+static int read_bond_h_f(hid_t g, const engine *e, size_t first, size_t rows, size_t nb,
+                         old_bonds *old, int *is_old)
 {
-	size_t nb = L->n;
+	const pairlist *L = &e->pairs.bonds;
 	*is_old = columns(g, "bond_h") == OLD_NHIST;
 	if (!*is_old)
-		return get_field(g, &bond_fields[1], L->rec, nb) ||
-		       get(g, "bond_force", H5T_NATIVE_DOUBLE, L->f, nb, 3);
+		return get_field(g, &bond_fields[1], L->rec, first, rows, nb) ||
+		       get_rows(g, "bond_force", L->f, first, rows, nb, 3);
 	if (h5_read_n(g, "bond_h", H5T_NATIVE_DOUBLE, (void **)&old->h, nb, OLD_NHIST) ||
 	    h5_read_n(g, "bond_force", H5T_NATIVE_DOUBLE, (void **)&old->f, nb, OLD_FCOLS))
 		return -1;
-	for (size_t b = 0; b < nb; b++) {
+	for (size_t r = 0; r < rows; r++) {
+		size_t b = first + r;
 		for (int c = 0, k = 0; c < OLD_NHIST; c++)
 			if (c != e->law->h_dropped)
-				L->rec[b].h[k++] = old->h[OLD_NHIST * b + (size_t)c];
-		memcpy(L->f + 3 * b, old->f + OLD_FCOLS * b, 3 * sizeof *L->f);
+				L->rec[r].h[k++] = old->h[OLD_NHIST * b + (size_t)c];
+		memcpy(L->f + 3 * r, old->f + OLD_FCOLS * b, 3 * sizeof *L->f);
 	}
 	return 0;
 }
@@ -453,7 +468,7 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 	free(kk);
 	int rc = 0;
 	for (int k = 0; !rc && k < 3; k++)
-		rc = get_field(g, &contact_fields[k], L->rec, nc);
+		rc = get_field(g, &contact_fields[k], L->rec, 0, nc, nc);
 	for (size_t q = 0; !rc && q < nc; q++) {
 		bond *b = &L->rec[q];
 		if (b->i < 0 || b->j < 0 || (size_t)b->i >= e->p.n || (size_t)b->j >= e->p.n)
@@ -462,7 +477,7 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 		b->d0 = e->p.r[b->i] + e->p.r[b->j];
 		b->state = BOND_BROKEN_TENSION;
 	}
-	if (rc || (yade_contacts(e) && get_field(g, &contact_start, L->rec, nc)))
+	if (rc || (yade_contacts(e) && get_field(g, &contact_start, L->rec, 0, nc, nc)))
 		return -1;
 	L->n = nc;
 	memset(L->f, 0, 6 * nc * sizeof *L->f);
@@ -582,11 +597,19 @@ int checkpoint_read_file(engine *e, hid_t f)
 		e->bc.pl.ncand[k] = count[1 + k];
 	particles *P = &e->p;
 	size_t n = P->n, nb = e->pairs.nbonds;
-	/* The whole specimen's bonds as read (ranks.h: each rank keeps its
-	 * own). */
-	pairlist all = {.n = nb, .cap = nb, .fcols = 3};
-	all.rec = xcalloc(nb + 1, sizeof *all.rec);
-	all.f = xcalloc(3 * nb + 1, sizeof *all.f);
+	/* This rank's bonds' rows (ranks.h). Rank 0, whose bonds come first,
+	 * reads every bond's after its own and checks the checksum (whose
+	 * failure stops every rank), then keeps its own
+	 * (ranks_release_output). */
+	pairlist *L = &e->pairs.bonds;
+	size_t first = e->pairs.bond0, rows = L->n;
+	int whole = par_rank() == 0;
+	if (whole && rows < nb) {
+		L->rec = xrealloc(L->rec, (nb + 1) * sizeof *L->rec);
+		L->f = xrealloc(L->f, (3 * nb + 1) * sizeof *L->f);
+		memset(L->rec + rows, 0, (nb - rows) * sizeof *L->rec);
+		L->cap = rows = nb;
+	}
 	old_bonds old = {NULL, NULL};
 	int is_old = 0;
 	int32_t *orig = rc ? NULL : xmalloc((n + 1) * sizeof *orig);
@@ -603,30 +626,32 @@ int checkpoint_read_file(engine *e, hid_t f)
 	     get(g, "w", H5T_NATIVE_DOUBLE, P->w, n, 3) ||
 	     get(g, "x_ref", H5T_NATIVE_DOUBLE, P->x_ref, n, 3) ||
 	     get(g, "flag", H5T_NATIVE_UINT8, P->flag, n, 0) ||
-	     get_field(g, &bond_fields[0], all.rec, nb) ||
-	     get_field(g, &bond_fields[2], all.rec, nb) ||
-	     read_bond_h_f(g, e, &all, &old, &is_old) || read_surface(g, e) ||
+	     get_field(g, &bond_fields[0], L->rec, first, rows, nb) ||
+	     get_field(g, &bond_fields[2], L->rec, first, rows, nb) ||
+	     read_bond_h_f(g, e, first, rows, nb, &old, &is_old) || read_surface(g, e) ||
 	     read_pairs(g, e, count[0]) || read_platens(g, e);
-	for (size_t b = 0; !rc && b < nb; b++)
-		if (all.rec[b].state > BOND_BROKEN_SHEAR)
+	for (size_t b = 0; !rc && b < rows; b++)
+		if (L->rec[b].state > BOND_BROKEN_SHEAR)
 			rc = err_set("%s: checkpoint dataset 'bond_state': value %d at row %zu: "
 			             "expected a bond state from %d to %d",
-			             path, all.rec[b].state, b, BOND_INTACT, BOND_BROKEN_SHEAR);
+			             path, L->rec[b].state, first + b, BOND_INTACT,
+			             BOND_BROKEN_SHEAR);
 	int64_t sum = 0;
 	pairs_view v;
 	ranks_own_pairs(e, &v); /* as read: the whole specimen's */
+	pairlist all = {.n = nb, .rec = L->rec, .f = L->f, .fcols = 3};
 	v.bonds = &all;
-	if (!rc && (h5_read_attr_i64(g, "checksum", &sum) ||
-	            sum != state_crc(e, &v, is_old ? &old : NULL)))
+	if (!rc && whole &&
+	    (h5_read_attr_i64(g, "checksum", &sum) ||
+	     sum != state_crc(e, &v, is_old ? &old : NULL)))
 		rc = err_set("%s: the checkpoint's data do not match its checksum (damaged, or "
 		             "written by an older version): not restartable",
 		             path);
 	if (!rc) { /* what this rank keeps of the whole specimen's lists */
-		keep_bonds(e, &all);
 		contacts_restore(e);
 		platens_restore(e);
+		ranks_release_output(e);
 	}
-	pairlist_free(&all);
 	free(old.h), free(old.f);
 	H5Gclose(g);
 	return rc ? -1 : 0;
