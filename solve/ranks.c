@@ -641,20 +641,18 @@ void ranks_share_cracks(engine *e, size_t first)
 	crack_buf *cb = &e->out.cracks;
 	size_t mine = cb->n - first;
 	double t0 = timer_now();
+	/* Rank 0's rows first, then the others' in rank order, which is bond
+	 * order (ranks own increasing particles, bonds go by i). */
 	size_t *at = rank_rows(first, mine, R->size), total = at[R->size];
 	if (total > first) {
-		if (total > cb->cap) {
+		if (R->rank == 0 && total > cb->cap) {
 			cb->cap = total + total / 2;
 			cb->c = xrealloc(cb->c, cb->cap * sizeof *cb->c);
 			cb->bond = xrealloc(cb->bond, cb->cap * sizeof *cb->bond);
 		}
-		/* This rank's rows move to their place in rank order, which is
-		 * bond order (ranks own increasing particles, bonds go by i). */
-		memmove(cb->c + at[R->rank], cb->c + first, mine * sizeof *cb->c);
-		memmove(cb->bond + at[R->rank], cb->bond + first, mine * sizeof *cb->bond);
-		gather_rows(cb->c, at, sizeof *cb->c, R->size, ALL);
-		gather_rows(cb->bond, at, sizeof *cb->bond, R->size, ALL);
-		cb->n = total;
+		gather_rows_from(cb->c + first, cb->c, at, sizeof *cb->c, R->size, 0);
+		gather_rows_from(cb->bond + first, cb->bond, at, sizeof *cb->bond, R->size, 0);
+		cb->n = R->rank == 0 ? total : first;
 	}
 	free(at);
 	R->sec[RANKS_GATHERS] += timer_now() - t0;

@@ -143,9 +143,10 @@ void ranks_share_bond_values(engine *e, double *v);
 /* Every particle's current state on every rank, if some are stale: first
  * thing of whatever reads particles beyond the halo. Collective. */
 void ranks_gather_state(engine *e);
-/* After the step: the failures this rank found since `first` (the length
- * of e->out.cracks before the step) and those of the other ranks, in bond
- * order on every rank. */
+/* After the step: the failures every rank found in it (each since `first`,
+ * the length of its e->out.cracks before the step) on rank 0, which
+ * writes the crack log, in bond order; the other ranks keep none.
+ * Collective. */
 void ranks_share_cracks(engine *e, size_t first);
 /* Before output and the NaN diagnosis, on rank 0, which writes the run
  * file: every particle's state, its position at the last rebuild (x_ref)

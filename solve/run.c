@@ -69,7 +69,8 @@ static int flush_now_and_then(loop_state *L)
 	return L->w ? run_flush(L->w) : 0;
 }
 
-/* The crack log's rows so far, written by rank 0 (counted by all). */
+/* The crack log's rows so far, written by rank 0 (which alone holds them,
+ * ranks_share_cracks). */
 static int write_cracks(loop_state *L)
 {
 	engine *e = L->e;
