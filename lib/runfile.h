@@ -131,6 +131,9 @@ typedef struct {
 } dem_run;
 
 int run_read(const char *path, dem_run *r);
+/* Only the provenance, the status, the assembly and the history's row
+ * count (what a restart needs; the rest stays empty). */
+int run_read_head(const char *path, dem_run *r);
 /* The same from an open file whose format was checked (h5_open, or
  * h5_open_image); the file stays open. */
 int run_read_file(hid_t file, dem_run *r);

@@ -202,6 +202,41 @@ int run_read(const char *path, dem_run *r)
 	return rc;
 }
 
+/* The history's row count (its first column's), into r->nrows. */
+static int history_rows(hid_t f, dem_run *r)
+{
+	hid_t h = h5_open_group(f, "history");
+	if (h < 0)
+		return -1;
+	char *order = h5_read_attr_str(h, "columns"), *save = NULL;
+	char *first = order ? strtok_r(order, ",", &save) : NULL;
+	long long rows = first ? h5_rows_of(h, first) : -1;
+	if (order && !first)
+		err_set("%s: history: no columns", h5_name(f));
+	free(order);
+	H5Gclose(h);
+	if (rows < 0)
+		return -1;
+	r->nrows = (size_t)rows;
+	return 0;
+}
+
+int run_read_head(const char *path, dem_run *r)
+{
+	memset(r, 0, sizeof *r);
+	hid_t f = h5_open(path, RUN_FORMAT, 0);
+	if (f < 0)
+		return -1;
+	int rc = prov_read(f, &r->prov) || !(r->status = h5_read_attr_str(f, "status")) ||
+	         assembly_read_groups(f, &r->assembly) || history_rows(f, r);
+	H5Fclose(f);
+	if (rc) {
+		run_free(r);
+		return -1;
+	}
+	return 0;
+}
+
 void run_free(dem_run *r)
 {
 	prov_free(&r->prov);

@@ -447,40 +447,49 @@ static int read_bond_h_f(hid_t g, const engine *e, size_t first, size_t rows, si
 	return 0;
 }
 
+/* The checkpoint's nc contacts, read in pieces: on rank 0, which checks the
+ * checksum over them, all of them; on another rank those with an end of
+ * its own (contacts_restore keeps what each rank lists). */
 static int read_pairs(hid_t g, engine *e, size_t nc)
 {
 	pairlist *L = &e->pairs.contacts;
-	/* Read before the lists are sized by nc, a count from the file: the
-	 * dataset's rows are checked against what the file holds. */
-	double *kk;
-	if (h5_read_n(g, "contact_k", H5T_NATIVE_DOUBLE, (void **)&kk, nc, 3))
-		return -1;
-	if (nc > L->cap) {
-		L->cap = nc;
-		L->rec = xrealloc(L->rec, nc * sizeof *L->rec);
-		L->fcols = 6;
-		L->f = xrealloc(L->f, 6 * nc * sizeof *L->f);
-		L->ref = xrealloc(L->ref, 2 * nc * sizeof *L->ref);
-	}
-	memset(L->rec, 0, nc * sizeof *L->rec);
-	for (size_t q = 0; q < nc; q++)
-		memcpy(L->rec[q].h, kk + 3 * q, 3 * sizeof *kk);
-	free(kk);
+	size_t p0, p1;
+	int all = !ranks_own(e, &p0, &p1) || par_rank() == 0;
+	bond *piece = xmalloc(PIECE * sizeof *piece);
 	int rc = 0;
-	for (int k = 0; !rc && k < 3; k++)
-		rc = get_field(g, &contact_fields[k], L->rec, 0, nc, nc);
-	for (size_t q = 0; !rc && q < nc; q++) {
-		bond *b = &L->rec[q];
-		if (b->i < 0 || b->j < 0 || (size_t)b->i >= e->p.n || (size_t)b->j >= e->p.n)
-			return err_set("%s: checkpoint contact %zu: particle out of range",
-			               h5_name(g), q);
-		b->d0 = e->p.r[b->i] + e->p.r[b->j];
-		b->state = BOND_BROKEN_TENSION;
+	L->n = 0;
+	for (size_t at = 0; !rc && at < nc; at += PIECE) {
+		size_t m = nc - at < PIECE ? nc - at : PIECE;
+		memset(piece, 0, m * sizeof *piece);
+		for (int k = 0; !rc && k < 4; k++)
+			rc = get_field(g, &contact_fields[k], piece, at, m, nc);
+		if (!rc && yade_contacts(e))
+			rc = get_field(g, &contact_start, piece, at, m, nc);
+		for (size_t q = 0; !rc && q < m; q++) {
+			bond *b = &piece[q];
+			size_t i = (size_t)b->i, j = (size_t)b->j;
+			if (b->i < 0 || b->j < 0 || i >= e->p.n || j >= e->p.n)
+				rc = err_set("%s: checkpoint contact %zu: particle out of range",
+				             h5_name(g), at + q);
+			else if (all || (i >= p0 && i < p1) || (j >= p0 && j < p1)) {
+				if (L->n == L->cap) {
+					L->cap = 2 * L->cap + 1024;
+					L->rec = xrealloc(L->rec, L->cap * sizeof *L->rec);
+					L->f = xrealloc(L->f, 6 * L->cap * sizeof *L->f);
+					L->ref = xrealloc(L->ref, 2 * L->cap * sizeof *L->ref);
+				}
+				if (!yade_contacts(e))
+					b->d0 = e->p.r[i] + e->p.r[j];
+				b->state = BOND_BROKEN_TENSION;
+				L->rec[L->n++] = *b;
+			}
+		}
 	}
-	if (rc || (yade_contacts(e) && get_field(g, &contact_start, L->rec, 0, nc, nc)))
+	free(piece);
+	if (rc)
 		return -1;
-	L->n = nc;
-	memset(L->f, 0, 6 * nc * sizeof *L->f);
+	L->fcols = 6;
+	memset(L->f, 0, 6 * L->n * sizeof *L->f);
 	return 0;
 }
 

@@ -419,7 +419,7 @@ static int killed_before(const dem_case *cs, const dem_assembly *a, const char *
 {
 	if (access(ckpt, F_OK) != 0)
 		return 0;
-	int same = run_read(ckpt, r) == 0;
+	int same = run_read_head(ckpt, r) == 0;
 	same = same && strcmp(r->prov.config, cs->config) == 0 && r->assembly.n == a->n &&
 	       memcmp(r->assembly.x, a->x, 3 * a->n * sizeof *a->x) == 0 &&
 	       memcmp(r->assembly.r, a->r, a->n * sizeof *a->r) == 0;
@@ -500,10 +500,10 @@ static void restart_source(const char *path, char *from, size_t n, dem_run *r)
 		fatal("%s: missing, and no recovery copy %s beside it: nothing to continue", path,
 		      ckpt);
 	dem_run c;
-	if (has_ckpt && run_read(ckpt, &c))
+	if (has_ckpt && run_read_head(ckpt, &c))
 		fatal(NULL);
 	if (has_run) {
-		if (run_read(path, r))
+		if (run_read_head(path, r))
 			fatal(NULL);
 		if (strcmp(r->status, "interrupted") != 0)
 			fatal("%s: the run has status '%s': only an interrupted run continues",
