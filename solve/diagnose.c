@@ -87,20 +87,32 @@ static double omega_dt(const engine *e, size_t i)
 	return sqrt(timestep_bond_omega2(e, i, &count)) * e->clock.dt;
 }
 
-/* The fastest particle at t + dt/2 and its squared speed. */
-static size_t fastest(const particles *P, double *v2)
+/* m v² of particle i at t + dt/2, with m = 1 unless `mass`. */
+static double speed2(const particles *P, size_t i, int mass)
 {
-	size_t worst = 0;
-	*v2 = -1;
-	for (size_t i = 0; i < P->n; i++) {
-		const double *v = P->v + 3 * i;
-		double k = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-		if (k > *v2) {
-			*v2 = k;
-			worst = i;
+	const double *v = P->v + 3 * i;
+	return (mass ? P->m[i] : 1) * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+/* The particle with the largest speed2 of all (the first of equals, as
+ * one scan finds it; each rank scans its own), and that value in *top.
+ * Collective. */
+static size_t fastest(const engine *e, int mass, double *top)
+{
+	size_t p0, p1;
+	ranks_own(e, &p0, &p1);
+	double v[1] = {-1};
+	int32_t at[1] = {(int32_t)p0};
+	for (size_t i = p0; i < p1; i++) {
+		double k = speed2(&e->p, i, mass);
+		if (k > v[0]) {
+			v[0] = k;
+			at[0] = (int32_t)i;
 		}
 	}
-	return worst;
+	par_maxloc(v, at, 1);
+	*top = v[0];
+	return (size_t)at[0];
 }
 
 int diagnose_speed(engine *e, char *msg, size_t n)
@@ -108,9 +120,8 @@ int diagnose_speed(engine *e, char *msg, size_t n)
 	double dt = e->clock.dt, limit = 0.5 * e->pairs.skin;
 	if (!(sqrt(e->sums.particles.v2max) * dt > limit))
 		return 0;
-	ranks_gather_state(e);
 	double v2;
-	size_t i = fastest(&e->p, &v2);
+	size_t i = fastest(e, 0, &v2);
 	snprintf(msg, n,
 	         "stopped: particle %d moved %g m in one step (speed %g m/s) at step %" PRId64
 	         ", more than half the Verlet skin (%g m): contacts would pass unseen; the "
@@ -130,18 +141,9 @@ int diagnose_runaway(engine *e, char *msg, size_t n)
 	double input = e->energy.initial + fabs(e->energy.work), ke = e->sums.particles.ke_new;
 	if (!(ke > 2 * input + e->energy.noise))
 		return 0;
-	ranks_gather_state(e);
 	const particles *P = &e->p;
-	size_t worst = 0;
-	double top = -1;
-	for (size_t i = 0; i < P->n; i++) {
-		const double *v = P->v + 3 * i;
-		double k = P->m[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-		if (k > top) {
-			top = k;
-			worst = i;
-		}
-	}
+	double top;
+	size_t worst = fastest(e, 1, &top);
 	snprintf(msg, n,
 	         "stopped: kinetic energy %g J exceeds twice the energy put in (%g J) at step "
 	         "%" PRId64 ": the integration is unstable; fastest particle %d (speed %g m/s, "

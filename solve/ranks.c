@@ -306,27 +306,26 @@ static void share_halo(engine *e)
 				       3 * sizeof *l->buf);
 		R->recv_halo += state_bytes(l->n);
 	}
-	R->stale = 1;
 	R->sec[RANKS_HALO] += timer_now() - t0;
 }
 
-/* Every rank's particles' state on every rank (ALL), or on rank root
- * only: the other ranks' particles then stay stale everywhere else. */
-static void gather_all(engine *e, int root)
+/* Every rank's particles' state on rank 0 (the other ranks' particles
+ * stay stale everywhere else). */
+static void gather_state(engine *e)
 {
 	rank_split *R = &e->ranks;
 	/* x, v and ω in one message: each rank's rows of [n][9]. */
 	particles *P = &e->p;
 	double *const arr[3] = {P->x, P->v, P->w};
 	double t0 = timer_now();
-	/* Where the rows gather, room for all of them; else for its own. */
-	int whole = root == ALL || root == R->rank;
+	/* On rank 0 room for every row, else for its own. */
+	int whole = R->rank == 0;
 	double *state = xmalloc((9 * (whole ? P->n : R->p1 - R->p0) + 1) * sizeof *state);
 	double *mine = state + (whole ? 9 * R->p0 : 0);
 	for (size_t i = R->p0; i < R->p1; i++)
 		for (int a = 0; a < 3; a++)
 			memcpy(mine + 9 * (i - R->p0) + 3 * a, arr[a] + 3 * i, 3 * sizeof *state);
-	gather_rows_from(mine, state, R->pfirst, 9 * sizeof *state, R->size, root);
+	gather_rows_from(mine, state, R->pfirst, 9 * sizeof *state, R->size, 0);
 	if (whole) {
 		for (size_t i = 0; i < P->n; i++)
 			if (i < R->p0 || i >= R->p1)
@@ -336,8 +335,6 @@ static void gather_all(engine *e, int root)
 		R->recv_all += state_bytes(P->n - (R->p1 - R->p0));
 	}
 	free(state);
-	if (root == ALL)
-		R->stale = 0;
 	R->sec[RANKS_GATHERS] += timer_now() - t0;
 }
 #endif
@@ -604,16 +601,6 @@ void ranks_share_bond_values(engine *e, double *v)
 #endif
 }
 
-void ranks_gather_state(engine *e)
-{
-#ifdef DEM_MPI
-	if (e->ranks.size > 1 && e->ranks.stale)
-		gather_all(e, ALL);
-#else
-	(void)e;
-#endif
-}
-
 #ifdef DEM_MPI
 /* Where each rank's rows of a list go, in rank order from row `first`, when
  * this rank has `mine` of them: [size + 1] offsets, the last the end
@@ -688,7 +675,7 @@ void ranks_gather_output(engine *e)
 	rank_split *R = &e->ranks;
 	if (R->size == 1)
 		return;
-	gather_all(e, 0);
+	gather_state(e);
 	double t0 = timer_now();
 	/* A rank's bonds are those of its particles i, in bond order: rank
 	 * 0's come first, and its list grows to hold the others after them

@@ -23,11 +23,11 @@
  * specimen's lists, which ranks_gather_output gathers on rank 0
  * (ranks_pairs).
  *
- * The other ranks' particles are stale between such exchanges until
- * ranks_gather_state brings every particle's state to every rank, which
- * whatever reads beyond the halo calls first (the end layers, output, the
- * diagnoses). The lateral surface and the gauge read each rank's own
- * particles and combine the ranks' parts (surface.c). With
+ * The other ranks' particles are stale between such exchanges: what reads
+ * beyond the halo reads each rank's own particles and combines the ranks'
+ * parts (the end layers, the lateral surface and the gauge, surface.c;
+ * the diagnoses of a failing run, diagnose.c), and only output gathers
+ * every particle, on rank 0 (ranks_gather_output). With
  * DEM_RANKS_POISON=1 in the environment the stale particles' x, v and ω
  * are NaN instead, so that a read that misses an exchange shows.
  *
@@ -76,7 +76,6 @@ typedef struct {
 	rank_links csend, crecv;    /* crossing contacts' forces */
 	rank_links hsend, hrecv;    /* the halo: particles whose x, v, ω go to
 	                               (come from) each peer, in increasing order */
-	int stale;                  /* other ranks' particles beyond the halo are old */
 	int poison;                 /* DEM_RANKS_POISON: and NaN */
 	double recv_halo, recv_all; /* bytes of state received so far by halo
 	                               exchanges and by full gathers */
@@ -140,9 +139,6 @@ void ranks_share_contact_values(engine *e, double *v);
 /* The same for each crossing bond's slot (bonds.h): the value the rank of
  * its i holds sent to the rank of its j. Collective. */
 void ranks_share_bond_values(engine *e, double *v);
-/* Every particle's current state on every rank, if some are stale: first
- * thing of whatever reads particles beyond the halo. Collective. */
-void ranks_gather_state(engine *e);
 /* After the step: the failures every rank found in it (each since `first`,
  * the length of its e->out.cracks before the step) on rank 0, which
  * writes the crack log, in bond order; the other ranks keep none.

@@ -1,8 +1,9 @@
 #!/bin/sh
 # Failures of a run on several ranks (share/doc/solve.md, "Several
 # machines"): a restart file of another format version gives one message
-# and a non-zero exit on 2 ranks, and leaves the file as it was; a rank
-# killed with SIGKILL ends the run (the other rank does not wait forever)
+# and a non-zero exit on 2 ranks, and leaves the file as it was; a run
+# stopped by a diagnosis on 3 ranks is the run on one, message and all; a
+# rank killed with SIGKILL ends the run (the other rank does not wait forever)
 # without a finished-looking run file, and the run then continues on 2
 # ranks from its recovery copy to the same bits as the uninterrupted run
 # of one process.
@@ -34,6 +35,20 @@ fi
 n=$(grep -c "^solve.*s.h5: attribute 'format_version': value 99: expected 1 to 3" bad.err || true)
 [ "$n" -eq 1 ] || { cat bad.err >&2; fail "expected the version message once, got $n"; }
 [ "$(cksum < s.h5)" = "$sum0" ] || fail "s.h5 changed by a refused restart"
+
+# The diagnoses read each rank's own particles: a run that one stops (a
+# skin so thin that the first step moves particles across half of it) on
+# 3 ranks is the run on one, its message included.
+sed 's/"damping"/"neighbours": {"skin": 1e-12}, "damping"/' ucs.json > thin.json
+if "$bin/solve" --quiet --threads 1 --output thin1.h5 thin.json 2> thin.err; then
+	fail "a skin of 1e-12 m: expected the run to stop"
+fi
+grep -q "moved .* in one step" thin.err || { cat thin.err >&2; fail "expected the speed diagnosis"; }
+if "$mpiexec" -np 3 --oversubscribe "$bin/solve" --quiet --threads 1 --output thin3.h5 \
+	thin.json 2> thin.err; then
+	fail "a skin of 1e-12 m on 3 ranks: expected the run to stop"
+fi
+same thin1.h5 thin3.h5
 
 # A rank killed with SIGKILL after the first checkpoint.
 "$mpiexec" -np 2 --oversubscribe "$bin/solve" --quiet --output k.h5 ucs.json 2> kill.err &
