@@ -178,30 +178,6 @@ static int read_cracks(hid_t f, dem_run *r)
 	return rc ? -1 : 0;
 }
 
-int run_read_file(hid_t f, dem_run *r)
-{
-	memset(r, 0, sizeof *r);
-	int rc = prov_read(f, &r->prov) || !(r->status = h5_read_attr_str(f, "status")) ||
-	         assembly_read_groups(f, &r->assembly) || read_bonds(f, &r->bonds, r->assembly.n) ||
-	         read_history(f, r) || read_snapshot_index(f, r) || read_cracks(f, r);
-	if (rc) {
-		run_free(r);
-		return -1;
-	}
-	return 0;
-}
-
-int run_read(const char *path, dem_run *r)
-{
-	memset(r, 0, sizeof *r);
-	hid_t f = h5_open(path, RUN_FORMAT, 0);
-	if (f < 0)
-		return -1;
-	int rc = run_read_file(f, r);
-	H5Fclose(f);
-	return rc;
-}
-
 /* The history's row count (its first column's), into r->nrows. */
 static int history_rows(hid_t f, dem_run *r)
 {
@@ -211,8 +187,8 @@ static int history_rows(hid_t f, dem_run *r)
 	char *order = h5_read_attr_str(h, "columns"), *save = NULL;
 	char *first = order ? strtok_r(order, ",", &save) : NULL;
 	long long rows = first ? h5_rows_of(h, first) : -1;
-	if (order && !first)
-		err_set("%s: history: no columns", h5_name(f));
+	if (order && rows < 0)
+		err_set("%s: history: no readable first column", h5_name(f));
 	free(order);
 	H5Gclose(h);
 	if (rows < 0)
@@ -221,21 +197,36 @@ static int history_rows(hid_t f, dem_run *r)
 	return 0;
 }
 
-int run_read_head(const char *path, dem_run *r)
+/* The run in file f; with head, only what run_read_head reads. */
+static int read_run(hid_t f, dem_run *r, int head)
 {
 	memset(r, 0, sizeof *r);
-	hid_t f = h5_open(path, RUN_FORMAT, 0);
-	if (f < 0)
-		return -1;
 	int rc = prov_read(f, &r->prov) || !(r->status = h5_read_attr_str(f, "status")) ||
-	         assembly_read_groups(f, &r->assembly) || history_rows(f, r);
-	H5Fclose(f);
+	         assembly_read_groups(f, &r->assembly) ||
+	         (head ? history_rows(f, r)
+	               : read_bonds(f, &r->bonds, r->assembly.n) || read_history(f, r) ||
+	                     read_snapshot_index(f, r) || read_cracks(f, r));
 	if (rc) {
 		run_free(r);
 		return -1;
 	}
 	return 0;
 }
+
+static int read_path(const char *path, dem_run *r, int head)
+{
+	memset(r, 0, sizeof *r);
+	hid_t f = h5_open(path, RUN_FORMAT, 0);
+	if (f < 0)
+		return -1;
+	int rc = read_run(f, r, head);
+	H5Fclose(f);
+	return rc;
+}
+
+int run_read_file(hid_t f, dem_run *r) { return read_run(f, r, 0); }
+int run_read(const char *path, dem_run *r) { return read_path(path, r, 0); }
+int run_read_head(const char *path, dem_run *r) { return read_path(path, r, 1); }
 
 void run_free(dem_run *r)
 {
