@@ -123,6 +123,29 @@ static inline double dh_normal(const dh_params *q, dh_curve curve, const void *l
 	return q->E0 * e * dh_secant(d, q->delta_n);
 }
 
+/* dh_normal without branches where it changes no damage and no plastic
+ * state, for the vector loops of the laws: on the loading curve's first
+ * part (compressive strain up to eps_max, where it is E0 c, now and at
+ * the largest compression so far, so the permanent indentation is 0), and
+ * in tension up to the limit strain (the tension damage stays h0). The
+ * normal stress at compressive strain c with dh_normal's expressions, the
+ * opening strain *e, h[2] in *h2 (c when loading) and whether the bond
+ * is on that branch (*elastic; else dh_normal must compute it). */
+static inline double dh_normal_first(const dh_params *q, double eps_max, double c, double h0,
+                                     double *h2, double *e, int32_t *elastic)
+{
+	double c_max = *h2, open = 0.0 - c;
+	int32_t loading = c > c_max;
+	double tension = q->E0 * open * dh_secant(h0, q->delta_n);
+	double sigma = loading ? -(q->E0 * c) : open <= 0 ? q->E0 * open : tension;
+	int32_t load_ok = !(c > eps_max), unload_ok = !(c_max > eps_max) & (open <= q->eps_t);
+	int32_t ok = (loading & load_ok) | ((1 - loading) & unload_ok);
+	*h2 = (ok & loading) ? c : c_max;
+	*e = open;
+	*elastic = ok;
+	return sigma;
+}
+
 /* Elastic energy of the normal spring in the state stored in h at the
  * normal displacement un of the last force() call (changing nothing):
  * 1/2 F^2 / K with the current stiffness, K_n0 in compression and

@@ -162,16 +162,10 @@ exp_pairs_loop(const exp_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restri
 		double inv_d = 1 / pair.d0, A = area_of_radii(1, pair.ri, pair.rj),
 		       kn = A * p->q.E0 * inv_d;
 		double ks = kn * p->ks_over_kn;
-		double h0 = h[0], h2 = h[2];
-		double c = -(k.un * inv_d), e = 0.0 - c;
-		int32_t loading = c > h2;
-		double tension = p->q.E0 * e * dh_secant(h0, p->q.delta_n);
-		double sigma = loading ? -(p->q.E0 * c) : e <= 0 ? p->q.E0 * e : tension;
-		int32_t load_ok = !(c > p->eps_max),
-		        unload_ok = !(h2 > p->eps_max) & (e <= p->q.eps_t);
-		int32_t elastic = (loading & load_ok) | ((1 - loading) & unload_ok);
-		double fn = A * sigma;
-		h[2] = (elastic & loading) ? c : h2;
+		double e;
+		int32_t elastic;
+		double fn = A * dh_normal_first(&p->q, p->eps_max, -(k.un * inv_d), h[0], &h[2], &e,
+		                                &elastic);
 		/* shear: shear_mohr_coulomb within its limit */
 		double t[3] = {k.t[0] + k.dus[0], k.t[1] + k.dus[1], k.t[2] + k.dus[2]};
 		double limit = p->cohesion * A + -fn * p->tan_i,

@@ -216,18 +216,12 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void onate_batch(const law_par
 	int n = B->n;
 	for (int q = 0; q < n; q++) { /* normal: dh_normal on the curve's first segment */
 		double A = area_of_radii(p->area.alpha, B->ri[q], B->rj[q]), inv_d = 1 / B->d0[q];
-		double h0 = B->h[0][q], h2 = B->h[2][q];
-		double c = -(B->un[q] * inv_d), e = 0.0 - c;
-		int32_t loading = c > h2;
-		double tension = p->q.E0 * e * dh_secant(h0, p->q.delta_n);
-		double sigma = loading ? -(p->q.E0 * c) : e <= 0 ? p->q.E0 * e : tension;
-		int32_t load_ok = !(c > p->eps[0]),
-		        unload_ok = !(h2 > p->eps[0]) & (e <= p->q.eps_t);
-		elastic[q] = (loading & load_ok) | ((1 - loading) & unload_ok);
+		double c = -(B->un[q] * inv_d), h2 = B->h[2][q];
+		double sigma =
+		    dh_normal_first(&p->q, p->eps[0], c, B->h[0][q], &h2, &open[q], &elastic[q]);
 		fnq[q] = A * sigma;
 		area[q] = A;
-		open[q] = e;
-		B->h[2][q] = (elastic[q] & loading) ? c : h2;
+		B->h[2][q] = h2;
 	}
 	for (int q = 0; q < n; q++) { /* shear, viscous force */
 		law_pair pair = law_lane_pair(B, q);
@@ -277,16 +271,10 @@ onate_pairs_loop(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *re
 		    .ri = r[b->i], .rj = r[b->j], .mi = m[b->i], .mj = m[b->j], .d0 = b->d0};
 		/* normal: dh_normal on the curve's first segment */
 		double A = area_of_radii(p->area.alpha, pair.ri, pair.rj), inv_d = 1 / pair.d0;
-		double h0 = h[0], h2 = h[2];
-		double c = -(k.un * inv_d), e = 0.0 - c;
-		int32_t loading = c > h2;
-		double tension = p->q.E0 * e * dh_secant(h0, p->q.delta_n);
-		double sigma = loading ? -(p->q.E0 * c) : e <= 0 ? p->q.E0 * e : tension;
-		int32_t load_ok = !(c > p->eps[0]),
-		        unload_ok = !(h2 > p->eps[0]) & (e <= p->q.eps_t);
-		int32_t elastic = (loading & load_ok) | ((1 - loading) & unload_ok);
-		double fn = A * sigma;
-		h[2] = (elastic & loading) ? c : h2;
+		double e;
+		int32_t elastic;
+		double fn = A * dh_normal_first(&p->q, p->eps[0], -(k.un * inv_d), h[0], &h[2], &e,
+		                                &elastic);
 		/* shear, viscous force */
 		double kn = A * p->q.E0 * (1 / pair.d0), ks = kn * p->ks_over_kn;
 		double fnc = fn < 0 ? -fn : 0;
