@@ -50,18 +50,12 @@ int bonds_form(engine *e)
 			    "centre of one lies inside the other: expected the spheres of a "
 			    "packing (a damaged assembly?)",
 			    P->orig[i], P->orig[j], P->r[i], P->r[j], xi[0], xi[1], xi[2]);
-			free(cp.i), free(cp.j), free(cp.d);
+			cells_pairs_free(&cp);
 			return rc;
 		}
 	e->pairs.formed = cp;
 	e->pairs.nbonds = cp.n;
 	return 0;
-}
-
-static void formed_free(cells_pairs *cp)
-{
-	free(cp->i), free(cp->j), free(cp->d);
-	memset(cp, 0, sizeof *cp);
 }
 
 /* The ends of bond b of the whole specimen: as formed, or (one rank, every
@@ -98,7 +92,7 @@ static void bonds_keep(engine *e, size_t b0, size_t b1)
 	L->fcols = 3;
 	L->f = xcalloc(3 * L->n + 1, sizeof *L->f);
 	e->pairs.bond0 = b0;
-	formed_free(cp);
+	cells_pairs_free(cp);
 }
 
 /* The law's pair description of bond b (for init and constants). */

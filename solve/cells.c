@@ -154,3 +154,9 @@ void cells_free(cells *g)
 	free(g->start), free(g->item), free(g->cell), free(g->fill);
 	memset(g, 0, sizeof *g);
 }
+
+void cells_pairs_free(cells_pairs *p)
+{
+	free(p->i), free(p->j), free(p->d);
+	memset(p, 0, sizeof *p);
+}

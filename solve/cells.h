@@ -38,14 +38,16 @@ int cells_partners(const cells *g, const double *x, const double *r, size_t i, d
 /* The pairs a bond is formed between: every i < j whose centres lie within
  * scale (r_i + r_j) (Eq. 16), in (i, j) order, in cells of size h (at
  * least 2 scale r_max), with their centre distance: p->n pairs in arrays
- * the caller frees. -1 when a particle has more than CELLS_CAP partners
- * (overlapping spheres?), its index in *crowded, nothing allocated. */
+ * the caller frees (cells_pairs_free). -1 when a particle has more than
+ * CELLS_CAP partners (overlapping spheres?), its index in *crowded, nothing
+ * allocated. */
 enum { CELLS_CAP = 4096 };
 typedef struct {
 	size_t n;
 	int32_t *i, *j;
 	double *d;
 } cells_pairs;
+void cells_pairs_free(cells_pairs *p);
 int cells_pairs_within(const double *x, const double *r, size_t n, double scale, double h,
                        cells_pairs *p, size_t *crowded);
 

@@ -281,7 +281,7 @@ void engine_free(engine *e)
 	free(P->flag), free(P->surf);
 	free(P->orig), free(P->pslot[0]), free(P->pslot[1]);
 	pairlist_free(&e->pairs.bonds);
-	free(e->pairs.formed.i), free(e->pairs.formed.j), free(e->pairs.formed.d);
+	cells_pairs_free(&e->pairs.formed);
 	pairlist_free(&e->pairs.contacts);
 	pairlist_free(&e->pairs.contacts_old);
 	platens_free(&e->bc.pl);
