@@ -446,17 +446,53 @@ static void shuffle(unsigned char *restrict out, const unsigned char *restrict i
 			out[k * n + i] = in[i * size + k];
 }
 
+size_t h5_chunk_rows(size_t rows, size_t cols)
+{
+	size_t piece = chunk_rows(cols);
+	return rows * (cols ? cols : 1) >= 4096 && rows > piece ? piece : 0;
+}
+
+size_t h5_chunk_zcap(size_t bytes) { return (size_t)ceil((double)bytes * 1.001) + 12; }
+
+/* The deflate filter (H5Zdeflate.c) compresses into ceil(1.001 bytes) + 12
+ * bytes; if that fails, the filter, being optional, is skipped for the
+ * chunk and flagged in its filter mask. */
+size_t h5_chunk_compress(unsigned char *raw, unsigned char *shuf, unsigned char *z, size_t piece,
+                         size_t m, size_t width, size_t size, unsigned *mask,
+                         const unsigned char **data)
+{
+	size_t bytes = piece * width * size;
+	memset(raw + m * width * size, 0, bytes - m * width * size);
+	shuffle(shuf, raw, piece * width, size);
+	uLongf zn = (uLongf)h5_chunk_zcap(bytes);
+	int ok = compress2(z, &zn, shuf, (uLong)bytes, DEFLATE_LEVEL) == Z_OK;
+	*mask = ok ? 0 : 1u << 1;
+	*data = ok ? z : shuf;
+	return ok ? (size_t)zn : bytes;
+}
+
+int h5_rows_put_chunk(h5_rows *r, unsigned mask, size_t n, const void *data)
+{
+	if (r->failed)
+		return -1;
+	hsize_t offset[2] = {r->at, 0};
+	size_t piece = chunk_rows(r->cols);
+	if (H5Dwrite_chunk(r->d, H5P_DEFAULT, mask, offset, n, data) < 0) {
+		r->failed = 1;
+		return h5_write_dataset_error(r->loc, r->name);
+	}
+	r->at += r->rows - r->at < piece ? r->rows - r->at : piece;
+	return 0;
+}
+
 /* Rows [at, at + m) of r from fill, one chunk of piece rows per step, the
  * steps shared by the threads; each chunk shuffled and deflated as the
- * filters of chunked_plist would (the deflate filter, H5Zdeflate.c:
- * compress2 into ceil(1.001 bytes) + 12 bytes; if that fails, the filter,
- * being optional, is skipped for the chunk and flagged in its filter mask),
- * then written as it stands, in chunk order. A partial last chunk is padded
- * with zeros, the fill value HDF5 gives the rest of such a chunk. */
+ * filters of chunked_plist would (h5_chunk_compress), then written as it
+ * stands, in chunk order. */
 static int fill_chunks(h5_rows *r, h5_fill fill, void *ctx, size_t piece)
 {
 	size_t size = H5Tget_size(r->type), width = r->cols ? r->cols : 1;
-	size_t bytes = piece * width * size, zcap = (size_t)ceil((double)bytes * 1.001) + 12;
+	size_t bytes = piece * width * size, zcap = h5_chunk_zcap(bytes);
 	size_t at0 = r->at, n = (r->rows - at0 + piece - 1) / piece;
 	int failed = 0, werrno = 0, team = threads_ < (int)n ? threads_ : (int)n;
 #pragma omp parallel num_threads(team)
@@ -469,21 +505,18 @@ static int fill_chunks(h5_rows *r, h5_fill fill, void *ctx, size_t piece)
 			stop = failed;
 			size_t at = at0 + k * piece,
 			       m = r->rows - at < piece ? r->rows - at : piece;
-			uLongf zn = (uLongf)zcap;
-			int zrc = Z_OK;
+			unsigned mask = 0;
+			const unsigned char *data = NULL;
+			size_t zn = 0;
 			if (!stop) {
-				memset(raw + m * width * size, 0, bytes - m * width * size);
 				fill(ctx, at, m, raw);
-				shuffle(shuf, raw, piece * width, size);
-				zrc = compress2(z, &zn, shuf, (uLong)bytes, DEFLATE_LEVEL);
+				zn = h5_chunk_compress(raw, shuf, z, piece, m, width, size, &mask,
+				                       &data);
 			}
 #pragma omp ordered
 			if (!stop) {
 				hsize_t offset[2] = {at, 0};
-				int ok = zrc == Z_OK;
-				if (H5Dwrite_chunk(r->d, H5P_DEFAULT, ok ? 0 : 1u << 1, offset,
-				                   ok ? (size_t)zn : bytes,
-				                   ok ? (void *)z : shuf) < 0) {
+				if (H5Dwrite_chunk(r->d, H5P_DEFAULT, mask, offset, zn, data) < 0) {
 					werrno = errno;
 #pragma omp atomic write
 					failed = 1;

@@ -11,6 +11,7 @@
 #include <stdint.h>
 
 #include "lib/assembly.h"
+#include "lib/h5.h"
 #include "lib/states.h"
 
 #define RUN_FORMAT "dem-run"
@@ -102,6 +103,15 @@ enum {
 typedef void (*run_fill)(void *ctx, int f, size_t at, size_t m, void *buf);
 int run_write_bonds_fill(run_writer *w, size_t n, run_fill fill, void *ctx);
 int run_snapshot_fill(run_writer *w, const dem_snapshot *s, run_fill fill, void *ctx);
+/* The same two with put(ctx, f, r), which writes every row of field f into
+ * r (h5.h, open for them), by h5_rows_fill or chunk by chunk; and each
+ * field's shape: its columns (0: one), the bytes of a value, and whether
+ * its rows are bonds (else particles), in the bond table (snapshot 0) or a
+ * snapshot (1). */
+typedef int (*run_put)(void *ctx, int f, h5_rows *r);
+int run_write_bonds_put(run_writer *w, size_t n, run_put put, void *ctx);
+int run_snapshot_put(run_writer *w, const dem_snapshot *s, run_put put, void *ctx);
+void run_field_shape(int snapshot, int f, size_t *cols, size_t *size, int *per_bond);
 int run_cracks(run_writer *w, const dem_crack *c, size_t n);
 int run_flush(run_writer *w);
 hid_t run_hid(run_writer *w);

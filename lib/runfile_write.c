@@ -307,6 +307,14 @@ static size_t row_bytes(const rec_field *f)
 	return (f->cols ? f->cols : 1) * (f->type == F64 ? 8 : f->type == I32 ? 4 : 1);
 }
 
+void run_field_shape(int snapshot, int f, size_t *cols, size_t *size, int *per_bond)
+{
+	const rec_field *r = snapshot ? &snap_fields[f] : &bond_fields[f];
+	*cols = r->cols;
+	*size = row_bytes(r) / (r->cols ? r->cols : 1);
+	*per_bond = r->per_bond;
+}
+
 /* One field of a run_fill (h5_fill). */
 typedef struct {
 	run_fill fill;
@@ -320,19 +328,31 @@ static void fill_field(void *ctx, size_t at, size_t m, void *buf)
 	ff->fill(ff->ctx, ff->f, at, m, buf);
 }
 
+/* A run_put from a run_fill. */
+typedef struct {
+	run_fill fill;
+	void *ctx;
+} filled;
+
+static int put_filled(void *ctx, int f, h5_rows *r)
+{
+	const filled *fl = ctx;
+	field_fill ff = {fl->fill, fl->ctx, f};
+	return h5_rows_fill(r, fill_field, &ff);
+}
+
 /* Each field a piece at a time (a piece per thread that compresses):
  * memory is a few pieces, not the whole arrays. */
-static int write_fields(hid_t g, const rec_field *fs, int nf, size_t np, size_t nb, run_fill fill,
+static int write_fields(hid_t g, const rec_field *fs, int nf, size_t np, size_t nb, run_put put,
                         void *ctx, const char *dim_particle, const char *dim_bond,
                         const char *dim_xyz)
 {
 	int rc = 0;
 	for (int f = 0; !rc && f < nf; f++) {
 		h5_rows r;
-		field_fill ff = {fill, ctx, f};
 		rc = h5_rows_open(&r, g, fs[f].name, native(fs[f].type), fs[f].per_bond ? nb : np,
 		                  fs[f].cols, fs[f].unit);
-		rc = rc || h5_rows_fill(&r, fill_field, &ff);
+		rc = rc || put(ctx, f, &r);
 		rc = h5_rows_close(&r) || rc;
 		/* The rows' and the components' dimension scales, of the group
 		 * or of its parent (a snapshot's are those of /snapshots). */
@@ -355,15 +375,21 @@ static void from_arrays(void *ctx, int f, size_t at, size_t m, void *buf)
 	memcpy(buf, (const unsigned char *)a->src[f] + at * row, m * row);
 }
 
-int run_write_bonds_fill(run_writer *w, size_t n, run_fill fill, void *ctx)
+int run_write_bonds_put(run_writer *w, size_t n, run_put put, void *ctx)
 {
 	hid_t g = h5_group(w->file, "bonds");
 	if (g < 0)
 		return -1;
 	int rc = h5_index(g, "bond", n, 0) ||
-	         write_fields(g, bond_fields, BTAB_NFIELDS, 0, n, fill, ctx, NULL, "bond", "xyz");
+	         write_fields(g, bond_fields, BTAB_NFIELDS, 0, n, put, ctx, NULL, "bond", "xyz");
 	H5Gclose(g);
 	return rc;
+}
+
+int run_write_bonds_fill(run_writer *w, size_t n, run_fill fill, void *ctx)
+{
+	filled fl = {fill, ctx};
+	return run_write_bonds_put(w, n, put_filled, &fl);
 }
 
 int run_write_bonds(run_writer *w, const dem_bonds *b)
@@ -412,7 +438,7 @@ int run_history(run_writer *w, const double *row)
 	return 0;
 }
 
-int run_snapshot_fill(run_writer *w, const dem_snapshot *s, run_fill fill, void *ctx)
+int run_snapshot_put(run_writer *w, const dem_snapshot *s, run_put put, void *ctx)
 {
 	char name[64];
 	/* The snapshots' dimensions, shared by all, made with the first. */
@@ -430,10 +456,16 @@ int run_snapshot_fill(run_writer *w, const dem_snapshot *s, run_fill fill, void 
 	rc = h5_attr_i64(g, "step", s->step) || h5_attr_f64(g, "t", s->t) ||
 	     h5_attr_f64(g, "strain_axial", s->strain_axial) ||
 	     h5_attr_f64(g, "stress_axial", s->stress_axial) ||
-	     write_fields(g, snap_fields, SNAP_NFIELDS, s->n, s->nbonds, fill, ctx,
+	     write_fields(g, snap_fields, SNAP_NFIELDS, s->n, s->nbonds, put, ctx,
 	                  "/snapshots/particle", "/snapshots/bond", "/snapshots/xyz");
 	H5Gclose(g);
 	return rc ? -1 : 0;
+}
+
+int run_snapshot_fill(run_writer *w, const dem_snapshot *s, run_fill fill, void *ctx)
+{
+	filled fl = {fill, ctx};
+	return run_snapshot_put(w, s, put_filled, &fl);
 }
 
 int run_snapshot(run_writer *w, const dem_snapshot *s)
