@@ -87,10 +87,6 @@ static int scalars(engine *e, size_t count[3], scalar *s)
 	return n;
 }
 
-/* CRC-32 of the checkpointed state as it is in memory, in a fixed order:
- * the same function after writing and after reading back. */
-static uLong crc(uLong c, const void *p, size_t bytes) { return crc32_z(c, p, bytes); }
-
 /* The bonds' histories and forces as checkpoints before this layout held
  * them (bond_h with a fourth column, the last u_n, and bond_force with the
  * torque per unit radius), read for their checksum. */
@@ -105,62 +101,118 @@ typedef struct {
  * and checksum. */
 static int yade_contacts(const engine *e) { return e->cs->mat.conventions == CONTACT_YADE; }
 
-/* old: when not NULL, the bonds' h and f as an old checkpoint held them. */
-static uLong pairs_crc(uLong c, const pairlist *l, int contacts, const old_bonds *old)
+/* The checksum covers the state in a fixed order of segments. A rank
+ * computes its part of each (crc_parts: its particles, bonds, contacts
+ * and platen contacts; the scalars and the surface list on rank 0), and
+ * the parts, combined in rank order (crc32_combine), give the checksum of
+ * the whole, the same on any number of ranks. */
+enum { CRC_SEGMENTS = 17 };
+typedef struct {
+	uLong crc[CRC_SEGMENTS];
+	uint64_t len[CRC_SEGMENTS];
+	int k; /* the segment being added to */
+} crc_parts;
+
+static void add(crc_parts *p, const void *data, size_t bytes)
+{
+	p->crc[p->k] = crc32_z(p->crc[p->k], data, bytes);
+	p->len[p->k] += bytes;
+}
+
+/* Bonds (contacts 0) or contacts: the records' histories and states (ends
+ * and histories), then the forces (the constants, and with Yade's
+ * conventions the starts); three segments. old: when not NULL, the bonds'
+ * h and f as an old checkpoint held them. */
+static void pairs_crc(crc_parts *p, const pairlist *l, int contacts, int yade, const old_bonds *old)
 {
 	for (size_t b = 0; b < l->n; b++) {
 		const bond *r = &l->rec[b];
 		if (contacts) {
-			c = crc(c, &r->i, sizeof r->i);
-			c = crc(c, &r->j, sizeof r->j);
+			add(p, &r->i, sizeof r->i);
+			add(p, &r->j, sizeof r->j);
 		}
-		c = crc(c, r->t, sizeof r->t);
+		add(p, r->t, sizeof r->t);
 		if (!contacts) {
-			c = old ? crc(c, old->h + OLD_NHIST * b, OLD_NHIST * sizeof *old->h)
-			        : crc(c, r->h, sizeof r->h);
-			c = crc(c, &r->state, sizeof r->state);
+			if (old)
+				add(p, old->h + OLD_NHIST * b, OLD_NHIST * sizeof *old->h);
+			else
+				add(p, r->h, sizeof r->h);
+			add(p, &r->state, sizeof r->state);
 		}
 	}
+	p->k++;
 	if (contacts) { /* their constants, as the contiguous rows of contact_k */
 		for (size_t b = 0; b < l->n; b++)
-			c = crc(c, l->rec[b].h, 3 * sizeof *l->rec[b].h);
-		return c;
+			add(p, l->rec[b].h, 3 * sizeof *l->rec[b].h);
+		p->k++;
+		for (size_t b = 0; yade && b < l->n; b++)
+			add(p, &l->rec[b].d0, sizeof(double));
+	} else if (old) {
+		add(p, old->f, OLD_FCOLS * l->n * sizeof *old->f);
+	} else {
+		add(p, l->f, (size_t)l->fcols * l->n * sizeof *l->f);
 	}
-	return old ? crc(c, old->f, OLD_FCOLS * l->n * sizeof *old->f)
-	           : crc(c, l->f, (size_t)l->fcols * l->n * sizeof *l->f);
+	p->k++;
 }
 
-static int64_t state_crc(engine *e, const pairs_view *v, const old_bonds *old)
+/* This rank's parts: the lists of v and the particles [p0, p1); head: the
+ * scalars (with the whole specimen's counts) and the surface list too. */
+static void crc_of(engine *e, const pairs_view *v, size_t p0, size_t p1, size_t count[3], int head,
+                   const old_bonds *old, crc_parts *p)
 {
-	uLong c = crc32_z(0, Z_NULL, 0);
+	memset(p, 0, sizeof *p);
 	scalar s[64];
-	size_t count[3] = {v->contacts->n, v->ncand[0], v->ncand[1]};
-	int ns = scalars(e, count, s);
+	int ns = head ? scalars(e, count, s) : 0;
 	for (int k = 0; k < ns; k++) {
 		int64_t v = s[k].i ? *s[k].i : s[k].n ? *s[k].n : s[k].z ? (int64_t)*s[k].z : 0;
-		c = s[k].d ? crc(c, s[k].d, sizeof *s[k].d) : crc(c, &v, sizeof v);
+		if (s[k].d)
+			add(p, s[k].d, sizeof *s[k].d);
+		else
+			add(p, &v, sizeof v);
 	}
+	p->k++;
 	const particles *P = &e->p;
-	size_t n = P->n;
-	c = crc(c, P->orig, n * sizeof *P->orig);
+	size_t n = p1 - p0;
+	add(p, P->orig + p0, n * sizeof *P->orig);
+	p->k++;
 	const double *vec[] = {P->x, P->v, P->w, P->x_ref};
-	for (int k = 0; k < 4; k++)
-		c = crc(c, vec[k], 3 * n * sizeof *vec[k]);
-	c = crc(c, P->flag, n * sizeof *P->flag);
-	c = crc(c, e->bc.surf.idx, e->bc.surf.n * sizeof *e->bc.surf.idx);
-	c = crc(c, e->bc.surf.area, e->bc.surf.n * sizeof *e->bc.surf.area);
-	c = pairs_crc(c, v->bonds, 0, old);
-	c = pairs_crc(c, v->contacts, 1, NULL);
-	for (size_t b = 0; yade_contacts(e) && b < v->contacts->n; b++)
-		c = crc(c, &v->contacts->rec[b].d0, sizeof(double));
-	for (int k = 0; k < 2; k++) {
-		c = crc(c, v->who[k], v->ncand[k] * sizeof *v->who[k]);
-		for (size_t q = 0; q < v->ncand[k]; q++)
-			c = crc(c, &v->pc[k][q],
-			        yade_contacts(e) ? sizeof v->pc[k][q]
-			                         : offsetof(platen_contact, u0));
+	for (int k = 0; k < 4; k++, p->k++)
+		add(p, vec[k] + 3 * p0, 3 * n * sizeof *vec[k]);
+	add(p, P->flag + p0, n * sizeof *P->flag);
+	p->k++;
+	if (head) {
+		add(p, e->bc.surf.idx, e->bc.surf.n * sizeof *e->bc.surf.idx);
+		add(p, e->bc.surf.area, e->bc.surf.n * sizeof *e->bc.surf.area);
 	}
+	p->k++;
+	pairs_crc(p, v->bonds, 0, 0, old);
+	pairs_crc(p, v->contacts, 1, yade_contacts(e), NULL);
+	for (int k = 0; k < 2; k++) {
+		add(p, v->who[k], v->ncand[k] * sizeof *v->who[k]);
+		p->k++;
+		for (size_t q = 0; q < v->ncand[k]; q++)
+			add(p, &v->pc[k][q],
+			    yade_contacts(e) ? sizeof v->pc[k][q] : offsetof(platen_contact, u0));
+		p->k++;
+	}
+}
+
+/* The parts of n ranks ([n], in rank order) combined. */
+static int64_t crc_combine(const crc_parts *p, int n)
+{
+	uLong c = crc32_z(0, Z_NULL, 0);
+	for (int k = 0; k < CRC_SEGMENTS; k++)
+		for (int q = 0; q < n; q++)
+			c = crc32_combine(c, p[q].crc[k], (z_off_t)p[q].len[k]);
 	return (int64_t)c;
+}
+
+/* Every rank's parts, in rank order, into all on rank 0. Collective. */
+static void gather_parts(const crc_parts *mine, crc_parts *all)
+{
+	_Static_assert(sizeof *mine % sizeof(uint64_t) == 0 && sizeof(uLong) == sizeof(uint64_t),
+	               "crc_parts: 64-bit words");
+	ranks_gather_u64((const uint64_t *)mine, sizeof *mine / sizeof(uint64_t), (uint64_t *)all);
 }
 
 /* Open a dataset of rows x cols (cols 0: rank 1) for overwriting, creating
@@ -219,28 +271,6 @@ static hid_t h5type(int t)
 }
 
 enum { PIECE = 16384 };
-
-/* Write one field of n records, a piece at a time (no copy of the whole). */
-static int put_field(hid_t g, const field *f, const bond *rec, size_t n)
-{
-	hid_t d = open_put(g, f->name, h5type(f->type), n, f->cols > 1 ? f->cols : 0);
-	if (d < 0)
-		return -1;
-	size_t row = f->cols * f->size;
-	unsigned char *buf = xmalloc(PIECE * row);
-	herr_t rc = 0;
-	for (size_t at = 0; rc >= 0 && at < n; at += PIECE) {
-		size_t m = n - at < PIECE ? n - at : PIECE;
-		for (size_t k = 0; k < m; k++)
-			memcpy(buf + k * row, (const unsigned char *)&rec[at + k] + f->offset, row);
-		rc = h5_slab(d, h5type(f->type), at, m, f->cols > 1 ? f->cols : 0, buf, 1);
-	}
-	free(buf);
-	H5Dclose(d);
-	if (rc < 0)
-		return h5_write_dataset_error(g, f->name);
-	return 0;
-}
 
 /* Open dataset `name` of g, which must have exactly n rows of cols columns
  * (0: one-dimensional), or -1 with the error set. */
@@ -321,77 +351,169 @@ static const field contact_fields[] = {
 /* With Yade's conventions only. */
 static const field contact_start = FIELD("contact_d0", T_F64, d0, 1);
 
-static int put_fields(hid_t g, const field *f, int nf, const pairlist *l)
+/* What a rank writes of a checkpoint dataset: rows of an array, or a
+ * field of records, or its platen contacts (ranks_fill). */
+typedef struct {
+	const void *base;
+	size_t row;
+} array_rows;
+
+static void from_array(void *ctx, size_t k0, size_t m, void *buf)
 {
-	for (int k = 0; k < nf; k++)
-		if (put_field(g, &f[k], l->rec, l->n))
-			return -1;
-	return 0;
+	const array_rows *a = ctx;
+	memcpy(buf, (const unsigned char *)a->base + k0 * a->row, m * a->row);
 }
 
-static int write_platens(hid_t g, const engine *e, const pairs_view *v)
+typedef struct {
+	const field *f;
+	const bond *rec;
+} field_rows;
+
+static void from_field(void *ctx, size_t k0, size_t m, void *buf)
 {
-	int rc = 0;
-	for (int k = 0; !rc && k < 2; k++) {
-		size_t n = v->ncand[k];
-		double *pc = xmalloc((6 * n + 1) * sizeof *pc);
-		for (size_t c = 0; c < n; c++) {
-			const platen_contact *p = &v->pc[k][c];
-			double v[6] = {p->t[0], p->t[1], p->t[2], p->kn, p->ks, p->cn};
-			memcpy(pc + 6 * c, v, sizeof v);
+	const field_rows *r = ctx;
+	size_t row = r->f->cols * r->f->size;
+	for (size_t k = 0; k < m; k++)
+		memcpy((unsigned char *)buf + k * row,
+		       (const unsigned char *)&r->rec[k0 + k] + r->f->offset, row);
+}
+
+/* A platen's contacts: t, kn, ks, cn (6 columns), or u0 (one). */
+typedef struct {
+	const platen_contact *pc;
+	int start;
+} platen_rows;
+
+static void from_platen(void *ctx, size_t k0, size_t m, void *buf)
+{
+	const platen_rows *r = ctx;
+	double *o = buf;
+	for (size_t c = 0; c < m; c++) {
+		const platen_contact *p = &r->pc[k0 + c];
+		if (r->start) {
+			o[c] = p->u0;
+			continue;
 		}
-		char who[32], con[32];
-		snprintf(who, sizeof who, "platen%d_particle", k);
-		snprintf(con, sizeof con, "platen%d_contact", k);
-		rc = put(g, who, H5T_NATIVE_INT32, v->who[k], n, 0) ||
-		     put(g, con, H5T_NATIVE_DOUBLE, pc, n, 6);
-		if (!rc && yade_contacts(e)) {
-			for (size_t c = 0; c < n; c++)
-				pc[c] = v->pc[k][c].u0;
-			snprintf(con, sizeof con, "platen%d_start", k);
-			rc = put(g, con, H5T_NATIVE_DOUBLE, pc, n, 0);
-		}
-		free(pc);
+		double v[6] = {p->t[0], p->t[1], p->t[2], p->kn, p->ks, p->cn};
+		memcpy(o + 6 * c, v, sizeof v);
 	}
-	return rc;
+}
+
+/* Dataset `name` of g from every rank's rows, in rank order (this rank's
+ * `mine`, from fill): written on rank 0, whose group g is (negative on the
+ * others). Collective. */
+static int put_rows(engine *e, hid_t g, const char *name, hid_t type, size_t cols, size_t mine,
+                    ranks_fill fill, void *ctx)
+{
+	size_t total = ranks_total(mine);
+	hid_t d = g >= 0 ? open_put(g, name, type, total, cols) : -1;
+	int rc = ranks_rows_put(e, d, type, cols, mine, fill, ctx);
+	if (d >= 0)
+		H5Dclose(d);
+	if (rc && d >= 0)
+		return h5_write_dataset_error(g, name);
+	return rc ? -1 : 0; /* open_put set the message */
+}
+
+static int put_field_rows(engine *e, hid_t g, const field *f, const pairlist *l)
+{
+	field_rows r = {f, l->rec};
+	return put_rows(e, g, f->name, h5type(f->type), f->cols > 1 ? f->cols : 0, l->n, from_field,
+	                &r);
+}
+
+static int put_array(engine *e, hid_t g, const char *name, hid_t type, size_t cols,
+                     const void *base, size_t mine)
+{
+	array_rows a = {base, (cols ? cols : 1) * H5Tget_size(type)};
+	return put_rows(e, g, name, type, cols, mine, from_array, &a);
+}
+
+/* This rank's part of the whole specimen's lists: its bonds, the contacts
+ * of its particles i (after those of earlier ranks' i in its list), its
+ * platen contacts. */
+static void own_part(const engine *e, pairs_view *v, pairlist *contacts)
+{
+	ranks_own_pairs(e, v);
+	const pairlist *C = &e->pairs.contacts;
+	size_t c0 = e->scratch.cfirst[e->ranks.blk0], c1 = e->scratch.cfirst[e->ranks.blk1];
+	*contacts = (pairlist){.n = c1 - c0, .rec = C->rec + c0, .f = C->f + 6 * c0, .fcols = 6};
+	v->contacts = contacts;
 }
 
 int checkpoint_write(engine *e, hid_t file)
 {
-	hid_t g = h5_exists(file, "checkpoint") ? h5_open_group(file, "checkpoint")
-	                                        : h5_group(file, "checkpoint");
-	if (g < 0)
-		return -1;
-	int rc = h5_attr_i64(g, "complete", 0);
+	/* On several ranks every rank takes part, each writing its own rows
+	 * through rank 0, which alone has the file. A write that fails on
+	 * rank 0 does not stop the others' part. */
+	int head = par_rank() == 0, rc = 0;
+	hid_t g = -1;
+	if (head) {
+		g = h5_exists(file, "checkpoint") ? h5_open_group(file, "checkpoint")
+		                                  : h5_group(file, "checkpoint");
+		rc = g < 0 || h5_attr_i64(g, "complete", 0);
+	}
 	pairs_view v;
-	ranks_pairs(e, &v);
-	size_t count[3] = {v.contacts->n, v.ncand[0], v.ncand[1]};
+	pairlist contacts;
+	own_part(e, &v, &contacts);
+	size_t count[3] = {ranks_total(v.contacts->n), ranks_total(v.ncand[0]),
+	                   ranks_total(v.ncand[1])};
 	scalar s[64];
 	int ns = scalars(e, count, s);
-	for (int k = 0; !rc && k < ns; k++)
+	for (int k = 0; head && !rc && k < ns; k++)
 		rc = s[k].d   ? h5_attr_f64(g, s[k].name, *s[k].d)
 		     : s[k].i ? h5_attr_i64(g, s[k].name, *s[k].i)
 		     : s[k].n ? h5_attr_i64(g, s[k].name, *s[k].n)
 		              : h5_attr_i64(g, s[k].name, (int64_t)*s[k].z);
+	if (rc && g >= 0) { /* the rest is not written, but received */
+		H5Gclose(g);
+		g = -1;
+	}
 	const particles *P = &e->p;
-	size_t n = P->n;
-	rc = rc || put(g, "orig", H5T_NATIVE_INT32, P->orig, n, 0) ||
-	     put(g, "x", H5T_NATIVE_DOUBLE, P->x, n, 3) ||
-	     put(g, "v", H5T_NATIVE_DOUBLE, P->v, n, 3) ||
-	     put(g, "w", H5T_NATIVE_DOUBLE, P->w, n, 3) ||
-	     put(g, "x_ref", H5T_NATIVE_DOUBLE, P->x_ref, n, 3) ||
-	     put(g, "flag", H5T_NATIVE_UINT8, P->flag, n, 0) ||
-	     put(g, "surface_particle", H5T_NATIVE_INT32, e->bc.surf.idx, e->bc.surf.n, 0) ||
-	     put(g, "surface_area", H5T_NATIVE_DOUBLE, e->bc.surf.area, e->bc.surf.n, 0) ||
-	     put_fields(g, bond_fields, 3, v.bonds) ||
-	     put(g, "bond_force", H5T_NATIVE_DOUBLE, v.bonds->f, v.bonds->n, 3) ||
-	     put_fields(g, contact_fields, 4, v.contacts) ||
-	     (yade_contacts(e) && put_field(g, &contact_start, v.contacts->rec, v.contacts->n)) ||
-	     write_platens(g, e, &v) || h5_attr_i64(g, "checksum", state_crc(e, &v, NULL)) ||
-	     h5_attr_i64(g, "complete", 1);
-	H5Gclose(g);
-	if (!rc && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
-		rc = h5_write_error(h5_name(file), "the checkpoint");
+	size_t p0, p1;
+	ranks_own(e, &p0, &p1);
+	rc |= put_array(e, g, "orig", H5T_NATIVE_INT32, 0, P->orig + p0, p1 - p0);
+	const char *vn[] = {"x", "v", "w", "x_ref"};
+	const double *vec[] = {P->x, P->v, P->w, P->x_ref};
+	for (int k = 0; k < 4; k++)
+		rc |= put_array(e, g, vn[k], H5T_NATIVE_DOUBLE, 3, vec[k] + 3 * p0, p1 - p0);
+	rc |= put_array(e, g, "flag", H5T_NATIVE_UINT8, 0, P->flag + p0, p1 - p0);
+	if (head && g >= 0) /* every rank holds the whole surface list */
+		rc |=
+		    put(g, "surface_particle", H5T_NATIVE_INT32, e->bc.surf.idx, e->bc.surf.n, 0) ||
+		    put(g, "surface_area", H5T_NATIVE_DOUBLE, e->bc.surf.area, e->bc.surf.n, 0);
+	for (int k = 0; k < 3; k++)
+		rc |= put_field_rows(e, g, &bond_fields[k], v.bonds);
+	rc |= put_array(e, g, "bond_force", H5T_NATIVE_DOUBLE, 3, v.bonds->f, v.bonds->n);
+	for (int k = 0; k < 4; k++)
+		rc |= put_field_rows(e, g, &contact_fields[k], v.contacts);
+	if (yade_contacts(e))
+		rc |= put_field_rows(e, g, &contact_start, v.contacts);
+	for (int k = 0; k < 2; k++) {
+		char name[32];
+		snprintf(name, sizeof name, "platen%d_particle", k);
+		rc |= put_array(e, g, name, H5T_NATIVE_INT32, 0, v.who[k], v.ncand[k]);
+		platen_rows r = {v.pc[k], 0};
+		snprintf(name, sizeof name, "platen%d_contact", k);
+		rc |= put_rows(e, g, name, H5T_NATIVE_DOUBLE, 6, v.ncand[k], from_platen, &r);
+		r.start = 1;
+		snprintf(name, sizeof name, "platen%d_start", k);
+		if (yade_contacts(e))
+			rc |=
+			    put_rows(e, g, name, H5T_NATIVE_DOUBLE, 0, v.ncand[k], from_platen, &r);
+	}
+	/* The checksum: each rank's parts, combined on rank 0. */
+	crc_parts mine, *all = head ? xmalloc((size_t)par_size() * sizeof *all) : NULL;
+	crc_of(e, &v, p0, p1, count, head, NULL, &mine);
+	gather_parts(&mine, all);
+	if (head && g >= 0) {
+		rc = rc || h5_attr_i64(g, "checksum", crc_combine(all, par_size())) ||
+		     h5_attr_i64(g, "complete", 1);
+		H5Gclose(g);
+		if (!rc && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
+			rc = h5_write_error(h5_name(file), "the checkpoint");
+	}
+	free(all);
 	return rc ? -1 : 0;
 }
 
@@ -606,19 +728,9 @@ int checkpoint_read_file(engine *e, hid_t f)
 		e->bc.pl.ncand[k] = count[1 + k];
 	particles *P = &e->p;
 	size_t n = P->n, nb = e->pairs.nbonds;
-	/* This rank's bonds' rows (ranks.h). Rank 0, whose bonds come first,
-	 * reads every bond's after its own and checks the checksum (whose
-	 * failure stops every rank), then keeps its own
-	 * (ranks_release_output). */
+	/* This rank's bonds' rows (ranks.h). */
 	pairlist *L = &e->pairs.bonds;
 	size_t first = e->pairs.bond0, rows = L->n;
-	int whole = par_rank() == 0;
-	if (whole && rows < nb) {
-		L->rec = xrealloc(L->rec, (nb + 1) * sizeof *L->rec);
-		L->f = xrealloc(L->f, (3 * nb + 1) * sizeof *L->f);
-		memset(L->rec + rows, 0, (nb - rows) * sizeof *L->rec);
-		L->cap = rows = nb;
-	}
 	old_bonds old = {NULL, NULL};
 	int is_old = 0;
 	int32_t *orig = rc ? NULL : xmalloc((n + 1) * sizeof *orig);
@@ -645,21 +757,36 @@ int checkpoint_read_file(engine *e, hid_t f)
 			             "expected a bond state from %d to %d",
 			             path, L->rec[b].state, first + b, BOND_INTACT,
 			             BOND_BROKEN_SHEAR);
-	int64_t sum = 0;
+	/* The checksum: the parts of each rank's bonds, and of the rest on
+	 * rank 0, which holds it as read (every particle, the whole
+	 * specimen's contacts and platen contacts), combined on rank 0, whose
+	 * failure stops every rank. */
+	int head = par_rank() == 0;
 	pairs_view v;
-	ranks_own_pairs(e, &v); /* as read: the whole specimen's */
-	pairlist all = {.n = nb, .rec = L->rec, .f = L->f, .fcols = 3};
-	v.bonds = &all;
-	if (!rc && whole &&
-	    (h5_read_attr_i64(g, "checksum", &sum) ||
-	     sum != state_crc(e, &v, is_old ? &old : NULL)))
+	ranks_own_pairs(e, &v);
+	pairlist none = {.fcols = 6};
+	if (!head) {
+		v.contacts = &none;
+		v.ncand[0] = v.ncand[1] = 0;
+	}
+	old_bonds own_old = {NULL, NULL};
+	if (is_old)
+		own_old = (old_bonds){old.h + OLD_NHIST * first, old.f + OLD_FCOLS * first};
+	crc_parts mine, *all = head ? xmalloc((size_t)par_size() * sizeof *all) : NULL;
+	if (!rc) {
+		crc_of(e, &v, 0, head ? n : 0, count, head, is_old ? &own_old : NULL, &mine);
+		gather_parts(&mine, all);
+	}
+	int64_t sum = 0;
+	if (!rc && head &&
+	    (h5_read_attr_i64(g, "checksum", &sum) || sum != crc_combine(all, par_size())))
 		rc = err_set("%s: the checkpoint's data do not match its checksum (damaged, or "
 		             "written by an older version): not restartable",
 		             path);
+	free(all);
 	if (!rc) { /* what this rank keeps of the whole specimen's lists */
 		contacts_restore(e);
 		platens_restore(e);
-		ranks_release_output(e);
 	}
 	free(old.h), free(old.f);
 	H5Gclose(g);

@@ -6,7 +6,9 @@
 
 #include "solve/engine.h"
 
-/* Write (or overwrite) /checkpoint in an open run file. */
+/* Write (or overwrite) /checkpoint in an open run file. On several ranks
+ * every rank calls it, and rank 0, which has the file, writes each rank's
+ * own rows (file: -1 elsewhere). Collective. */
 int checkpoint_write(engine *e, hid_t file);
 /* Restore the state of an engine freshly set up from the same assembly and
  * configuration. */

@@ -48,7 +48,7 @@ static int64_t worst_pair(const engine *e, const pairlist *L, size_t *who, int *
 void diagnose_nan(const engine *e, size_t i, char *msg, size_t n)
 {
 	const particles *P = &e->p;
-	pairs_view v; /* the whole specimen's on rank 0 (ranks_gather_output) */
+	pairs_view v; /* the whole specimen's on rank 0 (ranks_gather_all) */
 	ranks_pairs(e, &v);
 	const pairlist *L = v.bonds;
 	const char *what = "bond", *law = e->law->name;

@@ -12,19 +12,29 @@
 #include "solve/output.h"
 #include "solve/ranks.h"
 
+/* What rows of the bond table and of a snapshot are filled from: the
+ * whole specimen's bonds and every particle by its row (one process), or
+ * this rank's own bonds and particles (ranks_rows_write). */
+typedef struct {
+	engine *e;
+	const pairlist *bonds;   /* row k is bond k of this list */
+	const int32_t *internal; /* engine index of each particle row, or NULL:
+	                            row k is particle p0 + k */
+	size_t p0;
+	int f; /* the field ranks_rows_write fills */
+} rows_ctx;
+
 /* Rows of the bond table (run_fill). */
 static void bond_rows(void *ctx, int f, size_t at, size_t m, void *buf)
 {
-	const engine *e = ctx;
-	pairs_view v; /* the whole specimen's (ranks_gather_output) */
-	ranks_pairs(e, &v);
+	const rows_ctx *c = ctx;
 	int32_t *iv = buf;
 	double *dv = buf;
 	for (size_t k = 0; k < m; k++) {
 		int32_t ends[2];
-		law_const c;
+		law_const lc;
 		int ends_only = f == BTAB_I || f == BTAB_J;
-		engine_bond_entry(e, v.bonds, at + k, ends, ends_only ? NULL : &c);
+		engine_bond_entry(c->e, c->bonds, at + k, ends, ends_only ? NULL : &lc);
 		switch (f) {
 		case BTAB_I:
 			iv[k] = ends[0];
@@ -33,45 +43,35 @@ static void bond_rows(void *ctx, int f, size_t at, size_t m, void *buf)
 			iv[k] = ends[1];
 			break;
 		case BTAB_D0:
-			dv[k] = v.bonds->rec[at + k].d0;
+			dv[k] = c->bonds->rec[at + k].d0;
 			break;
 		case BTAB_AREA:
-			dv[k] = c.area;
+			dv[k] = lc.area;
 			break;
 		case BTAB_KN:
-			dv[k] = c.kn;
+			dv[k] = lc.kn;
 			break;
 		default:
-			dv[k] = c.ks;
+			dv[k] = lc.ks;
 			break;
 		}
 	}
 }
 
-int output_bonds(const engine *e, run_writer *w)
-{
-	return run_write_bonds_fill(w, e->pairs.nbonds, bond_rows, (void *)e);
-}
-
-typedef struct {
-	const engine *e;
-	int32_t *internal; /* [n] engine index of each assembly particle */
-} snapshot_ctx;
-
 /* Rows of a snapshot (run_fill): particles in the assembly's order, bonds
  * in the bond table's. */
 static void snapshot_rows(void *ctx, int f, size_t at, size_t m, void *buf)
 {
-	const snapshot_ctx *c = ctx;
+	const rows_ctx *c = ctx;
 	const particles *P = &c->e->p;
-	pairs_view v; /* the whole specimen's (ranks_gather_output) */
-	ranks_pairs(c->e, &v);
-	const pairlist *B = v.bonds;
+	const pairlist *B = c->bonds;
 	double *dv = buf;
 	if (f == SNAP_X || f == SNAP_V || f == SNAP_W) {
 		const double *src = f == SNAP_X ? P->x : f == SNAP_V ? P->v : P->w;
-		for (size_t k = 0; k < m; k++)
-			memcpy(dv + 3 * k, src + 3 * (size_t)c->internal[at + k], 3 * sizeof *dv);
+		for (size_t k = 0; k < m; k++) {
+			size_t i = c->internal ? (size_t)c->internal[at + k] : c->p0 + at + k;
+			memcpy(dv + 3 * k, src + 3 * i, 3 * sizeof *dv);
+		}
 		return;
 	}
 	for (size_t k = 0; k < m; k++) {
@@ -98,7 +98,59 @@ static void snapshot_rows(void *ctx, int f, size_t at, size_t m, void *buf)
 	}
 }
 
-int output_snapshot(const engine *e, run_writer *w)
+/* On several ranks: each field from every rank's own rows; r is rank 0's
+ * dataset, NULL on the others (run_put). */
+static void own_bond_rows(void *ctx, size_t k0, size_t m, void *buf)
+{
+	bond_rows(ctx, ((rows_ctx *)ctx)->f, k0, m, buf);
+}
+
+static void own_snapshot_rows(void *ctx, size_t k0, size_t m, void *buf)
+{
+	snapshot_rows(ctx, ((rows_ctx *)ctx)->f, k0, m, buf);
+}
+
+static int put_own(rows_ctx *c, int snapshot, int f, h5_rows *r)
+{
+	engine *e = c->e;
+	size_t cols, size;
+	int per_bond;
+	run_field_shape(snapshot, f, &cols, &size, &per_bond);
+	c->f = f;
+	ranks_fill fill = snapshot ? own_snapshot_rows : own_bond_rows;
+	if (per_bond)
+		return ranks_rows_write(e, r, e->pairs.nbonds, cols, size, e->pairs.bonds.n,
+		                        e->pairs.bond0, NULL, fill, c);
+	const rank_split *R = &e->ranks;
+	return ranks_rows_write(e, r, e->p.n, cols, size, R->p1 - R->p0, 0, e->p.orig + R->p0, fill,
+	                        c);
+}
+
+static int put_bonds(void *ctx, int f, h5_rows *r) { return put_own(ctx, 0, f, r); }
+static int put_snapshot(void *ctx, int f, h5_rows *r) { return put_own(ctx, 1, f, r); }
+
+/* The ranks other than 0, which hold no run file, take part in each
+ * field's writing as rank 0 does. */
+static int put_all(int nf, run_put put, void *ctx)
+{
+	for (int f = 0; f < nf; f++)
+		if (put(ctx, f, NULL))
+			return -1;
+	return 0;
+}
+
+int output_bonds(engine *e, run_writer *w)
+{
+	if (e->ranks.size > 1) {
+		rows_ctx c = {e, &e->pairs.bonds, NULL, 0, 0};
+		return w ? run_write_bonds_put(w, e->pairs.nbonds, put_bonds, &c)
+		         : put_all(BTAB_NFIELDS, put_bonds, &c);
+	}
+	return w && run_write_bonds_fill(w, e->pairs.nbonds, bond_rows,
+	                                 &(rows_ctx){e, &e->pairs.bonds, NULL, 0, 0});
+}
+
+int output_snapshot(engine *e, run_writer *w)
 {
 	const particles *P = &e->p;
 	dem_snapshot s = {.step = e->clock.step,
@@ -107,11 +159,19 @@ int output_snapshot(const engine *e, run_writer *w)
 	                  .stress_axial = engine_stress(e),
 	                  .n = P->n,
 	                  .nbonds = e->pairs.nbonds};
-	snapshot_ctx c = {e, xmalloc((P->n + 1) * sizeof *c.internal)};
+	if (e->ranks.size > 1) {
+		rows_ctx c = {e, &e->pairs.bonds, NULL, e->ranks.p0, 0};
+		return w ? run_snapshot_put(w, &s, put_snapshot, &c)
+		         : put_all(SNAP_NFIELDS, put_snapshot, &c);
+	}
+	if (!w)
+		return 0;
+	int32_t *internal = xmalloc((P->n + 1) * sizeof *internal);
 	for (size_t i = 0; i < P->n; i++)
-		c.internal[P->orig[i]] = (int32_t)i;
+		internal[P->orig[i]] = (int32_t)i;
+	rows_ctx c = {e, &e->pairs.bonds, internal, 0, 0};
 	int rc = run_snapshot_fill(w, &s, snapshot_rows, &c);
-	free(c.internal);
+	free(internal);
 	return rc;
 }
 

@@ -7,9 +7,12 @@
 #include "lib/runfile.h"
 #include "solve/engine.h"
 
-int output_bonds(const engine *e, run_writer *w);
+/* On several ranks every rank calls these, and w is rank 0's (NULL on the
+ * others): each rank's own rows go into the file (ranks_rows_write). One
+ * process without a run file (w NULL) writes nothing. */
+int output_bonds(engine *e, run_writer *w);
 /* Particles and bonds now; bond forces are those of the last step. */
-int output_snapshot(const engine *e, run_writer *w);
+int output_snapshot(engine *e, run_writer *w);
 /* Append the failures collected so far to /cracks. */
 int output_cracks(engine *e, run_writer *w);
 

@@ -669,7 +669,7 @@ static int grow(size_t n, size_t *cap)
 }
 #endif
 
-void ranks_gather_output(engine *e)
+void ranks_gather_all(engine *e)
 {
 #ifdef DEM_MPI
 	rank_split *R = &e->ranks;
@@ -679,7 +679,7 @@ void ranks_gather_output(engine *e)
 	double t0 = timer_now();
 	/* A rank's bonds are those of its particles i, in bond order: rank
 	 * 0's come first, and its list grows to hold the others after them
-	 * until ranks_release_output. */
+	 * (the run then ends). */
 	pairlist *B = &e->pairs.bonds;
 	size_t *at = rank_rows(0, B->n, R->size);
 	if (R->rank == 0) {
@@ -733,18 +733,6 @@ void ranks_gather_output(engine *e)
 #else
 	(void)e;
 #endif
-}
-
-void ranks_release_output(engine *e)
-{
-	rank_split *R = &e->ranks;
-	pairlist *B = &e->pairs.bonds;
-	if (R->size == 1 || B->cap == B->n)
-		return;
-	B->cap = B->n;
-	B->rec = xrealloc(B->rec, (B->n + 1) * sizeof *B->rec);
-	B->f = xrealloc(B->f, (3 * B->n + 1) * sizeof *B->f);
-	memset(&R->all_bonds, 0, sizeof R->all_bonds);
 }
 
 void ranks_own_pairs(const engine *e, pairs_view *v)

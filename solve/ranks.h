@@ -19,28 +19,29 @@
  * particles i and, before them, those of earlier ranks' particles i with
  * its own j, whose forces it receives: every contact with an end of its
  * own, in the order one process lists them. Likewise the platen contacts
- * of its own particles. Checkpoints and diagnoses read the whole
- * specimen's lists, which ranks_gather_output gathers on rank 0
- * (ranks_pairs).
+ * of its own particles.
  *
  * The other ranks' particles are stale between such exchanges: what reads
  * beyond the halo reads each rank's own particles and combines the ranks'
  * parts (the end layers, the lateral surface and the gauge, surface.c;
- * the diagnoses of a failing run, diagnose.c), and only output gathers
- * every particle, on rank 0 (ranks_gather_output). With
+ * the diagnoses of a failing run, diagnose.c). Output takes each rank's
+ * own rows of every dataset and writes them through rank 0, which has the
+ * run file (ranks_rows_write, ranks_rows_put): no rank gathers the whole
+ * specimen for it. Only the diagnosis of a non-finite state gathers every
+ * particle and pair on rank 0 (ranks_gather_all). With
  * DEM_RANKS_POISON=1 in the environment the stale particles' x, v and ω
  * are NaN instead, so that a read that misses an exchange shows.
  *
  * The bonds and contacts, with their histories, live with the rank of
  * their i: a rank holds the records of its own bonds only, and of the
- * crossing bonds it receives their ends (bonds.h). Rank 0 gathers the
- * others' for output, after its own, and lets them go after it. */
+ * crossing bonds it receives their ends (bonds.h). */
 #ifndef DEM_RANKS_H
 #define DEM_RANKS_H
 
 #include <stddef.h>
 #include <stdint.h>
 
+#include "lib/h5.h"
 #include "solve/pairlist.h"
 #include "solve/platens.h"
 
@@ -99,8 +100,8 @@ typedef struct {
 	 * largest and the mean over the ranks (ranks_traffic). */
 	double memory_state[2], memory_rss[2];
 	/* Every rank's bonds (a view of rank 0's own list, grown to hold
-	 * them), contacts and platen contacts, gathered for output on rank 0
-	 * (ranks_gather_output, ranks_pairs). */
+	 * them), contacts and platen contacts, gathered on rank 0
+	 * (ranks_gather_all, ranks_pairs). */
 	pairlist all_bonds, all_contacts;
 	size_t all_ncand[2], all_cap[2];
 	platen_contact *all_pc[2];
@@ -108,8 +109,8 @@ typedef struct {
 } rank_split;
 
 /* The bonds, contacts and platen contacts of the whole specimen, in the
- * order one process holds them: what output and checkpoints write and
- * diagnoses read. */
+ * order one process holds them: what the diagnosis of a non-finite state
+ * reads. */
 typedef struct {
 	const pairlist *bonds, *contacts;
 	size_t ncand[2];
@@ -144,17 +145,15 @@ void ranks_share_bond_values(engine *e, double *v);
  * writes the crack log, in bond order; the other ranks keep none.
  * Collective. */
 void ranks_share_cracks(engine *e, size_t first);
-/* Before output and the NaN diagnosis, on rank 0, which writes the run
- * file: every particle's state, its position at the last rebuild (x_ref)
- * and its flags, and the whole specimen's bonds (with their histories and
- * forces), contacts and platen contacts in the lists ranks_pairs shows. The other
- * ranks send theirs and keep their own. Collective. */
-void ranks_gather_output(engine *e);
-/* After the output: rank 0's list of bonds back to its own (the others'
- * were gathered after them). */
-void ranks_release_output(engine *e);
+/* Before the diagnosis of a non-finite state, which ends the run, on rank
+ * 0: every particle's state, its position at the last rebuild (x_ref) and
+ * its flags, and the whole specimen's bonds (rank 0's list grows to hold
+ * them after its own), contacts and platen contacts in the lists
+ * ranks_pairs shows. The other ranks send theirs and keep their own.
+ * Collective. */
+void ranks_gather_all(engine *e);
 /* The whole specimen's bonds, contacts and platen contacts: this rank's
- * own lists with one rank, else those of the last ranks_gather_output
+ * own lists with one rank, else those of the last ranks_gather_all
  * (empty but on rank 0). */
 void ranks_pairs(const engine *e, pairs_view *v);
 /* This rank's own bond, contact and platen lists as a view (after a
@@ -169,6 +168,32 @@ int ranks_own(const engine *e, size_t *p0, size_t *p1);
 /* This rank's `mine` entries list[0..mine), then every rank's, in rank
  * order, in list (room for all of them): their number. Collective. */
 size_t ranks_gather_list(int32_t *list, size_t mine);
+/* A dataset of the run file (rows x cols values of `size` bytes) whose
+ * rows the ranks hold: this rank's `mine` items, item k at row first + k,
+ * or dest[k] when dest is not NULL, their rows [k0, k0 + m) written into
+ * buf by fill(ctx, k0, m, buf). Where h5_rows_fill would compress the
+ * chunks itself (h5_chunk_rows), the rows go to the ranks that compress
+ * them (an even share of the chunks each, on the step's threads), and
+ * only the compressed chunks go to rank 0, which writes them into r in
+ * order: the same file as one process writes. Else every row goes to rank
+ * 0, which puts it into r. r is open on rank 0 (NULL elsewhere).
+ * Collective. */
+typedef void (*ranks_fill)(void *ctx, size_t k0, size_t m, void *buf);
+int ranks_rows_write(engine *e, h5_rows *r, size_t rows, size_t cols, size_t size, size_t mine,
+                     size_t first, const int32_t *dest, ranks_fill fill, void *ctx);
+/* Rows the ranks hold in rank order (this rank's `mine` rows, from fill),
+ * written on rank 0 into rows [0, their total) of the open dataset d (of
+ * type `type` and cols columns; rank 0's, ignored elsewhere; negative: a
+ * failure, the rows still received), a piece at a time: rank 0 writes its
+ * own, then receives each rank's pieces in turn. -1 on rank 0 if a write
+ * failed (no message set). Collective. */
+int ranks_rows_put(engine *e, hid_t d, hid_t type, size_t cols, size_t mine, ranks_fill fill,
+                   void *ctx);
+/* The sum of `mine` over the ranks. Collective. */
+size_t ranks_total(size_t mine);
+/* n values of each rank gathered in rank order into all ([size][n]) on
+ * rank 0. Collective. */
+void ranks_gather_u64(const uint64_t *mine, size_t n, uint64_t *all);
 /* The load balance: the largest and the mean number of particles (and of
  * bonds, by their i) per rank. */
 void ranks_balance(const engine *e, double particles[2], double bonds[2]);

@@ -88,10 +88,7 @@ static int snapshot(loop_state *L)
 		return 0;
 	L->last_snapshot_step = e->clock.step;
 	e->out.last_snapshot_strain = engine_strain(e);
-	ranks_gather_output(e);
-	int rc = (L->w && output_snapshot(e, L->w)) || flush_now_and_then(L);
-	ranks_release_output(e);
-	return rc;
+	return output_snapshot(e, L->w) || flush_now_and_then(L);
 }
 
 static int snapshot_due(loop_state *L)
@@ -119,10 +116,9 @@ static int checkpoint(loop_state *L)
 {
 	engine *e = L->e;
 	L->last_checkpoint = timer_now();
-	ranks_gather_output(e);
-	int rc =
-	    write_cracks(L) || (L->w && (run_flush(L->w) || checkpoint_write(e, run_hid(L->w))));
-	ranks_release_output(e);
+	int rc = write_cracks(L) || (L->w && run_flush(L->w));
+	/* Every rank writes its part, through rank 0's file. */
+	rc = checkpoint_write(e, L->w ? run_hid(L->w) : -1) || rc;
 	return rc ? -1 : 0;
 }
 
@@ -266,7 +262,7 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 	char why[512], diag[1024];
 	boundary_track_peak(e);
 	if (e->sums.particles.bad < (double)e->p.n) {
-		ranks_gather_output(e);
+		ranks_gather_all(e);
 		diagnose_nan(e, (size_t)e->sums.particles.bad, diag, sizeof diag);
 		if (measure)
 			history(L);
@@ -397,10 +393,8 @@ static run_writer *create(engine *e, const dem_assembly *a, const run_opts *o)
 static int bonds_then_loop(engine *e, run_writer *w, const run_opts *o)
 {
 	phase_start(&e->tm, TM_SETUP);
-	ranks_gather_output(e);
-	if (w && output_bonds(e, w))
+	if (output_bonds(e, w))
 		fatal(NULL);
-	ranks_release_output(e);
 	phase_stop(&e->tm, TM_SETUP);
 	return run_loop(e, w, o);
 }

@@ -4,7 +4,8 @@
 # on K' (share/doc/solve.md, "Several machines"): a UCS of the paper's
 # cement to its stress drop (end layers, cracks, snapshots, checkpoints)
 # on 1, 2 x 2 threads, and 3 ranks continued on 2; a confined triaxial
-# with an unload-reload cycle on 4 continued on 3; a Brazilian test on 7.
+# with an unload-reload cycle on 4 continued on 3; a Brazilian test on 7;
+# a larger cylinder whose output datasets have several chunks on 3 and 4.
 # same_run.py compares every dataset and attribute but the creation time
 # and the wall-clock rate. The runs on several ranks poison the particles
 # they do not receive each step (DEM_RANKS_POISON, solve/ranks.h), so a
@@ -77,6 +78,22 @@ JSON
 "$bin/solve" --quiet --threads 1 --output bts1.h5 bts.json
 ranks 7 --threads 1 --output bts7.h5 bts.json
 same bts1.h5 bts7.h5
+# Datasets of several chunks, which each rank compresses where the rows
+# are (ranks_rows_write): 26 000 spheres, 3 ranks x 2 threads; the bond
+# table and snapshots must be stored chunk for chunk as one process stores
+# them. A fourth rank holds no chunk of the particles' fields.
+"$bin/lattice-assembly" --spheres 26000 --radius 0.0005 lat.h5 >/dev/null
+cat > lat.json <<JSON
+{"test": "ucs", "assembly": "lat.h5", "material": "$share/materials/cement.json",
+ "output": {"history_every": 10, "snapshot_every": 10},
+ "loading": [{"axial": {"mode": "strain_rate", "rate": 1.0}}], "stop": {"steps": 20}}
+JSON
+"$bin/solve" --quiet --threads 1 --output lat1.h5 lat.json
+ranks 3 --threads 2 --output lat3.h5 lat.json
+same_chunks() { /usr/bin/python3 "$here/same_run.py" --chunks "$1" "$2"; }
+same_chunks lat1.h5 lat3.h5
+ranks 4 --threads 1 --output lat4.h5 lat.json
+same_chunks lat1.h5 lat4.h5
 # More ranks than the specimen has blocks of particles: one clear message
 # on each rank, a failed run, no run file.
 "$bin/pack" --quiet --diameter 0.006 --height 0.012 --radius 0.0005 --dist fuzz small.h5

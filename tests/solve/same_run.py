@@ -3,7 +3,12 @@ attribute the same but those that record when and how fast it ran (the
 creation time, the history's wall-clock rate) and HDF5's own bookkeeping of
 dimension scales (object references).
 
-Usage: same_run.py A.h5 B.h5   (exit status 0 when the same, 1 if not)"""
+With --chunks, the bond table's and the snapshots' datasets must also be
+stored the same: the same chunks, each with its filter mask and its
+compressed bytes.
+
+Usage: same_run.py [--chunks] A.h5 B.h5   (exit status 0 when the same, 1 if
+not)"""
 import sys
 
 import h5py
@@ -30,7 +35,19 @@ def same_array(a, b):
     return a.tobytes() == b.tobytes()
 
 
-def main(pa, pb):
+def stored(d):
+    """A dataset's chunks as stored: offset, filter mask, bytes."""
+    if not d.chunks or d.is_virtual:
+        return None
+    out = []
+    for k in range(d.id.get_num_chunks()):
+        offset = d.id.get_chunk_info(k).chunk_offset
+        mask, data = d.id.read_direct_chunk(offset)
+        out.append((offset, mask, bytes(data)))
+    return out
+
+
+def main(pa, pb, chunks=False):
     diffs = []
     with h5py.File(pa, "r") as fa, h5py.File(pb, "r") as fb:
         ia, ib = items(fa), items(fb)
@@ -47,6 +64,9 @@ def main(pa, pb):
             if isinstance(a, h5py.Dataset) and name not in SKIP_DATA:
                 if not same_array(a[()], b[()]):
                     diffs.append("%s: data differ" % name)
+                elif (chunks and name.startswith(("/bonds/", "/snapshots/"))
+                      and stored(a) != stored(b)):
+                    diffs.append("%s: stored chunks differ" % name)
     for d in diffs[:20]:
         print(d)
     print("%s and %s: %s (%d objects compared)" % (
@@ -55,4 +75,5 @@ def main(pa, pb):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1], sys.argv[2]))
+    args = [a for a in sys.argv[1:] if a != "--chunks"]
+    sys.exit(main(args[0], args[1], chunks="--chunks" in sys.argv[1:]))
