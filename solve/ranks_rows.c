@@ -19,105 +19,174 @@
 
 enum { TAG_CHUNK = 7, TAG_ROWS = 8 };
 
-#ifdef DEM_MPI
-
-/* The rows each rank gathers: [lo[q], lo[q + 1]), whole chunks of `piece`
- * rows split evenly among the ranks, or every row on rank 0 when the
- * dataset is not written chunk by chunk (piece 0). */
-static size_t *gather_bounds(size_t rows, size_t piece, int size)
+/* The chunks a rank compresses in a round: 16, or DEM_ROWS_ROUND from the
+ * environment (the same on every rank; a check of the rounds' bookkeeping
+ * with small datasets). */
+static size_t round_chunks(void)
 {
-	size_t *lo = xmalloc(((size_t)size + 1) * sizeof *lo);
-	size_t nchunks = piece ? (rows + piece - 1) / piece : 0;
-	for (int q = 0; q <= size; q++) {
-		size_t at = piece ? (size_t)q * nchunks / (size_t)size * piece : q ? rows : 0;
-		lo[q] = at < rows ? at : rows;
-	}
-	return lo;
+	const char *s = getenv("DEM_ROWS_ROUND");
+	long n = s ? atol(s) : 0;
+	return n > 0 ? (size_t)n : 16;
 }
 
-/* This rank's rows, filled, sent to the ranks that gather them: into the
- * returned buffer (rows [lo[rank], lo[rank + 1]), room for whole chunks of
- * `piece` rows). */
-static unsigned char *exchange(size_t row, const size_t *lo, size_t piece, size_t mine,
-                               size_t first, const int32_t *dest, ranks_fill fill, void *ctx)
+#ifdef DEM_MPI
+
+/* The items a round sends: positions [s0, s1) of this rank's items sorted
+ * by row (item order[s], or s when order is NULL), item k at row dest[k]
+ * (first + k when dest is NULL), filled by fill. */
+typedef struct {
+	size_t s0, s1, first;
+	const size_t *order;
+	const int32_t *dest;
+	ranks_fill fill;
+	void *ctx;
+} items;
+
+static size_t item_of(const items *it, size_t s) { return it->order ? it->order[s] : s; }
+
+static size_t row_of(const items *it, size_t k)
+{
+	return it->dest ? (size_t)it->dest[k] : it->first + k;
+}
+
+/* The items' rows sent to the ranks that gather them, rank q rows [lo[q],
+ * lo[q + 1]): this rank's into the returned buffer (room for whole chunks
+ * of `piece` rows), those it holds itself filled in place. */
+static unsigned char *exchange(size_t row, const size_t *lo, size_t piece, const items *it)
 {
 	int size = par_size(), rank = par_rank();
-	size_t have = lo[rank + 1] - lo[rank], room = have;
+	size_t have = lo[rank + 1] - lo[rank], room = have, mine = it->s1 - it->s0;
 	if (piece && room % piece)
 		room += piece - room % piece;
-	unsigned char *own = xmalloc(mine * row + 1), *out = xmalloc(room * row + 1);
-	fill(ctx, 0, mine, own);
+	unsigned char *out = xmalloc(room * row + 1);
 	int *scnt = xcalloc((size_t)size, sizeof *scnt),
 	    *rcnt = xmalloc((size_t)size * sizeof *rcnt);
 	int *sdsp = xmalloc((size_t)size * sizeof *sdsp),
 	    *rdsp = xmalloc((size_t)size * sizeof *rdsp);
-	int *to = xmalloc((mine + 1) * sizeof *to);
-	for (size_t k = 0; k < mine; k++) {
-		size_t d = dest ? (size_t)dest[k] : first + k;
-		to[k] = run_of(lo, size, d);
-		scnt[to[k]]++;
-	}
+	for (size_t s = it->s0; s < it->s1; s++)
+		scnt[run_of(lo, size, row_of(it, item_of(it, s)))]++;
+	size_t keep = (size_t)scnt[rank];
+	scnt[rank] = 0;
 	MPI_Alltoall(scnt, 1, MPI_INT, rcnt, 1, MPI_INT, MPI_COMM_WORLD);
 	sdsp[0] = rdsp[0] = 0;
 	for (int q = 1; q < size; q++) {
 		sdsp[q] = sdsp[q - 1] + scnt[q - 1];
 		rdsp[q] = rdsp[q - 1] + rcnt[q - 1];
 	}
+	size_t nrecv = have - keep;
+	unsigned char *send = xmalloc((mine - keep) * row + 1), *recv = xmalloc(nrecv * row + 1);
+	int64_t *sidx = xmalloc((mine - keep + 1) * sizeof *sidx);
+	int64_t *ridx = xmalloc((nrecv + 1) * sizeof *ridx);
+	/* In row order: the rows of earlier ranks, this rank's own, then
+	 * later ranks'. A run of consecutive items is filled at once. */
+	size_t ns = 0;
+	for (size_t s = it->s0, m; s < it->s1; s += m) {
+		size_t k = item_of(it, s), at = row_of(it, k);
+		int q = run_of(lo, size, at);
+		for (m = 1; s + m < it->s1 && !it->order && !it->dest && at + m < lo[q + 1]; m++)
+			;
+		unsigned char *to = q == rank ? out + (at - lo[rank]) * row : send + ns * row;
+		it->fill(it->ctx, k, m, to);
+		for (size_t u = 0; q != rank && u < m; u++)
+			sidx[ns++] = (int64_t)(at + u);
+	}
 	MPI_Datatype t;
 	MPI_Type_contiguous((int)row, MPI_BYTE, &t);
 	MPI_Type_commit(&t);
-	if (!dest) {
-		/* Runs of rows in row order: each rank's items go in rank order,
-		 * and arrive in place. */
-		MPI_Alltoallv(own, scnt, sdsp, t, out, rcnt, rdsp, t, MPI_COMM_WORLD);
-	} else {
-		/* Rows anywhere: each goes with its row number, grouped by rank. */
-		unsigned char *send = xmalloc(mine * row + 1), *recv = xmalloc(have * row + 1);
-		int64_t *sidx = xmalloc((mine + 1) * sizeof *sidx);
-		int64_t *ridx = xmalloc((have + 1) * sizeof *ridx);
-		int *at = xmalloc((size_t)size * sizeof *at);
-		memcpy(at, sdsp, (size_t)size * sizeof *at);
-		for (size_t k = 0; k < mine; k++) {
-			size_t s = (size_t)at[to[k]]++;
-			memcpy(send + s * row, own + k * row, row);
-			sidx[s] = dest[k];
-		}
-		MPI_Alltoallv(sidx, scnt, sdsp, MPI_INT64_T, ridx, rcnt, rdsp, MPI_INT64_T,
-		              MPI_COMM_WORLD);
-		MPI_Alltoallv(send, scnt, sdsp, t, recv, rcnt, rdsp, t, MPI_COMM_WORLD);
-		for (size_t k = 0; k < have; k++)
-			memcpy(out + ((size_t)ridx[k] - lo[rank]) * row, recv + k * row, row);
-		free(send), free(recv), free(sidx), free(ridx), free(at);
-	}
+	MPI_Alltoallv(sidx, scnt, sdsp, MPI_INT64_T, ridx, rcnt, rdsp, MPI_INT64_T, MPI_COMM_WORLD);
+	MPI_Alltoallv(send, scnt, sdsp, t, recv, rcnt, rdsp, t, MPI_COMM_WORLD);
 	MPI_Type_free(&t);
-	free(own), free(to), free(scnt), free(rcnt), free(sdsp), free(rdsp);
+	for (size_t k = 0; k < nrecv; k++)
+		memcpy(out + ((size_t)ridx[k] - lo[rank]) * row, recv + k * row, row);
+	free(send), free(recv), free(sidx), free(ridx);
+	free(scnt), free(rcnt), free(sdsp), free(rdsp);
 	return out;
 }
 
-/* This rank's chunks compressed on the step's threads: chunk c (of n) at
- * z + c * zcap, its bytes and filter mask in meta[2 c], meta[2 c + 1]. */
-static void compress_chunks(const engine *e, unsigned char *raw, size_t rows, size_t piece,
-                            size_t width, size_t size, unsigned char *z, size_t zcap,
-                            uint64_t *meta)
+/* This rank's chunks (rows of raw, room for whole chunks of piece rows)
+ * compressed on the step's threads, a chunk each at a time, their bytes
+ * appended in chunk order to the returned buffer; chunk c's size and
+ * filter mask in meta[2 c], meta[2 c + 1]. */
+static unsigned char *compress_chunks(const engine *e, unsigned char *raw, size_t rows,
+                                      size_t piece, size_t width, size_t size, uint64_t *meta)
 {
-	size_t bytes = piece * width * size, n = (rows + piece - 1) / piece;
-#pragma omp parallel num_threads(e->team > 0 ? e->team : 1)
-	{
-		unsigned char *shuf = xmalloc(bytes);
-#pragma omp for schedule(dynamic, 1)
-		for (size_t c = 0; c < n; c++) {
-			size_t m = rows - c * piece < piece ? rows - c * piece : piece;
+	size_t bytes = piece * width * size, zcap = h5_chunk_zcap(bytes);
+	size_t n = (rows + piece - 1) / piece, team = e->team > 1 ? (size_t)e->team : 1;
+	unsigned char *z = xmalloc(team * zcap), *shuf = xmalloc(team * bytes);
+	const unsigned char **data = xmalloc(team * sizeof *data);
+	size_t cap = n * bytes / 2 + 1, len = 0;
+	unsigned char *packed = xmalloc(cap);
+	for (size_t c0 = 0; c0 < n; c0 += team) {
+		int nb = (int)(n - c0 < team ? n - c0 : team);
+#pragma omp parallel for num_threads(nb) schedule(static, 1)
+		for (int k = 0; k < nb; k++) {
+			size_t c = c0 + (size_t)k,
+			       m = rows - c * piece < piece ? rows - c * piece : piece;
 			unsigned mask;
-			const unsigned char *data;
-			size_t zn = h5_chunk_compress(raw + c * bytes, shuf, z + c * zcap, piece, m,
-			                              width, size, &mask, &data);
-			if (data != z + c * zcap)
-				memcpy(z + c * zcap, data, zn);
-			meta[2 * c] = zn;
+			meta[2 * c] = h5_chunk_compress(raw + c * bytes, shuf + (size_t)k * bytes,
+			                                z + (size_t)k * zcap, piece, m, width, size,
+			                                &mask, &data[k]);
 			meta[2 * c + 1] = mask;
 		}
-		free(shuf);
+		for (int k = 0; k < nb; k++) {
+			size_t zn = (size_t)meta[2 * (c0 + (size_t)k)];
+			if (len + zn > cap) {
+				cap = 2 * cap + zn;
+				packed = xrealloc(packed, cap);
+			}
+			memcpy(packed + len, data[k], zn);
+			len += zn;
+		}
 	}
+	free(z), free(shuf), free(data);
+	return packed;
+}
+
+/* One round of chunks: rank q compresses the chunks of rows [lo[q],
+ * lo[q + 1]) and rank 0 writes them all in order. */
+static int write_round(engine *e, h5_rows *r, const size_t *lo, size_t piece, size_t width,
+                       size_t size, const items *it)
+{
+	int nr = par_size(), rank = par_rank(), rc = 0;
+	size_t row = width * size, have = lo[rank + 1] - lo[rank];
+	unsigned char *raw = exchange(row, lo, piece, it);
+	size_t n = (have + piece - 1) / piece, zcap = h5_chunk_zcap(piece * row);
+	uint64_t *meta = xmalloc((2 * n + 1) * sizeof *meta);
+	unsigned char *z = compress_chunks(e, raw, have, piece, width, size, meta);
+	free(raw);
+	if (rank > 0) {
+		MPI_Send(meta, (int)(2 * n), MPI_UINT64_T, 0, TAG_CHUNK, MPI_COMM_WORLD);
+		for (size_t c = 0, at = 0; c < n; at += meta[2 * c++])
+			MPI_Send(z + at, (int)meta[2 * c], MPI_BYTE, 0, TAG_CHUNK, MPI_COMM_WORLD);
+	} else {
+		/* Rank 0's chunks, then each rank's in turn; after a failed write
+		 * the rest are still received. */
+		for (size_t c = 0, at = 0; c < n; at += meta[2 * c++])
+			rc = rc || h5_rows_put_chunk(r, (unsigned)meta[2 * c + 1],
+			                             (size_t)meta[2 * c], z + at);
+		z = xrealloc(z, zcap);
+		for (int q = 1; q < nr; q++) {
+			size_t nq = (lo[q + 1] - lo[q] + piece - 1) / piece;
+			meta = xrealloc(meta, (2 * nq + 1) * sizeof *meta);
+			MPI_Recv(meta, (int)(2 * nq), MPI_UINT64_T, q, TAG_CHUNK, MPI_COMM_WORLD,
+			         MPI_STATUS_IGNORE);
+			for (size_t c = 0; c < nq; c++) {
+				MPI_Recv(z, (int)meta[2 * c], MPI_BYTE, q, TAG_CHUNK,
+				         MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+				rc = rc || h5_rows_put_chunk(r, (unsigned)meta[2 * c + 1],
+				                             (size_t)meta[2 * c], z);
+			}
+		}
+	}
+	free(z), free(meta);
+	return rc;
+}
+
+static const int32_t *sort_dest;
+static int by_dest(const void *a, const void *b)
+{
+	int32_t x = sort_dest[*(const size_t *)a], y = sort_dest[*(const size_t *)b];
+	return (x > y) - (x < y);
 }
 #endif
 
@@ -125,51 +194,50 @@ int ranks_rows_write(engine *e, h5_rows *r, size_t rows, size_t cols, size_t siz
                      size_t first, const int32_t *dest, ranks_fill fill, void *ctx)
 {
 #ifdef DEM_MPI
-	int nr = par_size(), rank = par_rank();
+	int nr = par_size(), rank = par_rank(), rc = 0;
 	double t0 = timer_now();
 	size_t width = cols ? cols : 1, row = width * size, piece = h5_chunk_rows(rows, cols);
-	size_t *lo = gather_bounds(rows, piece, nr);
-	unsigned char *raw = exchange(row, lo, piece, mine, first, dest, fill, ctx);
-	size_t have = lo[rank + 1] - lo[rank];
-	int rc = 0;
+	items it = {0, mine, first, NULL, dest, fill, ctx};
+	size_t *lo = xmalloc(((size_t)nr + 1) * sizeof *lo);
 	if (!piece) {
-		/* Rank 0 holds every row: through HDF5's filters. */
-		for (size_t at = 0, m; r && (m = h5_rows_piece(r)) > 0 && !rc; at += m)
+		/* Every row to rank 0, and through HDF5's filters. */
+		for (int q = 0; q <= nr; q++)
+			lo[q] = q ? rows : 0;
+		unsigned char *raw = exchange(row, lo, 0, &it);
+		for (size_t at = 0, m; rank == 0 && (m = h5_rows_piece(r)) > 0 && !rc; at += m)
 			rc = h5_rows_put(r, raw + at * row, m);
-	} else {
-		size_t n = (have + piece - 1) / piece, zcap = h5_chunk_zcap(piece * row);
-		unsigned char *z = xmalloc((n ? n : 1) * zcap); /* rank 0 receives into it */
-		uint64_t *meta = xmalloc((2 * n + 1) * sizeof *meta);
-		compress_chunks(e, raw, have, piece, width, size, z, zcap, meta);
 		free(raw);
-		raw = NULL;
-		if (rank > 0) {
-			MPI_Send(meta, (int)(2 * n), MPI_UINT64_T, 0, TAG_CHUNK, MPI_COMM_WORLD);
-			for (size_t c = 0; c < n; c++)
-				MPI_Send(z + c * zcap, (int)meta[2 * c], MPI_BYTE, 0, TAG_CHUNK,
-				         MPI_COMM_WORLD);
-		} else {
-			/* Rank 0's chunks, then each rank's in turn; after a failed
-			 * write the rest are still received. */
-			for (size_t c = 0; c < n; c++)
-				rc = rc || h5_rows_put_chunk(r, (unsigned)meta[2 * c + 1],
-				                             (size_t)meta[2 * c], z + c * zcap);
-			for (int q = 1; q < nr; q++) {
-				size_t nq = (lo[q + 1] - lo[q] + piece - 1) / piece;
-				meta = xrealloc(meta, (2 * nq + 1) * sizeof *meta);
-				MPI_Recv(meta, (int)(2 * nq), MPI_UINT64_T, q, TAG_CHUNK,
-				         MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-				for (size_t c = 0; c < nq; c++) {
-					MPI_Recv(z, (int)meta[2 * c], MPI_BYTE, q, TAG_CHUNK,
-					         MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-					rc = rc || h5_rows_put_chunk(r, (unsigned)meta[2 * c + 1],
-					                             (size_t)meta[2 * c], z);
-				}
-			}
+	} else {
+		/* Rounds of a few chunks a rank, so that no rank holds more than
+		 * those and what it sends: its items in row order, each round
+		 * taking the next of them. */
+		size_t *order = NULL;
+		if (dest) {
+			order = xmalloc((mine + 1) * sizeof *order);
+			for (size_t k = 0; k < mine; k++)
+				order[k] = k;
+			sort_dest = dest;
+			qsort(order, mine, sizeof *order, by_dest);
+			it.order = order;
 		}
-		free(z), free(meta);
+		size_t nchunks = (rows + piece - 1) / piece;
+		size_t each = round_chunks();
+		for (size_t c0 = 0, nc; c0 < nchunks; c0 += nc) {
+			/* This round's chunks, split evenly among the ranks. */
+			nc = nchunks - c0 < each * (size_t)nr ? nchunks - c0 : each * (size_t)nr;
+			for (int q = 0; q <= nr; q++) {
+				size_t at = (c0 + (size_t)q * nc / (size_t)nr) * piece;
+				lo[q] = at < rows ? at : rows;
+			}
+			for (it.s1 = it.s0;
+			     it.s1 < mine && row_of(&it, item_of(&it, it.s1)) < lo[nr];)
+				it.s1++;
+			rc = write_round(e, r, lo, piece, width, size, &it) || rc;
+			it.s0 = it.s1;
+		}
+		free(order);
 	}
-	free(raw), free(lo);
+	free(lo);
 	e->ranks.sec[RANKS_GATHERS] += timer_now() - t0;
 	return rc ? -1 : 0;
 #else
