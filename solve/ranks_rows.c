@@ -19,6 +19,7 @@
 
 enum { TAG_CHUNK = 7, TAG_ROWS = 8 };
 
+#ifdef DEM_MPI
 /* The chunks a rank compresses in a round: 16, or DEM_ROWS_ROUND from the
  * environment (the same on every rank; a check of the rounds' bookkeeping
  * with small datasets). */
@@ -28,8 +29,6 @@ static size_t round_chunks(void)
 	long n = s ? atol(s) : 0;
 	return n > 0 ? (size_t)n : 16;
 }
-
-#ifdef DEM_MPI
 
 /* The items a round sends: positions [s0, s1) of this rank's items sorted
  * by row (item order[s], or s when order is NULL), item k at row dest[k]
