@@ -214,6 +214,7 @@ static int bonds_fused(engine *e, const int32_t *idx, int nq, crack_buf *cb, law
 	                .idx = idx,
 	                .n = nq,
 	                .dt = e->clock.dt};
+	o->damage = 0;
 	int elastic = e->law->force_pairs(e->lp, &in, o);
 	int32_t rest[BATCH] = {0}, lane[BATCH];
 	int nr = 0;
@@ -260,7 +261,7 @@ static void bonds_compute(engine *e, const int32_t *idx, int nq, int measure, cr
 			bond_part *d = &part[q];
 			for (int c = 0; c < 6; c++)
 				d->f[c] = o.f[c][q];
-			d->e_damage = 0;
+			d->e_damage = o.damage ? o.e_damage[q] : 0;
 			d->e_friction = 0;
 			d->e_viscous = o.e_viscous[q];
 		}
@@ -320,10 +321,13 @@ static inline void bond_add(engine *e, size_t b, const bond_part *o, int measure
 }
 
 /* The same for lane q of force_pairs' output, a bond of the share: it
- * dissipates nothing but its viscous energy (adding the zeros would leave
- * the sums as they are: started at +0, a sum is never -0). */
+ * dissipates nothing but its viscous energy and any plastic work (adding
+ * the zeros would leave the sums as they are: started at +0, a sum is
+ * never -0). */
 static inline void bond_add_fused(engine *e, size_t b, const law_fused *o, int q, pair_sums *s)
 {
+	if (o->damage)
+		s->e_damage += o->e_damage[q];
 	s->e_viscous += o->e_viscous[q];
 	double f[6];
 	for (int c = 0; c < 6; c++)

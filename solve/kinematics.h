@@ -192,12 +192,16 @@ struct law_pairs {
 /* What law.force_pairs gives for each lane q that stays on the law's
  * elastic branch (elastic[q] != 0; nothing for the others): the force on i
  * and the torque per unit radius (pair_force), the viscous energy
- * u̇_n f_viscous Δt, and the bond's new history. */
+ * u̇_n f_viscous Δt, and the bond's new history. A law whose lanes may also
+ * flow plastically there (no damage, no failure) sets damage, which the
+ * caller sets to 0 first, and gives their plastic work in e_damage. */
 struct law_fused {
 	int history; /* whether h and state may have changed (else only t) */
+	int damage;  /* whether e_damage holds the lanes' plastic work (else 0) */
 	int32_t elastic[LAW_LANES];
 	double f[6][LAW_LANES];
 	double e_viscous[LAW_LANES];
+	double e_damage[LAW_LANES]; /* J, as law_out.e_damage */
 	double t[3][LAW_LANES], h[LAW_NHIST][LAW_LANES];
 	int32_t state[LAW_LANES];
 };

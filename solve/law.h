@@ -30,6 +30,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "lib/cfg.h"
 #include "solve/clones.h"
@@ -225,6 +226,22 @@ static inline void law_lane_put(law_batch *B, int q, const bond *b, const law_ou
 /* The smaller and the larger of two numbers, inline: the compiler calls the
  * C library for fmin and fmax unless it may ignore NaNs, which it may not
  * here. (A NaN stops the run anyway; it is diagnosed after the step.) */
+/* k ? a : b chosen on the bits, both computed first: the compiler keeps it
+ * a select, where ?: on two computed values may become a branch around
+ * one of them, and a loop with a floating-point operation in a branch is
+ * not vectorised under strict floating point (the operation could trap).
+ * The same value as ?:. */
+static inline double law_sel(int64_t k, double a, double b)
+{
+	uint64_t x, y, m = (uint64_t)0 - (uint64_t)(k != 0);
+	memcpy(&x, &a, sizeof x);
+	memcpy(&y, &b, sizeof y);
+	x = (x & m) | (y & ~m);
+	double r;
+	memcpy(&r, &x, sizeof r);
+	return r;
+}
+
 static inline double law_min(double a, double b) { return a < b ? a : b; }
 static inline double law_max(double a, double b) { return a > b ? a : b; }
 

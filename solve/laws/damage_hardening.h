@@ -146,6 +146,35 @@ static inline double dh_normal_first(const dh_params *q, double eps_max, double 
 	return sigma;
 }
 
+/* dh_normal without branches for every state that changes no damage, for
+ * the vector loops of laws with a hardening curve: loading past the
+ * largest compression so far on any part of the curve (with its plastic
+ * work), unloading and reloading about the permanent indentation, tension
+ * up to the limit strain. s, cp: the curve's stress and permanent strain
+ * at the compressive strain c; s0, cp0 at the largest so far, *h2. The
+ * normal stress, as dh_normal gives it, with the opening strain *e, the
+ * new *h2 (c when loading), the dissipated energy per unit volume *w (0
+ * but when loading where the curve has left its elastic part) and whether
+ * the bond is on that branch (*elastic; else dh_normal must compute it).
+ * The same expressions as dh_normal, chosen by law_sel. */
+static inline double dh_normal_curve(const dh_params *q, double c, double s, double cp, double s0,
+                                     double cp0, double h0, double *h2, double *e, double *w,
+                                     int32_t *elastic)
+{
+	double c_max = *h2;
+	int64_t loading = c > c_max;
+	double open = law_sel(loading, cp - c, cp0 - c);
+	double tension = q->E0 * open * dh_secant(h0, q->delta_n);
+	double sigma = law_sel(loading, -s, law_sel(open <= 0, q->E0 * open, tension));
+	double work = 0.5 * (s0 + s) * (c - c_max) - 0.5 * (s * s - s0 * s0) / q->E0;
+	int32_t ok = (int32_t)loading | (open <= q->eps_t);
+	*w = law_sel(loading & (cp > 0), 0.0 + work, 0);
+	*h2 = law_sel(ok & loading, c, c_max);
+	*e = open;
+	*elastic = ok;
+	return sigma;
+}
+
 /* Elastic energy of the normal spring in the state stored in h at the
  * normal displacement un of the last force() call (changing nothing):
  * 1/2 F^2 / K with the current stiffness, K_n0 in compression and

@@ -139,6 +139,19 @@ static double onate_curve(const void *law, double c, double *cp)
 	return s;
 }
 
+/* onate_curve with law_sel in place of its branches, for the vector loop
+ * of force_pairs: the same expressions, so the same values. */
+static inline double onate_curve_sel(const onate_params *restrict p, double c, double *cp)
+{
+	int64_t k1 = c > p->eps[0], k2 = c > p->eps[1], k3 = c > p->eps[2];
+	double lcs = law_sel(k3, p->lcs[2], law_sel(k2, p->lcs[1], p->lcs[0]));
+	double slope = law_sel(k3, p->slope[2], law_sel(k2, p->slope[1], p->slope[0]));
+	double eps = law_sel(k3, p->eps[2], law_sel(k2, p->eps[1], p->eps[0]));
+	double s = lcs + slope * (c - eps);
+	*cp = law_sel(k1, c - s / p->q.E0, 0);
+	return law_sel(k1, s, p->q.E0 * c);
+}
+
 static void onate_constants(const law_params *lp, const law_pair *pair, law_const *out)
 {
 	const onate_params *p = (const onate_params *)lp;
@@ -255,13 +268,18 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void onate_batch(const law_par
 }
 
 /* force_pairs: onate_batch's vector loops as one, from the particles'
- * state to the forces in one pass (kinematics.h). */
-DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
-onate_pairs_loop(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
+ * state to the forces in one pass (kinematics.h). With `curve`, the
+ * normal force on every part of the loading curve (dh_normal_curve):
+ * loading past the largest compression with its plastic work
+ * (o->e_damage), unloading and reloading about the permanent indentation;
+ * else on its first part only (dh_normal_first), which costs less. */
+static inline __attribute__((always_inline)) int
+onate_pairs_body(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o, int curve)
 {
 	int32_t state[LAW_LANES];
 	law_pairs_states(rec, idx, n, state);
 	o->history = 1;
+	o->damage = curve;
 	int count = 0;
 	for (int q = 0; q < n; q++) {
 		const bond *b = &rec[idx[q]];
@@ -269,12 +287,19 @@ onate_pairs_loop(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *re
 		double h[LAW_NHIST] = {b->h[0], b->h[1], b->h[2]};
 		law_pair pair = {
 		    .ri = r[b->i], .rj = r[b->j], .mi = m[b->i], .mj = m[b->j], .d0 = b->d0};
-		/* normal: dh_normal on the curve's first segment */
+		/* normal: dh_normal */
 		double A = area_of_radii(p->area.alpha, pair.ri, pair.rj), inv_d = 1 / pair.d0;
-		double e;
+		double c = -(k.un * inv_d), e, fn;
 		int32_t elastic;
-		double fn = A * dh_normal_first(&p->q, p->eps[0], -(k.un * inv_d), h[0], &h[2], &e,
-		                                &elastic);
+		if (curve) {
+			double cp, cp0, w;
+			double s = onate_curve_sel(p, c, &cp), s0 = onate_curve_sel(p, h[2], &cp0);
+			fn = A * dh_normal_curve(&p->q, c, s, cp, s0, cp0, h[0], &h[2], &e, &w,
+			                         &elastic);
+			o->e_damage[q] = 0.0 + A * pair.d0 * w;
+		} else {
+			fn = A * dh_normal_first(&p->q, p->eps[0], c, h[0], &h[2], &e, &elastic);
+		}
 		/* shear, viscous force */
 		double kn = A * p->q.E0 * (1 / pair.d0), ks = kn * p->ks_over_kn;
 		double fnc = fn < 0 ? -fn : 0;
@@ -295,9 +320,29 @@ onate_pairs_loop(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *re
 	return count;
 }
 
-static int onate_pairs(const law_params *p, const law_pairs *in, law_fused *o)
+DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
+onate_pairs_first(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
-	return onate_pairs_loop((const onate_params *)p, LAW_PAIRS_ARGS(in), o);
+	return onate_pairs_body(p, x, v, w, r, m, rec, idx, n, dt, o, 0);
+}
+
+DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
+onate_pairs_curve(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
+{
+	return onate_pairs_body(p, x, v, w, r, m, rec, idx, n, dt, o, 1);
+}
+
+/* The whole curve where a bond of the batch has been compressed past its
+ * first part (LCS1); else the first part, whose lanes that now load past
+ * it go the staged way, this once. */
+static int onate_pairs(const law_params *lp, const law_pairs *in, law_fused *o)
+{
+	const onate_params *p = (const onate_params *)lp;
+	int hardened = 0;
+	for (int q = 0; q < in->n; q++)
+		hardened |= in->rec[in->idx[q]].h[2] > p->eps[0];
+	return hardened ? onate_pairs_curve(p, LAW_PAIRS_ARGS(in), o)
+	                : onate_pairs_first(p, LAW_PAIRS_ARGS(in), o);
 }
 
 static double onate_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)
