@@ -288,7 +288,7 @@ static inline void acc_add(double *a, double d0, double d1, double d2, double d3
 static inline void add_to_j(engine *e, int32_t j, const double f[6])
 {
 	double rj = e->p.r[j];
-	acc_add(e->scratch.acc + 6 * j, -f[0], -f[1], -f[2], rj * f[3], rj * f[4], rj * f[5]);
+	acc_add(engine_acc(e, (size_t)j), -f[0], -f[1], -f[2], rj * f[3], rj * f[4], rj * f[5]);
 }
 
 /* Bond b's force f on i kept (L->f), and its force and torque added to
@@ -299,7 +299,7 @@ static inline void bond_add_force(engine *e, size_t b, const double f[6], int bo
 	const bond *bd = &L->rec[b];
 	memcpy(L->f + 3 * b, f, 3 * sizeof *f);
 	double ri = e->p.r[bd->i];
-	acc_add(e->scratch.acc + 6 * bd->i, f[0], f[1], f[2], ri * f[3], ri * f[4], ri * f[5]);
+	acc_add(engine_acc(e, (size_t)bd->i), f[0], f[1], f[2], ri * f[3], ri * f[4], ri * f[5]);
 	if (both)
 		add_to_j(e, bd->j, f);
 }
@@ -377,7 +377,7 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 	size_t p0 = S->pfirst[k], p1 = S->pfirst[k + 1], base = e->pairs.bond0;
 	if (p0 == p1)
 		return;
-	memset(e->scratch.acc + 6 * p0, 0, 6 * (p1 - p0) * sizeof *e->scratch.acc);
+	memset(engine_acc(e, p0), 0, 6 * (p1 - p0) * sizeof *e->scratch.acc);
 	/* The crossing bonds of earlier shares that reach this one come first
 	 * in bond order: they add to their particle j here. */
 	for (size_t q = S->infirst[k]; q < S->infirst[k + 1]; q++) {

@@ -175,9 +175,10 @@ static void crc_of(engine *e, const pairs_view *v, size_t p0, size_t p1, size_t 
 	size_t n = p1 - p0;
 	add(p, P->orig + p0, n * sizeof *P->orig);
 	p->k++;
-	const double *vec[] = {P->x, P->v, P->w, P->x_ref};
+	const double *vec[] = {P->x + 3 * p0, P->v + 3 * p0, P->w + 3 * p0,
+	                       P->x_ref + 3 * (p0 - P->own0)};
 	for (int k = 0; k < 4; k++, p->k++)
-		add(p, vec[k] + 3 * p0, 3 * n * sizeof *vec[k]);
+		add(p, vec[k], 3 * n * sizeof *vec[k]);
 	add(p, P->flag + p0, n * sizeof *P->flag);
 	p->k++;
 	if (head) {
@@ -474,9 +475,10 @@ int checkpoint_write(engine *e, hid_t file)
 	ranks_own(e, &p0, &p1);
 	rc |= put_array(e, g, "orig", H5T_NATIVE_INT32, 0, P->orig + p0, p1 - p0);
 	const char *vn[] = {"x", "v", "w", "x_ref"};
-	const double *vec[] = {P->x, P->v, P->w, P->x_ref};
+	const double *vec[] = {P->x + 3 * p0, P->v + 3 * p0, P->w + 3 * p0,
+	                       P->x_ref + 3 * (p0 - P->own0)};
 	for (int k = 0; k < 4; k++)
-		rc |= put_array(e, g, vn[k], H5T_NATIVE_DOUBLE, 3, vec[k] + 3 * p0, p1 - p0);
+		rc |= put_array(e, g, vn[k], H5T_NATIVE_DOUBLE, 3, vec[k], p1 - p0);
 	rc |= put_array(e, g, "flag", H5T_NATIVE_UINT8, 0, P->flag + p0, p1 - p0);
 	if (head && g >= 0) /* every rank holds the whole surface list */
 		rc |=
@@ -727,7 +729,9 @@ int checkpoint_read_file(engine *e, hid_t f)
 	for (int k = 0; k < 2; k++)
 		e->bc.pl.ncand[k] = count[1 + k];
 	particles *P = &e->p;
-	size_t n = P->n, nb = e->pairs.nbonds;
+	size_t n = P->n, nb = e->pairs.nbonds, p0, p1;
+	ranks_own(e, &p0, &p1);
+	size_t own = p1 - p0;
 	/* This rank's bonds' rows (ranks.h). */
 	pairlist *L = &e->pairs.bonds;
 	size_t first = e->pairs.bond0, rows = L->n;
@@ -745,7 +749,7 @@ int checkpoint_read_file(engine *e, hid_t f)
 	rc = rc || get(g, "x", H5T_NATIVE_DOUBLE, P->x, n, 3) ||
 	     get(g, "v", H5T_NATIVE_DOUBLE, P->v, n, 3) ||
 	     get(g, "w", H5T_NATIVE_DOUBLE, P->w, n, 3) ||
-	     get(g, "x_ref", H5T_NATIVE_DOUBLE, P->x_ref, n, 3) ||
+	     get_rows(g, "x_ref", P->x_ref, p0, own, n, 3) ||
 	     get(g, "flag", H5T_NATIVE_UINT8, P->flag, n, 0) ||
 	     get_field(g, &bond_fields[0], L->rec, first, rows, nb) ||
 	     get_field(g, &bond_fields[2], L->rec, first, rows, nb) ||
@@ -757,10 +761,10 @@ int checkpoint_read_file(engine *e, hid_t f)
 			             "expected a bond state from %d to %d",
 			             path, L->rec[b].state, first + b, BOND_INTACT,
 			             BOND_BROKEN_SHEAR);
-	/* The checksum: the parts of each rank's bonds, and of the rest on
-	 * rank 0, which holds it as read (every particle, the whole
-	 * specimen's contacts and platen contacts), combined on rank 0, whose
-	 * failure stops every rank. */
+	/* The checksum: the parts of each rank's particles and bonds, and of
+	 * the rest on rank 0, which holds it as read (the whole specimen's
+	 * contacts and platen contacts), combined on rank 0, whose failure
+	 * stops every rank. */
 	int head = par_rank() == 0;
 	pairs_view v;
 	ranks_own_pairs(e, &v);
@@ -774,7 +778,7 @@ int checkpoint_read_file(engine *e, hid_t f)
 		own_old = (old_bonds){old.h + OLD_NHIST * first, old.f + OLD_FCOLS * first};
 	crc_parts mine, *all = head ? xmalloc((size_t)par_size() * sizeof *all) : NULL;
 	if (!rc) {
-		crc_of(e, &v, 0, head ? n : 0, count, head, is_old ? &own_old : NULL, &mine);
+		crc_of(e, &v, p0, p1, count, head, is_old ? &own_old : NULL, &mine);
 		gather_parts(&mine, all);
 	}
 	int64_t sum = 0;

@@ -191,7 +191,7 @@ void contacts_rebuild(engine *e)
 	search_set_free(&s);
 	pairlist_csr(L, p0, p1); /* the forces gathered by this rank's particles */
 	contacts_index_blocks(e);
-	memcpy(P->x_ref + 3 * p0, P->x + 3 * p0, 3 * (p1 - p0) * sizeof *P->x);
+	memcpy(P->x_ref + 3 * (p0 - P->own0), P->x + 3 * p0, 3 * (p1 - p0) * sizeof *P->x);
 	platens_rebuild(e);
 	ranks_contacts(e);
 	e->pairs.rebuilds++;

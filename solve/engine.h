@@ -43,7 +43,9 @@ typedef struct {
 	double *x, *v, *w; /* [n][3] m, m/s (at t - dt/2), rad/s */
 	double *r, *m;     /* m, kg */
 	int32_t *orig;     /* index in the assembly */
-	double *x_ref;     /* [n][3] positions at the last neighbour rebuild */
+	size_t own0;       /* this rank's first particle (ranks.h), of x_ref */
+	double *x_ref;     /* [own][3] positions at the last neighbour rebuild,
+	                      particle i's at 3 (i - own0) */
 	uint8_t *flag;     /* PF_* */
 	int32_t *surf;     /* slot in the lateral surface list, or -1 */
 	int32_t *pslot[2]; /* contact slot with platen 0 (bottom) / 1 (top), or -1 */
@@ -154,7 +156,8 @@ typedef struct {
 	pair_sums *bblock, *cblock; /* bonds and contacts by the block of their i */
 	size_t *cfirst;             /* [particle blocks + 1] first contact of each */
 	particle_sums *pblock;
-	double *acc; /* [n][6] sum of the bond forces and torques per unit radius */
+	double *acc; /* [own][6] sum of the bond forces and torques per unit
+	                radius, particle i's at 6 (i - p.own0) (engine_acc) */
 } engine_scratch;
 
 typedef struct engine engine;
@@ -180,6 +183,12 @@ struct engine {
 	rank_split ranks; /* this rank's particles, and what crosses to others */
 	phase_timers tm;
 };
+
+/* Particle i's sums of bond forces (6 doubles); i is this rank's own. */
+static inline double *engine_acc(const engine *e, size_t i)
+{
+	return e->scratch.acc + 6 * (i - e->p.own0);
+}
 
 typedef struct {
 	int threads; /* OpenMP threads; 0: the case's "threads", else all cores */

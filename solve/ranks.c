@@ -695,9 +695,7 @@ void ranks_gather_all(engine *e)
 	                          .f = B->f,
 	                          .fcols = 3};
 	free(at);
-	/* Each rank's particles' positions at the last rebuild and flags (the
-	 * end layers: checkpoints). */
-	gather_rows(e->p.x_ref, R->pfirst, 3 * sizeof *e->p.x_ref, R->size, 0);
+	/* Each rank's particles' flags (the end layers). */
 	gather_rows(e->p.flag, R->pfirst, sizeof *e->p.flag, R->size, 0);
 	/* A rank's contacts are those of its particles i (the ones of its
 	 * particles j from earlier ranks come first in its list). */

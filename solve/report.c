@@ -17,11 +17,12 @@ static const char *const exchange_names[RANKS_NX] = {"forces", "halo", "ghosts",
 
 size_t engine_bytes(const engine *e)
 {
-	size_t n = e->p.n;
-	/* x v w x_ref (3 each), r m, orig surf pslot[2], flag, and the sum of
-	 * the bond forces on each (6) */
-	size_t bytes = n * (12 * sizeof(double) + 2 * sizeof(double) + 4 * sizeof(int32_t) + 1 +
-	                    6 * sizeof(double));
+	size_t n = e->p.n, p0, p1;
+	ranks_own(e, &p0, &p1);
+	/* x v w (3 each), r m, orig surf pslot[2], flag; of this rank's own
+	 * particles x_ref (3) and the sum of the bond forces on each (6) */
+	size_t bytes = n * (9 * sizeof(double) + 2 * sizeof(double) + 4 * sizeof(int32_t) + 1) +
+	               (p1 - p0) * 9 * sizeof(double);
 	const bond_split *S = &e->pairs.split;
 	bytes += S->cfirst ? S->cfirst[S->n] * (sizeof(int32_t) + sizeof(bond_part)) : 0;
 	/* bonds: record, force; contacts: record (with the constants), force,

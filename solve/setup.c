@@ -58,6 +58,20 @@ static int32_t *morton_order(const dem_assembly *a)
 	return perm;
 }
 
+/* The arrays only a rank's own particles need (the positions at the last
+ * rebuild, the sums of the bond forces) for its own from now on, once the
+ * particles are split among the ranks (all of them with one). */
+static void keep_own(engine *e)
+{
+	size_t p0, p1;
+	ranks_own(e, &p0, &p1);
+	particles *P = &e->p;
+	P->own0 = p0;
+	free(P->x_ref), free(e->scratch.acc);
+	P->x_ref = xcalloc(3 * (p1 - p0) + 1, sizeof *P->x_ref);
+	e->scratch.acc = xcalloc(6 * (p1 - p0) + 1, sizeof *e->scratch.acc);
+}
+
 static int load_particles(engine *e, const dem_assembly *a)
 {
 	particles *P = &e->p;
@@ -229,6 +243,7 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 		               par_size(), e->p.n, BLOCK, e->pairs.split.n,
 		               e->pairs.split.n > 1 ? "s" : "");
 	ranks_split(e);
+	keep_own(e);
 	bonds_init_history(e);
 	e->prog.peak = e->prog.stage_peak = -INFINITY;
 	boundary_begin_stage(e);

@@ -196,7 +196,7 @@ static inline void advance(engine *e, int32_t i, const double vn[3], const doubl
 		v[c] = vn[c];
 		w[c] = wn[c];
 		x[c] += dt * vn[c];
-		double dx = x[c] - P->x_ref[3 * i + c];
+		double dx = x[c] - P->x_ref[3 * ((size_t)i - P->own0) + c];
 		d2 += dx * dx;
 	}
 	s->disp2 = d2 > s->disp2 ? d2 : s->disp2;
@@ -207,7 +207,7 @@ static inline void advance(engine *e, int32_t i, const double vn[3], const doubl
 static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 {
 	particles *P = &e->p;
-	const double *acc = e->scratch.acc + 6 * i;
+	const double *acc = engine_acc(e, (size_t)i);
 	double F[3] = {acc[0], acc[1], acc[2]}, T[3] = {acc[3], acc[4], acc[5]};
 	gather(&e->pairs.contacts, i, P->r[i], F, T);
 	for (int k = 0; k < 2; k++)
@@ -259,11 +259,13 @@ typedef struct {
 /* move_free (DAMPING_VECTOR) and advance with ext = 0 for the nf particles
  * fl->i[0..nf) of forces fl->F, fl->T, with their expressions, in a loop
  * the compiler can vectorise (the division of damp computed whatever the
- * speed, its result used only where it is positive, as damp uses it). */
+ * speed, its result used only where it is positive, as damp uses it). XR
+ * holds the positions at the last rebuild from particle xr0 on. */
 DEM_VECTOR_CLONES __attribute__((noinline)) static void
 integrate_free(const double *restrict X, const double *restrict V, const double *restrict W,
                const double *restrict R, const double *restrict M, const double *restrict XR,
-               double dt, double alpha_t, double alpha_r, free_lanes *restrict fl, int nf)
+               int32_t xr0, double dt, double alpha_t, double alpha_r, free_lanes *restrict fl,
+               int nf)
 {
 	for (int q = 0; q < nf; q++) {
 		int32_t i = fl->i[q];
@@ -274,7 +276,7 @@ integrate_free(const double *restrict X, const double *restrict V, const double 
 			v[c] = V[3 * i + c];
 			w[c] = W[3 * i + c];
 			x[c] = X[3 * i + c];
-			xr[c] = XR[3 * i + c];
+			xr[c] = XR[3 * (i - xr0) + c];
 		}
 		double mass = M[i], ri = R[i];
 		double im = 1 / mass, ii = 1 / (0.4 * mass * ri * ri);
@@ -336,7 +338,7 @@ DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
 	for (size_t i = k * BLOCK; i < hi; i++) {
 		if (!moves_freely(e, i))
 			continue;
-		const double *acc = e->scratch.acc + 6 * i;
+		const double *acc = engine_acc(e, (size_t)i);
 		double F[3] = {acc[0], acc[1], acc[2]}, T[3] = {acc[3], acc[4], acc[5]};
 		gather(&e->pairs.contacts, (int32_t)i, P->r[i], F, T);
 		for (int c = 0; c < 3; c++) {
@@ -345,8 +347,8 @@ DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
 		}
 		fl.i[nf++] = (int32_t)i;
 	}
-	integrate_free(P->x, P->v, P->w, P->r, P->m, P->x_ref, e->clock.dt, e->cs->alpha_t,
-	               e->cs->alpha_r, &fl, nf);
+	integrate_free(P->x, P->v, P->w, P->r, P->m, P->x_ref, (int32_t)P->own0, e->clock.dt,
+	               e->cs->alpha_t, e->cs->alpha_r, &fl, nf);
 	int q = 0;
 	for (size_t i = k * BLOCK; i < hi; i++) {
 		if (q == nf || fl.i[q] != (int32_t)i) {
