@@ -571,14 +571,15 @@ static int read_bond_h_f(hid_t g, const engine *e, size_t first, size_t rows, si
 	return 0;
 }
 
-/* The checkpoint's nc contacts, read in pieces: on rank 0, which checks the
- * checksum over them, all of them; on another rank those with an end of
- * its own (contacts_restore keeps what each rank lists). */
+/* The checkpoint's nc contacts, read in pieces: those with an end of this
+ * rank's own, in the file's order, which is that of their i: first those
+ * of earlier ranks' i, then those of its own (contacts_restore keeps what
+ * each rank lists). */
 static int read_pairs(hid_t g, engine *e, size_t nc)
 {
 	pairlist *L = &e->pairs.contacts;
 	size_t p0, p1;
-	int all = !ranks_own(e, &p0, &p1) || par_rank() == 0;
+	int all = !ranks_own(e, &p0, &p1);
 	bond *piece = xmalloc(PIECE * sizeof *piece);
 	int rc = 0;
 	L->n = 0;
@@ -761,18 +762,22 @@ int checkpoint_read_file(engine *e, hid_t f)
 			             "expected a bond state from %d to %d",
 			             path, L->rec[b].state, first + b, BOND_INTACT,
 			             BOND_BROKEN_SHEAR);
-	/* The checksum: the parts of each rank's particles and bonds, and of
-	 * the rest on rank 0, which holds it as read (the whole specimen's
-	 * contacts and platen contacts), combined on rank 0, whose failure
-	 * stops every rank. */
+	/* The checksum: the parts of each rank's particles, bonds and
+	 * contacts (those of its own i, after the others in its list), and of
+	 * the rest on rank 0 (the platen contacts, which every rank reads
+	 * whole), combined on rank 0, whose failure stops every rank. */
 	int head = par_rank() == 0;
 	pairs_view v;
 	ranks_own_pairs(e, &v);
-	pairlist none = {.fcols = 6};
-	if (!head) {
-		v.contacts = &none;
+	const pairlist *C = &e->pairs.contacts;
+	size_t c0 = 0;
+	while (c0 < C->n && (size_t)C->rec[c0].i < p0)
+		c0++;
+	pairlist contacts = {
+	    .n = C->n - c0, .rec = C->rec + c0, .f = C->f + 6 * c0, .fcols = C->fcols};
+	v.contacts = &contacts;
+	if (!head)
 		v.ncand[0] = v.ncand[1] = 0;
-	}
 	old_bonds own_old = {NULL, NULL};
 	if (is_old)
 		own_old = (old_bonds){old.h + OLD_NHIST * first, old.f + OLD_FCOLS * first};
