@@ -62,9 +62,9 @@ typedef struct {
 
 /* What a rank spends its exchanges on: the crossing pairs' forces and the
  * halo's state (point to point, every step), the ghosts (point to point,
- * at a neighbour rebuild, with the gather of the ranks' boxes), the full
- * gathers (every particle's state, the pairs' histories for output, the
- * crack log) and the reductions (par.h). */
+ * at a neighbour rebuild, with the gather of the ranks' boxes), the
+ * gathers (the output's rows and compressed chunks, the crack log, the
+ * diagnosis's gather of everything) and the reductions (par.h). */
 enum { RANKS_FORCES, RANKS_HALO, RANKS_GHOSTS, RANKS_GATHERS, RANKS_REDUCTIONS, RANKS_NX };
 
 typedef struct {
@@ -78,8 +78,8 @@ typedef struct {
 	rank_links hsend, hrecv;    /* the halo: particles whose x, v, ω go to
 	                               (come from) each peer, in increasing order */
 	int poison;                 /* DEM_RANKS_POISON: and NaN */
-	double recv_halo, recv_all; /* bytes of state received so far by halo
-	                               exchanges and by full gathers */
+	double recv_halo, recv_all; /* bytes received so far by halo exchanges
+	                               and by gathers (output, diagnosis) */
 	double recv_ghosts;         /* and with the ghosts */
 	double recv_forces;         /* bytes of crossing forces received so far */
 	double ngathers;            /* collective gathers (MPI_Allgather(v)) so far */

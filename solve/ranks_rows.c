@@ -50,8 +50,10 @@ static size_t row_of(const items *it, size_t k)
 
 /* The items' rows sent to the ranks that gather them, rank q rows [lo[q],
  * lo[q + 1]): this rank's into the returned buffer (room for whole chunks
- * of `piece` rows), those it holds itself filled in place. */
-static unsigned char *exchange(size_t row, const size_t *lo, size_t piece, const items *it)
+ * of `piece` rows), those it holds itself filled in place. The bytes
+ * received are added to *recv. */
+static unsigned char *exchange(size_t row, const size_t *lo, size_t piece, const items *it,
+                               double *recv_bytes)
 {
 	int size = par_size(), rank = par_rank();
 	size_t have = lo[rank + 1] - lo[rank], room = have, mine = it->s1 - it->s0;
@@ -97,6 +99,7 @@ static unsigned char *exchange(size_t row, const size_t *lo, size_t piece, const
 	MPI_Type_free(&t);
 	for (size_t k = 0; k < nrecv; k++)
 		memcpy(out + ((size_t)ridx[k] - lo[rank]) * row, recv + k * row, row);
+	*recv_bytes += (double)(nrecv * row);
 	free(send), free(recv), free(sidx), free(ridx);
 	free(scnt), free(rcnt), free(sdsp), free(rdsp);
 	return out;
@@ -148,7 +151,7 @@ static int write_round(engine *e, h5_rows *r, const size_t *lo, size_t piece, si
 {
 	int nr = par_size(), rank = par_rank(), rc = 0;
 	size_t row = width * size, have = lo[rank + 1] - lo[rank];
-	unsigned char *raw = exchange(row, lo, piece, it);
+	unsigned char *raw = exchange(row, lo, piece, it, &e->ranks.recv_all);
 	size_t n = (have + piece - 1) / piece, zcap = h5_chunk_zcap(piece * row);
 	uint64_t *meta = xmalloc((2 * n + 1) * sizeof *meta);
 	unsigned char *z = compress_chunks(e, raw, have, piece, width, size, meta);
@@ -172,6 +175,7 @@ static int write_round(engine *e, h5_rows *r, const size_t *lo, size_t piece, si
 			for (size_t c = 0; c < nq; c++) {
 				MPI_Recv(z, (int)meta[2 * c], MPI_BYTE, q, TAG_CHUNK,
 				         MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+				e->ranks.recv_all += (double)meta[2 * c];
 				rc = rc || h5_rows_put_chunk(r, (unsigned)meta[2 * c + 1],
 				                             (size_t)meta[2 * c], z);
 			}
@@ -202,7 +206,7 @@ int ranks_rows_write(engine *e, h5_rows *r, size_t rows, size_t cols, size_t siz
 		/* Every row to rank 0, and through HDF5's filters. */
 		for (int q = 0; q <= nr; q++)
 			lo[q] = q ? rows : 0;
-		unsigned char *raw = exchange(row, lo, 0, &it);
+		unsigned char *raw = exchange(row, lo, 0, &it, &e->ranks.recv_all);
 		for (size_t at = 0, m; rank == 0 && (m = h5_rows_piece(r)) > 0 && !rc; at += m)
 			rc = h5_rows_put(r, raw + at * row, m);
 		free(raw);
@@ -296,6 +300,7 @@ int ranks_rows_put(engine *e, hid_t d, hid_t type, size_t cols, size_t mine, ran
 				m = cnt[q] - k0 < piece ? cnt[q] - k0 : piece;
 				MPI_Recv(buf, (int)(m * row), MPI_BYTE, q, TAG_ROWS, MPI_COMM_WORLD,
 				         MPI_STATUS_IGNORE);
+				e->ranks.recv_all += (double)(m * row);
 				rc = rc || h5_slab(d, type, at, m, cols, buf, 1);
 				at += m;
 			}
