@@ -223,9 +223,6 @@ static inline void law_lane_put(law_batch *B, int q, const bond *b, const law_ou
 			LAW_LANE(FORCE, p, B, q);                                            \
 	}
 
-/* The smaller and the larger of two numbers, inline: the compiler calls the
- * C library for fmin and fmax unless it may ignore NaNs, which it may not
- * here. (A NaN stops the run anyway; it is diagnosed after the step.) */
 /* k ? a : b chosen on the bits, both computed first: the compiler keeps it
  * a select, where ?: on two computed values may become a branch around
  * one of them, and a loop with a floating-point operation in a branch is
@@ -242,6 +239,9 @@ static inline double law_sel(int64_t k, double a, double b)
 	return r;
 }
 
+/* The smaller and the larger of two numbers, inline: the compiler calls the
+ * C library for fmin and fmax unless it may ignore NaNs, which it may not
+ * here. (A NaN stops the run anyway; it is diagnosed after the step.) */
 static inline double law_min(double a, double b) { return a < b ? a : b; }
 static inline double law_max(double a, double b) { return a > b ? a : b; }
 

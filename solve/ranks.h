@@ -146,10 +146,10 @@ void ranks_share_bond_values(engine *e, double *v);
  * Collective. */
 void ranks_share_cracks(engine *e, size_t first);
 /* Before the diagnosis of a non-finite state, which ends the run, on rank
- * 0: every particle's state and flags, and the whole specimen's bonds (rank 0's list grows to hold
- * them after its own), contacts and platen contacts in the lists
- * ranks_pairs shows. The other ranks send theirs and keep their own.
- * Collective. */
+ * 0: every particle's state and flags, and the whole specimen's bonds
+ * (rank 0's list grows to hold them after its own), contacts and platen
+ * contacts in the lists ranks_pairs shows. The other ranks send theirs and
+ * keep their own. Collective. */
 void ranks_gather_all(engine *e);
 /* The whole specimen's bonds, contacts and platen contacts: this rank's
  * own lists with one rank, else those of the last ranks_gather_all
