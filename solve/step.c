@@ -231,15 +231,16 @@ static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 	advance(e, i, vn, wn, ext, s);
 }
 
-/* Whether particle i moves freely under its forces alone (move_free, then
- * advance, with no external force): no platen, confinement, end layer or
- * radial constraint acts on it. */
-static inline int moves_freely(const engine *e, size_t i)
+/* Whether particle i moves freely under its forces alone and, unless the
+ * step measures, the confining pressure (move_free, then advance, with
+ * that pressure as its external force): no platen, end layer or radial
+ * constraint acts on it. *confined: whether the pressure does. */
+static inline int moves_freely(const engine *e, size_t i, int measure, int *confined)
 {
 	const particles *P = &e->p;
 	uint8_t flag = P->flag[i];
-	return P->pslot[0][i] < 0 && P->pslot[1][i] < 0 &&
-	       !(P->surf[i] >= 0 && e->bc.loads.lateral == LATERAL_PRESSURE) &&
+	*confined = P->surf[i] >= 0 && e->bc.loads.lateral == LATERAL_PRESSURE;
+	return P->pslot[0][i] < 0 && P->pslot[1][i] < 0 && !(*confined && measure) &&
 	       !(flag & PF_CONSTRAINED) &&
 	       !(e->bc.loads.layers && (flag & (PF_LAYER_BOTTOM | PF_LAYER_TOP)));
 }
@@ -247,16 +248,18 @@ static inline int moves_freely(const engine *e, size_t i)
 /* What move_free and advance compute for the free particles of a block
  * (with the vector form of the damping), lane by lane: the new state and
  * each particle's terms of the block's sums, added in particle order
- * afterwards. */
+ * afterwards. ext is the confining force (0 but on the confined), already
+ * in F; lateral its magnitude, where confined. */
 typedef struct {
 	int32_t i[BLOCK];
-	double F[3][BLOCK], T[3][BLOCK];
+	uint8_t confined[BLOCK];
+	double F[3][BLOCK], T[3][BLOCK], ext[3][BLOCK], lateral[BLOCK];
 	double v[3][BLOCK], w[3][BLOCK], x[3][BLOCK];
 	double damped[BLOCK], ke[BLOCK], ke_new[BLOCK], vv[BLOCK], work[BLOCK], d2[BLOCK];
 	double finite[BLOCK]; /* the sum whose finiteness advance checks */
 } free_lanes;
 
-/* move_free (DAMPING_VECTOR) and advance with ext = 0 for the nf particles
+/* move_free (DAMPING_VECTOR) and advance with ext fl->ext for the nf particles
  * fl->i[0..nf) of forces fl->F, fl->T, with their expressions, in a loop
  * the compiler can vectorise (the division of damp computed whatever the
  * speed, its result used only where it is positive, as damp uses it). XR
@@ -300,8 +303,10 @@ integrate_free(const double *restrict X, const double *restrict V, const double 
 		double vv = dot3(vn, vn);
 		fl->vv[q] = vv;
 		fl->ke_new[q] = 0.5 * (mass * vv + inertia * dot3(wn, wn));
+		double ext[3] = {fl->ext[0][q], fl->ext[1][q], fl->ext[2][q]};
 		fl->work[q] =
-		    0.5 * dt * (0.0 * (v[0] + vn[0]) + 0.0 * (v[1] + vn[1]) + 0.0 * (v[2] + vn[2]));
+		    0.5 * dt *
+		    (ext[0] * (v[0] + vn[0]) + ext[1] * (v[1] + vn[1]) + ext[2] * (v[2] + vn[2]));
 		double d2 = 0;
 		for (int c = 0; c < 3; c++) {
 			x[c] += dt * vn[c];
@@ -336,15 +341,25 @@ DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
 	free_lanes fl;
 	int nf = 0;
 	for (size_t i = k * BLOCK; i < hi; i++) {
-		if (!moves_freely(e, i))
+		int confined;
+		if (!moves_freely(e, i, measure, &confined))
 			continue;
 		const double *acc = engine_acc(e, (size_t)i);
 		double F[3] = {acc[0], acc[1], acc[2]}, T[3] = {acc[3], acc[4], acc[5]};
+		double ext[3] = {0, 0, 0}, er[3];
+		particle_sums lateral = {0};
 		gather(&e->pairs.contacts, (int32_t)i, P->r[i], F, T);
+		if (confined) { /* as integrate_one: its sum added below */
+			radial_unit(e, P->x + 3 * i, er);
+			confine(e, (int32_t)i, P->surf[i], er, F, ext, &lateral, 0);
+		}
 		for (int c = 0; c < 3; c++) {
 			fl.F[c][nf] = F[c];
 			fl.T[c][nf] = T[c];
+			fl.ext[c][nf] = ext[c];
 		}
+		fl.confined[nf] = (uint8_t)confined;
+		fl.lateral[nf] = lateral.lateral_force;
 		fl.i[nf++] = (int32_t)i;
 	}
 	integrate_free(P->x, P->v, P->w, P->r, P->m, P->x_ref, (int32_t)P->own0, e->clock.dt,
@@ -355,6 +370,8 @@ DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
 			integrate_one(e, (int32_t)i, measure, s);
 			continue;
 		}
+		if (fl.confined[q])
+			s->lateral_force += fl.lateral[q];
 		s->e_damped -= fl.damped[q];
 		s->ke += fl.ke[q];
 		s->ke_new += fl.ke_new[q];
