@@ -51,7 +51,7 @@ static size_t row_of(const items *it, size_t k)
 /* The items' rows sent to the ranks that gather them, rank q rows [lo[q],
  * lo[q + 1]): this rank's into the returned buffer (room for whole chunks
  * of `piece` rows), those it holds itself filled in place. The bytes
- * received are added to *recv. */
+ * received are added to *recv_bytes. */
 static unsigned char *exchange(size_t row, const size_t *lo, size_t piece, const items *it,
                                double *recv_bytes)
 {

@@ -346,20 +346,22 @@ DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
 			continue;
 		const double *acc = engine_acc(e, (size_t)i);
 		double F[3] = {acc[0], acc[1], acc[2]}, T[3] = {acc[3], acc[4], acc[5]};
-		double ext[3] = {0, 0, 0}, er[3];
-		particle_sums lateral = {0};
+		double ext[3] = {0, 0, 0};
 		gather(&e->pairs.contacts, (int32_t)i, P->r[i], F, T);
+		fl.confined[nf] = (uint8_t)confined;
+		fl.lateral[nf] = 0;
 		if (confined) { /* as integrate_one: its sum added below */
+			double er[3];
+			particle_sums lateral = {0};
 			radial_unit(e, P->x + 3 * i, er);
 			confine(e, (int32_t)i, P->surf[i], er, F, ext, &lateral, 0);
+			fl.lateral[nf] = lateral.lateral_force;
 		}
 		for (int c = 0; c < 3; c++) {
 			fl.F[c][nf] = F[c];
 			fl.T[c][nf] = T[c];
 			fl.ext[c][nf] = ext[c];
 		}
-		fl.confined[nf] = (uint8_t)confined;
-		fl.lateral[nf] = lateral.lateral_force;
 		fl.i[nf++] = (int32_t)i;
 	}
 	integrate_free(P->x, P->v, P->w, P->r, P->m, P->x_ref, (int32_t)P->own0, e->clock.dt,
