@@ -82,12 +82,15 @@ void boundary_begin_stage(engine *e)
 	if (s->axial == AXIAL_LAYERS && !e->prog.layers_selected)
 		select_layers(e, s->thickness > 0 ? s->thickness : 2 * e->frame.r_mean);
 	particles *P = &e->p;
-	for (size_t i = 0; i < P->n; i++)
+	size_t p0, p1;
+	ranks_own(e, &p0, &p1);
+	for (size_t i = p0; i < p1; i++)
 		P->flag[i] &= (uint8_t)~PF_CONSTRAINED;
 	if (s->lateral == LATERAL_CONSTRAINT) {
 		surface_update(e);
-		for (size_t k = 0; k < e->bc.surf.n; k++)
-			P->flag[e->bc.surf.idx[k]] |= PF_CONSTRAINED;
+		for (size_t i = p0; i < p1; i++)
+			if (P->surf[i] >= 0)
+				P->flag[i] |= PF_CONSTRAINED;
 	}
 	if (s->lateral != LATERAL_PRESSURE)
 		e->prog.pressure = 0;

@@ -119,17 +119,20 @@ static void add(crc_parts *p, const void *data, size_t bytes)
 	p->len[p->k] += bytes;
 }
 
-/* Bonds (contacts 0) or contacts: the records' histories and states (ends
- * and histories), then the forces (the constants, and with Yade's
- * conventions the starts); three segments. old: when not NULL, the bonds'
- * h and f as an old checkpoint held them. */
-static void pairs_crc(crc_parts *p, const pairlist *l, int contacts, int yade, const old_bonds *old)
+/* Bonds (contacts 0) or contacts: the records' histories and states (ends,
+ * their indices in the whole specimen, and histories), then the forces
+ * (the constants, and with Yade's conventions the starts); three
+ * segments. old: when not NULL, the bonds' h and f as an old checkpoint
+ * held them. */
+static void pairs_crc(crc_parts *p, const particles *P, const pairlist *l, int contacts, int yade,
+                      const old_bonds *old)
 {
 	for (size_t b = 0; b < l->n; b++) {
 		const bond *r = &l->rec[b];
 		if (contacts) {
-			add(p, &r->i, sizeof r->i);
-			add(p, &r->j, sizeof r->j);
+			int32_t ends[2] = {(int32_t)particle_global(P, (size_t)r->i),
+			                   (int32_t)particle_global(P, (size_t)r->j)};
+			add(p, ends, sizeof ends);
 		}
 		add(p, r->t, sizeof r->t);
 		if (!contacts) {
@@ -186,8 +189,8 @@ static void crc_of(engine *e, const pairs_view *v, size_t p0, size_t p1, size_t 
 		add(p, e->bc.surf.area, e->bc.surf.n * sizeof *e->bc.surf.area);
 	}
 	p->k++;
-	pairs_crc(p, v->bonds, 0, 0, old);
-	pairs_crc(p, v->contacts, 1, yade_contacts(e), NULL);
+	pairs_crc(p, P, v->bonds, 0, 0, old);
+	pairs_crc(p, P, v->contacts, 1, yade_contacts(e), NULL);
 	for (int k = 0; k < 2; k++) {
 		add(p, v->who[k], v->ncand[k] * sizeof *v->who[k]);
 		p->k++;
@@ -368,15 +371,26 @@ static void from_array(void *ctx, size_t k0, size_t m, void *buf)
 typedef struct {
 	const field *f;
 	const bond *rec;
+	const particles *P; /* for a contact's end: its index in the whole
+	                       specimen written; else NULL */
 } field_rows;
 
 static void from_field(void *ctx, size_t k0, size_t m, void *buf)
 {
 	const field_rows *r = ctx;
 	size_t row = r->f->cols * r->f->size;
-	for (size_t k = 0; k < m; k++)
-		memcpy((unsigned char *)buf + k * row,
-		       (const unsigned char *)&r->rec[k0 + k] + r->f->offset, row);
+	for (size_t k = 0; k < m; k++) {
+		const unsigned char *src = (const unsigned char *)&r->rec[k0 + k] + r->f->offset;
+		unsigned char *dst = (unsigned char *)buf + k * row;
+		if (r->P) {
+			int32_t end;
+			memcpy(&end, src, sizeof end);
+			end = (int32_t)particle_global(r->P, (size_t)end);
+			memcpy(dst, &end, sizeof end);
+		} else {
+			memcpy(dst, src, row);
+		}
+	}
 }
 
 /* A platen's contacts: t, kn, ks, cn (6 columns), or u0 (one). */
@@ -418,7 +432,8 @@ static int put_rows(engine *e, hid_t g, const char *name, hid_t type, size_t col
 
 static int put_field_rows(engine *e, hid_t g, const field *f, const pairlist *l)
 {
-	field_rows r = {f, l->rec};
+	int end = f == &contact_fields[0] || f == &contact_fields[1];
+	field_rows r = {f, l->rec, end ? &e->p : NULL};
 	return put_rows(e, g, f->name, h5type(f->type), f->cols > 1 ? f->cols : 0, l->n, from_field,
 	                &r);
 }
@@ -679,8 +694,10 @@ static int read_surface(hid_t g, engine *e)
 {
 	surface *S = &e->bc.surf;
 	particles *P = &e->p;
+	if (S->n > P->n)
+		return err_set("%s: checkpoint surface larger than the specimen", h5_name(g));
 	if (S->n > S->cap)
-		return err_set("%s: checkpoint surface larger than its bins", h5_name(g));
+		surface_room(S, S->n);
 	if (get(g, "surface_particle", H5T_NATIVE_INT32, S->idx, S->n, 0) ||
 	    get(g, "surface_area", H5T_NATIVE_DOUBLE, S->area, S->n, 0))
 		return -1;

@@ -55,7 +55,8 @@ static int bonded(const engine *e, int32_t i, int32_t j)
 	return lo < S->ncross && S->ci[lo] == i && S->cj[lo] == j;
 }
 
-static void reserve(pairlist *l, size_t n, size_t np)
+/* Room for n pairs, and the gather index of this rank's particles. */
+static void reserve(const engine *e, pairlist *l, size_t n)
 {
 	if (n <= l->cap && l->off)
 		return;
@@ -64,8 +65,12 @@ static void reserve(pairlist *l, size_t n, size_t np)
 	l->fcols = 6;
 	l->f = xrealloc(l->f, 6 * cap * sizeof *l->f);
 	l->ref = xrealloc(l->ref, 2 * cap * sizeof *l->ref);
-	if (!l->off)
-		l->off = xcalloc(np + 1, sizeof *l->off);
+	if (!l->off) {
+		size_t p0, p1;
+		ranks_own(e, &p0, &p1);
+		l->off = (int32_t *)xcalloc(p1 - p0 + 2, sizeof *l->off) - p0;
+		l->off0 = p0;
+	}
 	l->cap = cap;
 }
 
@@ -73,7 +78,7 @@ static void add_contact(engine *e, pairlist *L, const pairlist *old, size_t *o, 
                         int32_t j)
 {
 	const particles *P = &e->p;
-	reserve(L, L->n + 1, P->n);
+	reserve(e, L, L->n + 1);
 	bond *c = &L->rec[L->n];
 	memset(c, 0, sizeof *c);
 	c->i = i;
@@ -102,18 +107,29 @@ void contacts_index_blocks(engine *e)
 }
 
 /* The particles a rank's search looks at: with several ranks its own and
- * its ghosts (ranks_share_ghosts), in increasing order, their positions and
- * radii copied to x and r; with one, all of them in place. */
+ * its ghosts (ranks_share_ghosts, which the window then holds, window.h),
+ * in increasing order, their positions and radii copied to x and r; with
+ * one, all of them in place. */
 typedef struct {
 	size_t n;
-	int32_t *glob; /* index of each, or NULL: all particles */
+	int32_t *idx; /* index of each in the window, or NULL: all particles */
 	const double *x, *r;
 	double *xb, *rb;
 } search_set;
 
+/* A ghost's row (ranks_share_ghosts) into the particle arrays: its index
+ * there. */
+static int32_t ghost_place(particles *P, const double *row)
+{
+	size_t g = (size_t)row[0];
+	size_t i = P->glob ? (size_t)window_local(P, g) : g;
+	particle_set_row(P, i, row + 1);
+	return (int32_t)i;
+}
+
 static void search_set_make(engine *e, search_set *s)
 {
-	const particles *P = &e->p;
+	particles *P = &e->p;
 	memset(s, 0, sizeof *s);
 	if (e->ranks.size == 1) {
 		s->n = P->n;
@@ -125,45 +141,53 @@ static void search_set_make(engine *e, search_set *s)
 	 * the margin covers the rounding of both tests. */
 	double reach = (2 * e->frame.r_max + e->pairs.skin) * (1 + 1e-9);
 	size_t p0 = e->ranks.p0, p1 = e->ranks.p1;
-	int32_t *g = xmalloc((P->n + 1) * sizeof *g);
-	size_t ng = ranks_share_ghosts(e, reach, g);
-	s->glob = xmalloc((ng + p1 - p0 + 1) * sizeof *s->glob);
+	double *gh;
+	size_t ng = ranks_share_ghosts(e, reach, &gh);
+	int32_t *want = xmalloc((ng + 1) * sizeof *want);
+	for (size_t k = 0; k < ng; k++)
+		want[k] = (int32_t)gh[GHOST_COLS * k];
+	/* Once the run has started, the window holds the ghosts from now on
+	 * (and the current contacts, renumbered, are the rebuild's old ones);
+	 * before, every particle has its place. */
+	if (P->glob)
+		window_set(e, want, ng);
+	s->idx = xmalloc((ng + p1 - p0 + 1) * sizeof *s->idx);
 	size_t k = 0;
-	while (k < ng && (size_t)g[k] < p0)
-		s->glob[s->n++] = g[k++];
+	while (k < ng && (size_t)want[k] < p0)
+		s->idx[s->n++] = ghost_place(P, gh + GHOST_COLS * k++);
 	for (size_t i = p0; i < p1; i++)
-		s->glob[s->n++] = (int32_t)i;
+		s->idx[s->n++] = (int32_t)i;
 	while (k < ng)
-		s->glob[s->n++] = g[k++];
-	free(g);
+		s->idx[s->n++] = ghost_place(P, gh + GHOST_COLS * k++);
+	free(want), free(gh);
 	s->xb = xmalloc((3 * s->n + 1) * sizeof *s->xb);
 	s->rb = xmalloc((s->n + 1) * sizeof *s->rb);
 	for (size_t a = 0; a < s->n; a++) {
-		memcpy(s->xb + 3 * a, P->x + 3 * (size_t)s->glob[a], 3 * sizeof *s->xb);
-		s->rb[a] = P->r[s->glob[a]];
+		memcpy(s->xb + 3 * a, P->x + 3 * (size_t)s->idx[a], 3 * sizeof *s->xb);
+		s->rb[a] = P->r[s->idx[a]];
 	}
 	s->x = s->xb;
 	s->r = s->rb;
 }
 
-static void search_set_free(search_set *s) { free(s->glob), free(s->xb), free(s->rb); }
+static void search_set_free(search_set *s) { free(s->idx), free(s->xb), free(s->rb); }
 
 void contacts_rebuild(engine *e)
 {
 	particles *P = &e->p;
+	search_set s;
+	search_set_make(e, &s);
 	pairlist tmp = e->pairs.contacts_old;
 	e->pairs.contacts_old = e->pairs.contacts;
 	e->pairs.contacts = tmp;
 	pairlist *L = &e->pairs.contacts;
 	const pairlist *old = &e->pairs.contacts_old;
 	L->n = 0;
-	reserve(L, 0, P->n);
+	reserve(e, L, 0);
 	/* A rank lists the pairs of its particles i and, before them, those of
 	 * earlier ranks' particles i with its own j (whose forces it receives,
 	 * ranks.h): every pair with an end of its own, as one process lists
 	 * them. */
-	search_set s;
-	search_set_make(e, &s);
 	size_t p0, p1;
 	ranks_own(e, &p0, &p1);
 	cells *g = &e->pairs.grid;
@@ -172,7 +196,7 @@ void contacts_rebuild(engine *e)
 	int32_t js[CAP];
 	size_t o = 0;
 	for (size_t a = 0; a < s.n; a++) {
-		size_t i = s.glob ? (size_t)s.glob[a] : a;
+		size_t i = s.idx ? (size_t)s.idx[a] : a;
 		if (i >= p1)
 			break;
 		int nj = cells_partners(g, s.x, s.r, a, 1, e->pairs.skin, js, CAP);
@@ -182,7 +206,7 @@ void contacts_rebuild(engine *e)
 			    "spheres?",
 			    P->orig[i], CAP);
 		for (int q = 0; q < nj; q++) {
-			int32_t j = s.glob ? s.glob[js[q]] : js[q];
+			int32_t j = s.idx ? s.idx[js[q]] : js[q];
 			if ((i >= p0 || ((size_t)j >= p0 && (size_t)j < p1)) &&
 			    !bonded(e, (int32_t)i, j))
 				add_contact(e, L, old, &o, (int32_t)i, j);

@@ -48,6 +48,10 @@ static int64_t worst_pair(const engine *e, const pairlist *L, size_t *who, int *
 void diagnose_nan(const engine *e, size_t i, char *msg, size_t n)
 {
 	const particles *P = &e->p;
+	if (e->ranks.rank > 0) { /* rank 0 tells */
+		snprintf(msg, n, "stopped: non-finite state");
+		return;
+	}
 	pairs_view v; /* the whole specimen's on rank 0 (ranks_gather_all) */
 	ranks_pairs(e, &v);
 	const pairlist *L = v.bonds;
@@ -120,15 +124,16 @@ int diagnose_speed(engine *e, char *msg, size_t n)
 	double dt = e->clock.dt, limit = 0.5 * e->pairs.skin;
 	if (!(sqrt(e->sums.particles.v2max) * dt > limit))
 		return 0;
-	double v2;
+	double v2, info[3];
 	size_t i = fastest(e, 0, &v2);
+	ranks_particle(e, i, info);
+	double odt = omega_dt(e, i);
 	snprintf(msg, n,
 	         "stopped: particle %d moved %g m in one step (speed %g m/s) at step %" PRId64
 	         ", more than half the Verlet skin (%g m): contacts would pass unseen; the "
 	         "integration is unstable, or the particle was thrown out by an overlap "
 	         "(bonds give omega dt = %.3g, stable below 2)",
-	         e->p.orig[i], sqrt(v2) * dt, sqrt(v2), e->clock.step - 1, e->pairs.skin,
-	         omega_dt(e, i));
+	         (int)info[0], sqrt(v2) * dt, sqrt(v2), e->clock.step - 1, e->pairs.skin, odt);
 	return 1;
 }
 
@@ -141,15 +146,15 @@ int diagnose_runaway(engine *e, char *msg, size_t n)
 	double input = e->energy.initial + fabs(e->energy.work), ke = e->sums.particles.ke_new;
 	if (!(ke > 2 * input + e->energy.noise))
 		return 0;
-	const particles *P = &e->p;
-	double top;
+	double top, info[3];
 	size_t worst = fastest(e, 1, &top);
+	ranks_particle(e, worst, info);
+	double odt = omega_dt(e, worst);
 	snprintf(msg, n,
 	         "stopped: kinetic energy %g J exceeds twice the energy put in (%g J) at step "
 	         "%" PRId64 ": the integration is unstable; fastest particle %d (speed %g m/s, "
 	         "bonds give omega dt = %.3g, stable below 2)",
-	         ke, input, e->clock.step - 1, P->orig[worst], sqrt(top / P->m[worst]),
-	         omega_dt(e, worst));
+	         ke, input, e->clock.step - 1, (int)info[0], sqrt(top / info[2]), odt);
 	return 1;
 }
 
@@ -159,7 +164,8 @@ int diagnose_timestep(engine *e, char *msg, size_t n)
 	double crit = timestep_critical(e, 1, &worst);
 	if (e->clock.dt <= crit)
 		return 0;
-	const particles *P = &e->p;
+	double info[3];
+	ranks_particle(e, worst, info);
 	/* The contacts of a particle are on its rank's list (ranks.h). */
 	ranks_own(e, &p0, &p1);
 	int nc = worst >= p0 && worst < p1 ? pairlist_count(&e->pairs.contacts, worst) : 0, nb;
@@ -168,6 +174,6 @@ int diagnose_timestep(engine *e, char *msg, size_t n)
 	snprintf(msg, n,
 	         "stopped: time step %g s above the stable limit %g s at step %" PRId64
 	         ": particle %d has %d bonds and %d contacts (lower time_step.safety)",
-	         e->clock.dt, crit, e->clock.step, P->orig[worst], nb, nc);
+	         e->clock.dt, crit, e->clock.step, (int)info[0], nb, nc);
 	return 1;
 }

@@ -6,8 +6,9 @@
  * particles in bond order (bonds.h); non-bonded contacts from a Verlet
  * list, their forces gathered per particle through a CSR index
  * (pairlist.h). Everything a particle needs from
- * another one is read by index from these arrays, so a halo of ghost
- * particles could later provide it under an MPI domain decomposition.
+ * another one is read by index from these arrays, which under a domain
+ * decomposition hold a rank's own particles and the others it reads
+ * (window.h).
  * Reductions are summed in fixed blocks (blocks.h), so results do not
  * depend on the number of threads, bit for bit.
  *
@@ -34,22 +35,43 @@
 #include "solve/step.h"
 #include "solve/surface.h"
 #include "solve/timers.h"
+#include "solve/window.h"
 
 /* Particle flags. */
 enum { PF_LAYER_BOTTOM = 1, PF_LAYER_TOP = 2, PF_CONSTRAINED = 4 };
 
-typedef struct {
-	size_t n;
-	double *x, *v, *w; /* [n][3] m, m/s (at t - dt/2), rad/s */
+/* A rank holds the particles of a window of indices [lo, hi) (window.h):
+ * its own, [own0, own1), under their index in the whole specimen, and
+ * the other ranks' particles it reads numbered next to them in the order
+ * of their indices, so that every pair keeps its order. The arrays below
+ * are indexed by the window's indices (their memory starts at lo); glob
+ * gives each one's index in the whole specimen. With one rank, and on
+ * every rank until the run starts, the window is the whole specimen
+ * (glob NULL). */
+typedef struct particles {
+	size_t n;       /* particles of the whole specimen */
+	size_t lo, hi;  /* the window */
+	int32_t *glob;  /* [lo, hi) index in the whole specimen, or NULL */
+	int32_t *fixed; /* the other ranks' particles held for the whole run
+	                   (the other ends of the crossing bonds), index in
+	                   the whole specimen, increasing */
+	size_t nfixed;
+	double *x, *v, *w; /* [window][3] m, m/s (at t - dt/2), rad/s */
 	double *r, *m;     /* m, kg */
 	int32_t *orig;     /* index in the assembly */
-	size_t own0;       /* this rank's first particle (ranks.h), of x_ref */
+	size_t own0, own1; /* this rank's particles (ranks.h) */
 	double *x_ref;     /* [own][3] positions at the last neighbour rebuild,
 	                      particle i's at 3 (i - own0) */
 	uint8_t *flag;     /* PF_* */
 	int32_t *surf;     /* slot in the lateral surface list, or -1 */
 	int32_t *pslot[2]; /* contact slot with platen 0 (bottom) / 1 (top), or -1 */
 } particles;
+
+/* The index in the whole specimen of the window's particle i. */
+static inline size_t particle_global(const particles *P, size_t i)
+{
+	return P->glob ? (size_t)P->glob[i] : i;
+}
 
 /* 1/m and 1/I (I = 2/5 m r², a solid sphere) of particle i, computed where
  * they are needed rather than stored: one expression, so the same bits

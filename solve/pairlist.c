@@ -6,7 +6,9 @@
 
 void pairlist_free(pairlist *l)
 {
-	free(l->rec), free(l->f), free(l->off), free(l->ref);
+	free(l->rec), free(l->f), free(l->ref);
+	if (l->off)
+		free(l->off + l->off0);
 	memset(l, 0, sizeof *l);
 }
 
@@ -19,7 +21,8 @@ void pairlist_csr(pairlist *l, size_t lo, size_t hi)
 	for (size_t b = 0; b < l->n; b++)
 		for (int end = 0; end < 2; end++) {
 			size_t p = (size_t)(end ? l->rec[b].j : l->rec[b].i);
-			off[p + 1] += p >= lo && p < hi;
+			if (p >= lo && p < hi)
+				off[p + 1]++;
 		}
 	for (size_t p = lo; p < hi; p++)
 		off[p + 1] += off[p];

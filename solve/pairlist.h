@@ -22,8 +22,10 @@ typedef struct {
 	              it, on j r_j times it. Bonds keep the force only (fcols
 	              3): their torques are added as they are computed. */
 	int fcols;
-	int32_t *off; /* [np + 1] (contacts only: bonds add their forces as
-	                 they are computed, bonds.h) */
+	int32_t *off; /* [off0, own1 + 1]: this rank's particles' (contacts
+	                 only: bonds add their forces as they are computed,
+	                 bonds.h); its memory starts at off0 */
+	size_t off0;
 	int32_t *ref; /* [2n] pair index * 2 + 1 if the particle is its j */
 } pairlist;
 

@@ -133,8 +133,10 @@ void ranks_contacts(engine *e)
 	const pairlist *L = &e->pairs.contacts;
 	links_clear(&R->csend);
 	links_clear(&R->crecv);
+	const particles *P = &e->p;
 	for (size_t c = 0; c < L->n; c++) {
-		int ri = rank_of(R, (size_t)L->rec[c].i), rj = rank_of(R, (size_t)L->rec[c].j);
+		int ri = rank_of(R, particle_global(P, (size_t)L->rec[c].i)),
+		    rj = rank_of(R, particle_global(P, (size_t)L->rec[c].j));
 		if (ri == rj)
 			continue;
 		if (ri == R->rank)
@@ -293,7 +295,7 @@ static void share_halo(engine *e)
 	MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE);
 	free(req);
 	if (R->poison)
-		for (size_t i = 0; i < P->n; i++)
+		for (size_t i = P->lo; i < P->hi; i++)
 			if (i < R->p0 || i >= R->p1)
 				for (int a = 0; a < 3; a++)
 					for (int c = 0; c < 3; c++)
@@ -309,33 +311,52 @@ static void share_halo(engine *e)
 	R->sec[RANKS_HALO] += timer_now() - t0;
 }
 
-/* Every rank's particles' state on rank 0 (the other ranks' particles
- * stay stale everywhere else). */
-static void gather_state(engine *e)
+/* Every rank's particles on rank 0, whose window (window.h) then holds the
+ * whole specimen: their state, radius, mass, index in the assembly and
+ * flags. The other ranks keep theirs. */
+static void gather_particles(engine *e)
 {
 	rank_split *R = &e->ranks;
-	/* x, v and ω in one message: each rank's rows of [n][9]. */
 	particles *P = &e->p;
-	double *const arr[3] = {P->x, P->v, P->w};
 	double t0 = timer_now();
-	/* On rank 0 room for every row, else for its own. */
 	int whole = R->rank == 0;
-	double *state = xmalloc((9 * (whole ? P->n : R->p1 - R->p0) + 1) * sizeof *state);
-	double *mine = state + (whole ? 9 * R->p0 : 0);
+	if (whole) {
+		int32_t *want = xmalloc((P->n - (R->p1 - R->p0) + 1) * sizeof *want);
+		size_t m = 0;
+		for (size_t i = 0; i < P->n; i++)
+			if (i < R->p0 || i >= R->p1)
+				want[m++] = (int32_t)i;
+		window_set(e, want, m);
+		free(want);
+	}
+	enum { COLS = PARTICLE_ROW };
+	double *rows = xmalloc((COLS * (whole ? P->n : R->p1 - R->p0) + 1) * sizeof *rows);
+	double *mine = rows + (whole ? COLS * R->p0 : 0);
 	for (size_t i = R->p0; i < R->p1; i++)
-		for (int a = 0; a < 3; a++)
-			memcpy(mine + 9 * (i - R->p0) + 3 * a, arr[a] + 3 * i, 3 * sizeof *state);
-	gather_rows_from(mine, state, R->pfirst, 9 * sizeof *state, R->size, 0);
+		particle_row(P, i, mine + COLS * (i - R->p0));
+	gather_rows_from(mine, rows, R->pfirst, COLS * sizeof *rows, R->size, 0);
 	if (whole) {
 		for (size_t i = 0; i < P->n; i++)
 			if (i < R->p0 || i >= R->p1)
-				for (int a = 0; a < 3; a++)
-					memcpy(arr[a] + 3 * i, state + 9 * i + 3 * a,
-					       3 * sizeof *state);
-		R->recv_all += state_bytes(P->n - (R->p1 - R->p0));
+				particle_set_row(P, i, rows + COLS * i);
+		R->recv_all += (double)(COLS * sizeof *rows * (P->n - (R->p1 - R->p0)));
 	}
-	free(state);
+	free(rows);
+	gather_rows(P->flag, R->pfirst, sizeof *P->flag, R->size, 0);
 	R->sec[RANKS_GATHERS] += timer_now() - t0;
+}
+
+/* n pair records from rec, their ends' indices those of the whole
+ * specimen (a copy, to free). */
+static bond *global_ends(const particles *P, const bond *rec, size_t n)
+{
+	bond *g = xmalloc((n + 1) * sizeof *g);
+	for (size_t b = 0; b < n; b++) {
+		g[b] = rec[b];
+		g[b].i = (int32_t)particle_global(P, (size_t)rec[b].i);
+		g[b].j = (int32_t)particle_global(P, (size_t)rec[b].j);
+	}
+	return g;
 }
 #endif
 
@@ -446,14 +467,14 @@ static size_t receive_any(int from, int tag, MPI_Datatype type, size_t item, voi
 }
 #endif
 
-size_t ranks_share_ghosts(engine *e, double reach, int32_t *ghosts)
+size_t ranks_share_ghosts(engine *e, double reach, double **ghosts)
 {
 #ifdef DEM_MPI
 	rank_split *R = &e->ranks;
+	*ghosts = NULL;
 	if (R->size == 1)
 		return 0;
 	particles *P = &e->p;
-	double *const arr[3] = {P->x, P->v, P->w};
 	double t0 = timer_now();
 	/* Every rank's box: 6 doubles each, the one collective. */
 	double *box = xmalloc(6 * (size_t)R->size * sizeof *box), *mine = box + 6 * R->rank;
@@ -518,31 +539,32 @@ size_t ranks_share_ghosts(engine *e, double reach, int32_t *ghosts)
 				continue;
 			if (m == cap) {
 				cap = cap ? 2 * cap : 1024;
-				o = xrealloc(o, 10 * cap * sizeof *o);
+				o = xrealloc(o, GHOST_COLS * cap * sizeof *o);
 			}
-			o[10 * m] = (double)i;
-			for (int a = 0; a < 3; a++)
-				memcpy(o + 10 * m + 1 + 3 * a, arr[a] + 3 * i, 3 * sizeof *o);
-			m++;
+			double *row = o + GHOST_COLS * m++;
+			row[0] = (double)i;
+			particle_row(P, i, row + 1);
 		}
 		out[np + u] = o;
-		MPI_Isend(o, (int)(10 * m), MPI_DOUBLE, peer[u], TAG_GHOSTS, MPI_COMM_WORLD,
+		MPI_Isend(o, (int)(GHOST_COLS * m), MPI_DOUBLE, peer[u], TAG_GHOSTS, MPI_COMM_WORLD,
 		          &req[nreq++]);
 	}
 	/* The peers' particles, in rank order: the ranks hold increasing runs
 	 * of particles, so the ghosts come sorted. */
-	size_t ng = 0;
+	size_t ng = 0, cap = 0;
 	double *in = NULL;
+	*ghosts = NULL;
 	for (int u = 0; u < np; u++) {
 		size_t cnt = receive_any(peer[u], TAG_GHOSTS, MPI_DOUBLE, sizeof *in, (void **)&in);
-		for (size_t m = 0; m < cnt / 10; m++) {
-			const double *o = in + 10 * m;
-			size_t i = (size_t)o[0];
-			for (int a = 0; a < 3; a++)
-				memcpy(arr[a] + 3 * i, o + 1 + 3 * a, 3 * sizeof *o);
-			ghosts[ng++] = (int32_t)i;
+		if (!cnt)
+			continue;
+		if (ng * GHOST_COLS + cnt > cap) {
+			cap = 2 * (ng * GHOST_COLS + cnt);
+			*ghosts = xrealloc(*ghosts, cap * sizeof **ghosts);
 		}
-		R->recv_ghosts += state_bytes(cnt / 10);
+		memcpy(*ghosts + ng * GHOST_COLS, in, cnt * sizeof *in);
+		ng += cnt / GHOST_COLS;
+		R->recv_ghosts += (double)(cnt * sizeof *in);
 	}
 	MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE);
 	for (int u = 0; u < 2 * np; u++)
@@ -551,7 +573,8 @@ size_t ranks_share_ghosts(engine *e, double reach, int32_t *ghosts)
 	R->sec[RANKS_GHOSTS] += timer_now() - t0;
 	return ng;
 #else
-	(void)e, (void)reach, (void)ghosts;
+	(void)e, (void)reach;
+	*ghosts = NULL;
 	return 0;
 #endif
 }
@@ -675,19 +698,24 @@ void ranks_gather_all(engine *e)
 	rank_split *R = &e->ranks;
 	if (R->size == 1)
 		return;
-	gather_state(e);
+	gather_particles(e);
 	double t0 = timer_now();
 	/* A rank's bonds are those of its particles i, in bond order: rank
 	 * 0's come first, and its list grows to hold the others after them
-	 * (the run then ends). */
+	 * (the run then ends). Rank 0's window is now the whole specimen, the
+	 * others send the indices of the whole specimen. */
 	pairlist *B = &e->pairs.bonds;
 	size_t *at = rank_rows(0, B->n, R->size);
+	bond *sent = NULL;
 	if (R->rank == 0) {
 		B->cap = at[R->size];
 		B->rec = xrealloc(B->rec, (B->cap + 1) * sizeof *B->rec);
 		B->f = xrealloc(B->f, (3 * B->cap + 1) * sizeof *B->f);
+	} else {
+		sent = global_ends(&e->p, B->rec, B->n);
 	}
-	gather_rows_from(B->rec, B->rec, at, sizeof *B->rec, R->size, 0);
+	gather_rows_from(sent ? sent : B->rec, B->rec, at, sizeof *B->rec, R->size, 0);
+	free(sent);
 	gather_rows_from(B->f, B->f, at, 3 * sizeof *B->f, R->size, 0);
 	R->all_bonds = (pairlist){.n = R->rank == 0 ? at[R->size] : 0,
 	                          .cap = 0, /* not its own */
@@ -695,8 +723,6 @@ void ranks_gather_all(engine *e)
 	                          .f = B->f,
 	                          .fcols = 3};
 	free(at);
-	/* Each rank's particles' flags (the end layers). */
-	gather_rows(e->p.flag, R->pfirst, sizeof *e->p.flag, R->size, 0);
 	/* A rank's contacts are those of its particles i (the ones of its
 	 * particles j from earlier ranks come first in its list). */
 	const pairlist *C = &e->pairs.contacts;
@@ -707,7 +733,9 @@ void ranks_gather_all(engine *e)
 		A->rec = xrealloc(A->rec, A->cap * sizeof *A->rec);
 		A->f = xrealloc(A->f, 6 * A->cap * sizeof *A->f);
 	}
-	gather_list(C->rec + c0, at, sizeof *C->rec, A->rec);
+	bond *crec = global_ends(&e->p, C->rec + c0, at[R->rank + 1] - at[R->rank]);
+	gather_list(crec, at, sizeof *C->rec, A->rec);
+	free(crec);
 	gather_list(C->f + 6 * c0, at, 6 * sizeof *C->f, A->f);
 	A->n = at[R->size];
 	A->fcols = 6;
@@ -769,19 +797,39 @@ int ranks_own(const engine *e, size_t *p0, size_t *p1)
 	return split;
 }
 
-size_t ranks_gather_list(int32_t *list, size_t mine)
+void ranks_particle(const engine *e, size_t g, double info[3])
+{
+	const rank_split *R = &e->ranks;
+	int64_t i = window_local(&e->p, g);
+	int mine = i >= 0 && (R->size == 1 || (g >= R->p0 && g < R->p1));
+	for (int k = 0; k < 3; k++)
+		info[k] = -INFINITY;
+	if (mine) {
+		info[0] = e->p.orig[i];
+		info[1] = e->p.r[i];
+		info[2] = e->p.m[i];
+	}
+	if (R->size > 1)
+		par_max(info, 3);
+}
+
+size_t ranks_gather_list(int32_t **list, size_t *cap, size_t mine)
 {
 #ifdef DEM_MPI
 	int size = par_size(), rank = par_rank();
 	if (size == 1)
 		return mine;
 	size_t *at = rank_rows(0, mine, size), total = at[size];
-	memmove(list + at[rank], list, mine * sizeof *list);
-	gather_rows(list, at, sizeof *list, size, ALL);
+	if (total > *cap) {
+		*cap = total + total / 4;
+		*list = xrealloc(*list, (*cap + 1) * sizeof **list);
+	}
+	memmove(*list + at[rank], *list, mine * sizeof **list);
+	gather_rows(*list, at, sizeof **list, size, ALL);
 	free(at);
 	return total;
 #else
-	(void)list;
+	(void)list, (void)cap;
 	return mine;
 #endif
 }
@@ -825,14 +873,15 @@ void ranks_traffic(engine *e, double steps, const double memory[2])
 #endif
 	double own = (double)(R->p1 - R->p0), per = steps > 0 ? 1 / steps : 0;
 	R->sec[RANKS_REDUCTIONS] = red.seconds;
-	enum { NT = 7, NV = NT + RANKS_NX };
+	enum { NT = 8, NV = NT + RANKS_NX };
 	double v[NV] = {R->recv_halo * per,
 	                R->recv_ghosts * per,
 	                (R->recv_halo + R->recv_ghosts + R->recv_all) * per,
 	                R->size > 1 ? state_bytes(e->p.n) - state_bytes((size_t)own) : 0,
 	                R->recv_forces * per,
 	                memory[0],
-	                memory[1]};
+	                memory[1],
+	                (double)(e->p.hi - e->p.lo)};
 	for (int k = 0; k < RANKS_NX; k++)
 		v[NT + k] = R->sec[k];
 	double top[NV];
@@ -844,9 +893,9 @@ void ranks_traffic(engine *e, double steps, const double memory[2])
 		xsum_add(&s[k], v[k]);
 	}
 	par_sum(s, NV);
-	double *out[NT] = {R->traffic_halo,      R->traffic_ghosts, R->traffic_state,
-	                   R->traffic_allgather, R->traffic_forces, R->memory_state,
-	                   R->memory_rss};
+	double *out[NT] = {
+	    R->traffic_halo,   R->traffic_ghosts, R->traffic_state, R->traffic_allgather,
+	    R->traffic_forces, R->memory_state,   R->memory_rss,    R->held};
 	for (int k = 0; k < NV; k++) {
 		double *o = k < NT ? out[k] : R->seconds[k - NT];
 		o[0] = top[k];

@@ -44,6 +44,7 @@
 #include "lib/h5.h"
 #include "solve/pairlist.h"
 #include "solve/platens.h"
+#include "solve/window.h"
 
 typedef struct engine engine;
 
@@ -99,6 +100,9 @@ typedef struct {
 	/* Each rank's engine state and peak resident size in bytes, the
 	 * largest and the mean over the ranks (ranks_traffic). */
 	double memory_state[2], memory_rss[2];
+	/* The particles each rank holds at the end (window.h), the largest and
+	 * the mean over the ranks. */
+	double held[2];
 	/* Every rank's bonds (a view of rank 0's own list, grown to hold
 	 * them), contacts and platen contacts, gathered on rank 0
 	 * (ranks_gather_all, ranks_pairs). */
@@ -128,12 +132,14 @@ void ranks_exchange_forces(engine *e);
 /* After the step (this rank's particles moved): their new position and
  * velocities to the ranks whose halo they are in. Collective. */
 void ranks_share_state(engine *e);
-/* Before a neighbour search: the current state of the other ranks'
- * particles whose centres lie within `reach` (per axis) of the box around
- * this rank's own particles (its ghosts), from their ranks, point to
- * point. Their indices, in increasing order, into *ghosts (room for
- * e->p.n, the caller's), their number returned. Collective. */
-size_t ranks_share_ghosts(engine *e, double reach, int32_t *ghosts);
+/* Before a neighbour search: the other ranks' particles whose centres lie
+ * within `reach` (per axis) of the box around this rank's own particles
+ * (its ghosts), from their ranks, point to point: in increasing order of
+ * their index in the whole specimen, each a row of *ghosts (the caller's
+ * to free) of GHOST_COLS doubles, that index then its particle_row
+ * (window.h); their number returned. Collective. */
+enum { GHOST_COLS = 1 + PARTICLE_ROW };
+size_t ranks_share_ghosts(engine *e, double reach, double **ghosts);
 /* For each crossing contact (ranks_contacts), the value v[c] the rank of
  * its i holds sent to the rank of its j, into v[c] there. Collective. */
 void ranks_share_contact_values(engine *e, double *v);
@@ -146,10 +152,10 @@ void ranks_share_bond_values(engine *e, double *v);
  * Collective. */
 void ranks_share_cracks(engine *e, size_t first);
 /* Before the diagnosis of a non-finite state, which ends the run, on rank
- * 0: every particle's state and flags, and the whole specimen's bonds
- * (rank 0's list grows to hold them after its own), contacts and platen
- * contacts in the lists ranks_pairs shows. The other ranks send theirs and
- * keep their own. Collective. */
+ * 0: every particle (its window becomes the whole specimen, window.h),
+ * and the whole specimen's bonds (rank 0's list grows to hold them after
+ * its own), contacts and platen contacts in the lists ranks_pairs shows.
+ * The other ranks send theirs and keep their own. Collective. */
 void ranks_gather_all(engine *e);
 /* The whole specimen's bonds, contacts and platen contacts: this rank's
  * own lists with one rank, else those of the last ranks_gather_all
@@ -164,9 +170,13 @@ void ranks_own_pairs(const engine *e, pairs_view *v);
  * returned, else 1: what the rank computes from its own particles must then
  * be combined with the other ranks'. */
 int ranks_own(const engine *e, size_t *p0, size_t *p1);
-/* This rank's `mine` entries list[0..mine), then every rank's, in rank
- * order, in list (room for all of them): their number. Collective. */
-size_t ranks_gather_list(int32_t *list, size_t mine);
+/* Particle g's (its index in the whole specimen) index in the assembly,
+ * radius and mass, from its rank. Collective. */
+void ranks_particle(const engine *e, size_t g, double info[3]);
+/* This rank's `mine` entries (*list)[0..mine), then every rank's, in rank
+ * order, in *list (of room for *cap, grown to hold them all): their
+ * number. Collective. */
+size_t ranks_gather_list(int32_t **list, size_t *cap, size_t mine);
 /* A dataset of the run file (rows x cols values of `size` bytes) whose
  * rows the ranks hold: this rank's `mine` items, item k at row first + k,
  * or dest[k] when dest is not NULL, their rows [k0, k0 + m) written into

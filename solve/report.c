@@ -17,11 +17,14 @@ static const char *const exchange_names[RANKS_NX] = {"forces", "halo", "ghosts",
 
 size_t engine_bytes(const engine *e)
 {
-	size_t n = e->p.n, p0, p1;
+	size_t n = e->p.hi - e->p.lo, p0, p1;
 	ranks_own(e, &p0, &p1);
-	/* x v w (3 each), r m, orig surf pslot[2], flag; of this rank's own
-	 * particles x_ref (3) and the sum of the bond forces on each (6) */
-	size_t bytes = n * (9 * sizeof(double) + 2 * sizeof(double) + 4 * sizeof(int32_t) + 1) +
+	/* Of the particles it holds (window.h) x v w (3 each), r m, orig surf
+	 * pslot[2], flag, and its index in the whole specimen with several
+	 * ranks; of this rank's own particles x_ref (3) and the sum of the
+	 * bond forces on each (6) */
+	size_t bytes = n * (9 * sizeof(double) + 2 * sizeof(double) + 4 * sizeof(int32_t) + 1 +
+	                    (e->p.glob ? sizeof(int32_t) : 0)) +
 	               (p1 - p0) * 9 * sizeof(double);
 	const bond_split *S = &e->pairs.split;
 	bytes += S->cfirst ? S->cfirst[S->n] * (sizeof(int32_t) + sizeof(bond_part)) : 0;
@@ -29,7 +32,7 @@ size_t engine_bytes(const engine *e)
 	 * gather index */
 	bytes += e->pairs.bonds.cap * (sizeof(bond) + 3 * sizeof(double));
 	bytes += e->pairs.contacts.cap * (sizeof(bond) + 6 * sizeof(double) + 2 * sizeof(int32_t)) +
-	         (n + 1) * sizeof(int32_t);
+	         (p1 - p0 + 1) * sizeof(int32_t);
 	for (int k = 0; k < 2; k++)
 		bytes += e->bc.pl.cap[k] * (2 * sizeof(platen_contact) + sizeof(int32_t));
 	return bytes;
@@ -86,10 +89,12 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 			        R->traffic_forces[0], R->traffic_forces[1], R->reductions_per_step,
 			        R->reduction_bytes_per_step, R->gathers_per_step);
 			fprintf(stderr,
-			        "  memory per rank: engine state %.4g MB at most, %.4g on average; "
+			        "  memory per rank: particles held %.0f at most, %.0f on average "
+			        "(of %.0f); engine state %.4g MB at most, %.4g on average; "
 			        "peak resident %.4g MB, %.4g\n",
-			        1e-6 * R->memory_state[0], 1e-6 * R->memory_state[1],
-			        1e-6 * R->memory_rss[0], 1e-6 * R->memory_rss[1]);
+			        R->held[0], R->held[1], n, 1e-6 * R->memory_state[0],
+			        1e-6 * R->memory_state[1], 1e-6 * R->memory_rss[0],
+			        1e-6 * R->memory_rss[1]);
 			fprintf(stderr, "  exchanges per rank, largest and mean over the ranks "
 			                "(waiting for the others included):");
 			for (int k = 0; k < RANKS_NX; k++)
@@ -130,6 +135,8 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	json_num(j, "reductions_per_step", e->ranks.reductions_per_step);
 	json_num(j, "reduction_bytes_per_step", e->ranks.reduction_bytes_per_step);
 	json_num(j, "gathers_per_step", e->ranks.gathers_per_step);
+	json_num(j, "rank_particles_held_max", e->ranks.held[0]);
+	json_num(j, "rank_particles_held_mean", e->ranks.held[1]);
 	json_num(j, "rank_state_bytes_max", e->ranks.memory_state[0]);
 	json_num(j, "rank_state_bytes_mean", e->ranks.memory_state[1]);
 	json_num(j, "rank_peak_rss_bytes_max", e->ranks.memory_rss[0]);

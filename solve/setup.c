@@ -27,9 +27,9 @@
 #include "solve/timers.h"
 #include "solve/timestep.h"
 
-/* Morton (Z-order) permutation of the assembly's particles: their bounding
- * cube scaled to cells 0 to 2^21 - 1 a side (lib/morton.h). */
-static int32_t *morton_order(const dem_assembly *a)
+/* Morton (Z-order) permutation of the assembly's particles into perm: their
+ * bounding cube scaled to cells 0 to 2^21 - 1 a side (lib/morton.h). */
+static void morton_order(const dem_assembly *a, int32_t *perm)
 {
 	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
 	for (size_t i = 0; i < a->n; i++)
@@ -50,12 +50,10 @@ static int32_t *morton_order(const dem_assembly *a)
 	}
 	size_t *order = xmalloc((a->n + 1) * sizeof *order);
 	morton_sort(key, a->n, order);
-	int32_t *perm = xmalloc((a->n + 1) * sizeof *perm);
 	for (size_t i = 0; i < a->n; i++)
 		perm[i] = (int32_t)order[i];
 	free(key);
 	free(order);
-	return perm;
 }
 
 /* The arrays only a rank's own particles need (the positions at the last
@@ -67,6 +65,7 @@ static void keep_own(engine *e)
 	ranks_own(e, &p0, &p1);
 	particles *P = &e->p;
 	P->own0 = p0;
+	P->own1 = p1;
 	free(P->x_ref), free(e->scratch.acc);
 	P->x_ref = xcalloc(3 * (p1 - p0) + 1, sizeof *P->x_ref);
 	e->scratch.acc = xcalloc(6 * (p1 - p0) + 1, sizeof *e->scratch.acc);
@@ -76,21 +75,9 @@ static int load_particles(engine *e, const dem_assembly *a)
 {
 	particles *P = &e->p;
 	size_t n = a->n;
-	P->n = n;
-	P->orig = morton_order(a);
-	P->x = xmalloc((3 * n + 1) * sizeof *P->x);
-	P->v = xcalloc(3 * n + 1, sizeof *P->v);
-	P->w = xcalloc(3 * n + 1, sizeof *P->w);
-	P->x_ref = xmalloc((3 * n + 1) * sizeof *P->x_ref);
-	P->r = xmalloc((n + 1) * sizeof *P->r);
-	P->m = xmalloc((n + 1) * sizeof *P->m);
-	P->flag = xcalloc(n + 1, 1);
-	P->surf = xmalloc((n + 1) * sizeof *P->surf);
-	for (int k = 0; k < 2; k++) {
-		P->pslot[k] = xmalloc((n + 1) * sizeof *P->pslot[k]);
-		for (size_t i = 0; i < n; i++)
-			P->pslot[k][i] = -1;
-	}
+	particles_alloc(P, n, 0, n);
+	P->own1 = n;
+	morton_order(a, P->orig);
 	double rho = e->cs->mat.density, rsum = 0;
 	for (size_t i = 0; i < n; i++) {
 		int32_t o = P->orig[i];
@@ -111,7 +98,6 @@ static int load_particles(engine *e, const dem_assembly *a)
 			    "finite positive mass and moment of inertia (check the "
 			    "material's density)",
 			    o, P->m[i], rho);
-		P->surf[i] = -1;
 		rsum += r;
 		e->frame.r_max = fmax(e->frame.r_max, r);
 	}
@@ -200,7 +186,6 @@ static void scratch_alloc(engine *e, int threads)
 	e->scratch.bblock = xcalloc(nblocks(n) + 1, sizeof *e->scratch.bblock);
 	e->scratch.cblock = xcalloc(nblocks(n) + 1, sizeof *e->scratch.cblock);
 	e->scratch.cfirst = xcalloc(nblocks(n) + 1, sizeof *e->scratch.cfirst);
-	e->scratch.acc = xmalloc((6 * n + 1) * sizeof *e->scratch.acc);
 	e->out.thread_cracks = xcalloc((size_t)e->nthreads, sizeof *e->out.thread_cracks);
 }
 
@@ -292,9 +277,8 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 void engine_free(engine *e)
 {
 	particles *P = &e->p;
-	free(P->x), free(P->v), free(P->w), free(P->x_ref), free(P->r), free(P->m);
-	free(P->flag), free(P->surf);
-	free(P->orig), free(P->pslot[0]), free(P->pslot[1]);
+	particles_free(P);
+	free(P->x_ref), free(P->fixed);
 	pairlist_free(&e->pairs.bonds);
 	cells_pairs_free(&e->pairs.formed);
 	pairlist_free(&e->pairs.contacts);

@@ -97,10 +97,7 @@ void surface_init(engine *e)
 	size_t nbins = (size_t)S->ntheta * S->nz;
 	S->best = xmalloc(nbins * sizeof *S->best);
 	S->best_rho = xmalloc(nbins * sizeof *S->best_rho);
-	S->cap = P->n;
-	S->idx = xmalloc((P->n + 1) * sizeof *S->idx);
-	S->area = xmalloc((P->n + 1) * sizeof *S->area);
-	S->n = 0;
+	S->n = S->cap = 0;
 	surface_update(e);
 }
 
@@ -129,6 +126,28 @@ static bin_range sphere_bins(const engine *e, size_t i, double lo, double dz, do
 static size_t bin_index(const surface *S, int iz, int t)
 {
 	return (size_t)iz * S->ntheta + (size_t)(((t % S->ntheta) + S->ntheta) % S->ntheta);
+}
+
+void surface_room(surface *S, size_t cap)
+{
+	S->cap = cap;
+	S->idx = xrealloc(S->idx, (cap + 1) * sizeof *S->idx);
+	S->area = xrealloc(S->area, (cap + 1) * sizeof *S->area);
+}
+
+/* The place of particle i (the index in the whole specimen) in the
+ * surface list, which is in increasing order; i is in it. */
+static size_t slot(const surface *S, size_t i)
+{
+	size_t lo = 0, hi = S->n;
+	while (lo < hi) {
+		size_t mid = lo + (hi - lo) / 2;
+		if ((size_t)S->idx[mid] < i)
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	return lo;
 }
 
 /* Each rank bins its own particles, whose state is current (ranks.h); the
@@ -164,8 +183,8 @@ void surface_update(engine *e)
 		par_maxloc(S->best_rho, S->best, nbins);
 	/* The surface layer: spheres reaching within their own radius of the
 	 * outermost point of a bin they overlap. */
-	for (size_t k = 0; k < S->n; k++)
-		P->surf[S->idx[k]] = -1;
+	for (size_t i = p0; i < p1; i++)
+		P->surf[i] = -1;
 	size_t mine = 0;
 	for (size_t i = p0; i < p1; i++) {
 		bin_range br = sphere_bins(e, i, lo, dz, dth);
@@ -173,13 +192,18 @@ void surface_update(engine *e)
 		for (int iz = br.z0; iz <= br.z1 && !in; iz++)
 			for (int t = br.t0; t <= br.t1 && !in; t++)
 				in = br.out >= S->best_rho[bin_index(S, iz, t)] - P->r[i];
-		if (in)
+		if (in) {
+			if (mine == S->cap)
+				surface_room(S, 2 * S->cap + 1024);
 			S->idx[mine++] = (int32_t)i;
+		}
 	}
-	S->n = split ? ranks_gather_list(S->idx, mine) : mine;
+	S->n = split ? ranks_gather_list(&S->idx, &S->cap, mine) : mine;
+	S->area = xrealloc(S->area, (S->cap + 1) * sizeof *S->area); /* as idx */
 	for (size_t k = 0; k < S->n; k++) {
-		P->surf[S->idx[k]] = (int32_t)k;
 		S->area[k] = 0;
+		if ((size_t)S->idx[k] >= p0 && (size_t)S->idx[k] < p1)
+			P->surf[S->idx[k]] = (int32_t)k;
 	}
 	S->lateral_area = S->volume = 0;
 	double rsum = 0;
@@ -189,7 +213,7 @@ void surface_update(engine *e)
 		if (i < 0)
 			continue;
 		double a = S->best_rho[b] * dth * dz;
-		S->area[P->surf[i]] += a;
+		S->area[slot(S, (size_t)i)] += a;
 		S->lateral_area += a;
 		S->volume += 0.5 * S->best_rho[b] * a;
 		rsum += S->best_rho[b];
@@ -228,6 +252,8 @@ void gauge_init(engine *e)
 		}
 	}
 	G->radius0 = G->n ? rsum / G->n : 0;
+	G->idx = xrealloc(G->idx, (G->n + 1) * sizeof *G->idx);
+	G->rho0 = xrealloc(G->rho0, (G->n + 1) * sizeof *G->rho0);
 }
 
 double gauge_strain(const engine *e)

@@ -11,7 +11,8 @@ typedef struct {
 	int ntheta, nz;
 	double bin; /* m */
 	size_t n, cap;
-	int32_t *idx;        /* surface particles */
+	int32_t *idx;        /* surface particles (index in the whole specimen),
+	                        in increasing order */
 	double *area;        /* m^2, tributary area of each */
 	int32_t *best;       /* [ntheta * nz] outermost particle of each bin */
 	double *best_rho;    /* its outer radial distance */
@@ -30,6 +31,8 @@ typedef struct {
 
 void surface_init(engine *e);
 void surface_update(engine *e);
+/* Room for cap surface particles. */
+void surface_room(surface *S, size_t cap);
 void surface_free(surface *s);
 void gauge_init(engine *e);
 double gauge_strain(const engine *e);

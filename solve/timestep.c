@@ -97,8 +97,9 @@ double timestep_bond_omega2(const engine *e, size_t i, int *count)
 	xsum s[2];
 	xsum_clear(&s[0]), xsum_clear(&s[1]);
 	const pairlist *L = &e->pairs.bonds;
-	for (size_t b = 0; b < L->n; b++)
-		if ((size_t)L->rec[b].i == i || (size_t)L->rec[b].j == i) {
+	int64_t l = window_local(&e->p, i); /* the particle here, if held */
+	for (size_t b = 0; l >= 0 && b < L->n; b++)
+		if (L->rec[b].i == l || L->rec[b].j == l) {
 			xsum_add(&s[0], bond_omega2(e, b));
 			xsum_add(&s[1], 1);
 		}
@@ -117,7 +118,7 @@ double timestep_critical(engine *e, int with_contacts, size_t *worst)
 	 * order: first those of earlier ranks' particles i (the incoming
 	 * crossing bonds, whose bounds come from the ranks of their i, in bond
 	 * order, bonds.h), then those of its own. */
-	double *bw2 = xcalloc(P->n + 1, sizeof *bw2);
+	double *bw2 = window_array(P->lo, P->hi, sizeof *bw2);
 	const bond_split *S = &e->pairs.split;
 	double *cw2 = xcalloc(S->ncross + 1, sizeof *cw2);
 	for (size_t c = 0; c < S->ncross; c++)
@@ -155,7 +156,8 @@ double timestep_critical(engine *e, int with_contacts, size_t *worst)
 			at[0] = (int32_t)i;
 		}
 	}
-	free(bw2), free(lam);
+	window_array_free(bw2, P->lo, sizeof *bw2);
+	free(lam);
 	par_maxloc(top, at, 2);
 	*worst = (size_t)(top[1] > 0 ? at[1] : at[0]);
 	if (top[1] > 0)

@@ -5,7 +5,8 @@
 # cement to its stress drop (end layers, cracks, snapshots, checkpoints)
 # on 1, 2 x 2 threads, and 3 ranks continued on 2; a confined triaxial
 # with an unload-reload cycle on 4 continued on 3; a Brazilian test on 7;
-# a larger cylinder whose output datasets have several chunks on 3 and 4.
+# a larger cylinder whose output datasets have several chunks on 3 and 4,
+# where each rank holds only the particles it reads.
 # same_run.py compares every dataset and attribute but the creation time
 # and the wall-clock rate. The runs on several ranks poison the particles
 # they do not receive each step (DEM_RANKS_POISON, solve/ranks.h), so a
@@ -93,8 +94,17 @@ JSON
 ranks 3 --threads 2 --output lat3.h5 lat.json
 same_chunks() { /usr/bin/python3 "$here/same_run.py" --chunks "$1" "$2"; }
 same_chunks lat1.h5 lat3.h5
-DEM_ROWS_ROUND=1 ranks 4 --threads 1 --output lat4.h5 lat.json
+DEM_ROWS_ROUND=1 ranks 4 --threads 1 --output lat4.h5 lat.json --report lat4.json
 same_chunks lat1.h5 lat4.h5
+# Each rank holds its own particles and those it reads of the others (its
+# window, solve/window.h), not the whole specimen: on 4 ranks, well under
+# half of it each.
+/usr/bin/python3 -c '
+import json, sys
+r = json.load(open("lat4.json"))
+held, n = r["rank_particles_held_max"], r["particles"]
+sys.exit(0 if n / 4 < held < 0.45 * n else
+         "lat4: a rank holds %g of %g particles: expected its window" % (held, n))'
 # More ranks than the specimen has blocks of particles: one clear message
 # on each rank, a failed run, no run file.
 "$bin/pack" --quiet --diameter 0.006 --height 0.012 --radius 0.0005 --dist fuzz small.h5

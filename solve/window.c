@@ -1,0 +1,268 @@
+/* The particles a rank holds: a window of indices (window.h). */
+#include <stdlib.h>
+#include <string.h>
+
+#include "lib/err.h"
+#include "solve/engine.h"
+#include "solve/ranks.h"
+#include "solve/window.h"
+
+void *window_array(size_t lo, size_t hi, size_t item)
+{
+	/* Addressed by the window's indices: the memory of index lo first. */
+	return (char *)xcalloc(hi - lo + 1, item) - lo * item;
+}
+
+void window_array_free(void *a, size_t lo, size_t item)
+{
+	if (a)
+		free((char *)a + lo * item);
+}
+
+/* An array of the window's items, not zeroed. */
+static void *raw_array(size_t lo, size_t hi, size_t item)
+{
+	return (char *)xmalloc((hi - lo + 1) * item) - lo * item;
+}
+
+/* The particles' arrays for [lo, hi), zeroed or not. */
+static void alloc_arrays(particles *P, size_t lo, size_t hi, int zero)
+{
+	void *(*get)(size_t, size_t, size_t) = zero ? window_array : raw_array;
+	P->x = get(lo, hi, 3 * sizeof *P->x);
+	P->v = get(lo, hi, 3 * sizeof *P->v);
+	P->w = get(lo, hi, 3 * sizeof *P->w);
+	P->r = get(lo, hi, sizeof *P->r);
+	P->m = get(lo, hi, sizeof *P->m);
+	P->orig = get(lo, hi, sizeof *P->orig);
+	P->flag = get(lo, hi, sizeof *P->flag);
+	P->surf = get(lo, hi, sizeof *P->surf);
+	for (int k = 0; k < 2; k++)
+		P->pslot[k] = get(lo, hi, sizeof *P->pslot[k]);
+	P->lo = lo;
+	P->hi = hi;
+}
+
+/* The particles' arrays as bytes, each with its item size. */
+enum { NARR = 10 };
+static void arrays(const particles *P, char *a[NARR], size_t item[NARR])
+{
+	char *p[NARR] = {(char *)P->x,        (char *)P->v,       (char *)P->w,    (char *)P->r,
+	                 (char *)P->m,        (char *)P->orig,    (char *)P->flag, (char *)P->surf,
+	                 (char *)P->pslot[0], (char *)P->pslot[1]};
+	size_t s[NARR] = {3 * sizeof *P->x,   3 * sizeof *P->v, 3 * sizeof *P->w,
+	                  sizeof *P->r,       sizeof *P->m,     sizeof *P->orig,
+	                  sizeof *P->flag,    sizeof *P->surf,  sizeof *P->pslot[0],
+	                  sizeof *P->pslot[1]};
+	memcpy(a, p, sizeof p);
+	memcpy(item, s, sizeof s);
+}
+
+void particles_alloc(particles *P, size_t n, size_t lo, size_t hi)
+{
+	alloc_arrays(P, lo, hi, 1);
+	for (size_t i = lo; i < hi; i++)
+		P->surf[i] = P->pslot[0][i] = P->pslot[1][i] = -1;
+	P->n = n;
+	P->glob = NULL;
+}
+
+void particles_free(particles *P)
+{
+	char *a[NARR];
+	size_t item[NARR];
+	arrays(P, a, item);
+	for (int k = 0; k < NARR; k++)
+		window_array_free(a[k], P->lo, item[k]);
+	window_array_free(P->glob, P->lo, sizeof *P->glob);
+}
+
+void particle_row(const particles *P, size_t i, double *row)
+{
+	memcpy(row, P->x + 3 * i, 3 * sizeof *row);
+	memcpy(row + 3, P->v + 3 * i, 3 * sizeof *row);
+	memcpy(row + 6, P->w + 3 * i, 3 * sizeof *row);
+	row[9] = P->r[i];
+	row[10] = P->m[i];
+	row[11] = P->orig[i];
+}
+
+void particle_set_row(particles *P, size_t i, const double *row)
+{
+	memcpy(P->x + 3 * i, row, 3 * sizeof *row);
+	memcpy(P->v + 3 * i, row + 3, 3 * sizeof *row);
+	memcpy(P->w + 3 * i, row + 6, 3 * sizeof *row);
+	P->r[i] = row[9];
+	P->m[i] = row[10];
+	P->orig[i] = (int32_t)row[11];
+}
+
+/* The first of glob[lo, hi) (increasing) not below g. */
+static size_t lower(const int32_t *glob, size_t lo, size_t hi, size_t g)
+{
+	while (lo < hi) {
+		size_t mid = lo + (hi - lo) / 2;
+		if ((size_t)glob[mid] < g)
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	return lo;
+}
+
+int64_t window_local(const particles *P, size_t g)
+{
+	if (!P->glob)
+		return g < P->n ? (int64_t)g : -1;
+	if (g >= P->own0 && g < P->own1)
+		return (int64_t)g;
+	size_t a = g < P->own0 ? P->lo : P->own1, b = g < P->own0 ? P->own0 : P->hi;
+	size_t k = lower(P->glob, a, b, g);
+	return k < b && (size_t)P->glob[k] == g ? (int64_t)k : -1;
+}
+
+static int cmp_i32(const void *a, const void *b)
+{
+	int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+	return (x > y) - (x < y);
+}
+
+/* The pairs of L with both ends held renumbered by map (-1: not held), the
+ * others dropped; their number dropped. */
+static size_t renumber_pairs(pairlist *L, const int32_t *map)
+{
+	size_t m = 0;
+	for (size_t c = 0; c < L->n; c++) {
+		int32_t i = map[L->rec[c].i], j = map[L->rec[c].j];
+		if (i < 0 || j < 0)
+			continue;
+		L->rec[m] = L->rec[c];
+		L->rec[m].i = i;
+		L->rec[m].j = j;
+		if (m != c)
+			memcpy(L->f + (size_t)L->fcols * m, L->f + (size_t)L->fcols * c,
+			       (size_t)L->fcols * sizeof *L->f);
+		m++;
+	}
+	size_t dropped = L->n - m;
+	L->n = m;
+	return dropped;
+}
+
+/* Merge the increasing lists a and b (of na and nb) into out, each index
+ * once: their number. */
+static size_t merge(const int32_t *a, size_t na, const int32_t *b, size_t nb, int32_t *out)
+{
+	size_t i = 0, j = 0, m = 0;
+	while (i < na || j < nb) {
+		int32_t x = j == nb || (i < na && a[i] <= b[j]) ? a[i] : b[j];
+		i += i < na && a[i] == x;
+		j += j < nb && b[j] == x;
+		out[m++] = x;
+	}
+	return m;
+}
+
+/* The window of the own particles, the other ends of the crossing bonds
+ * (P->fixed) and want[0..nw) (increasing indices in the whole specimen,
+ * other ranks'); returns the number of contacts dropped. */
+static size_t set_window(engine *e, const int32_t *want, size_t nw)
+{
+	particles *P = &e->p;
+	bond_split *S = &e->pairs.split;
+	size_t p0 = e->ranks.p0, p1 = e->ranks.p1;
+	int32_t *g = xmalloc((nw + P->nfixed + 1) * sizeof *g);
+	size_t k = merge(want, nw, P->fixed, P->nfixed, g), before = 0;
+	while (before < k && (size_t)g[before] < p0)
+		before++;
+	particles Q = *P;
+	alloc_arrays(&Q, p0 - before, p1 + (k - before), 0); /* each entry set below */
+	char *a[NARR], *b[NARR];
+	size_t item[NARR];
+	arrays(P, a, item);
+	arrays(&Q, b, item);
+	Q.glob = window_array(Q.lo, Q.hi, sizeof *Q.glob);
+	for (size_t i = Q.lo; i < Q.hi; i++)
+		Q.glob[i] = i < p0 ? g[i - Q.lo] : i >= p1 ? g[before + (i - p1)] : (int32_t)i;
+	free(g);
+	/* The particles new to the window have no place on a platen or the
+	 * surface (their state is the caller's to fill); the others are kept.
+	 * Each old index's new one (or -1), by merging the two windows. */
+	for (size_t i = Q.lo; i < Q.hi; i++)
+		if (i < p0 || i >= p1) {
+			Q.flag[i] = 0;
+			Q.surf[i] = Q.pslot[0][i] = Q.pslot[1][i] = -1;
+		}
+	int32_t *map = window_array(P->lo, P->hi, sizeof *map);
+	for (size_t i = P->lo, j = Q.lo; i < P->hi; i++) {
+		size_t gi = particle_global(P, i);
+		while (j < Q.hi && (size_t)Q.glob[j] < gi)
+			j++;
+		map[i] = j < Q.hi && (size_t)Q.glob[j] == gi ? (int32_t)j : -1;
+		if (map[i] >= 0 && (i < p0 || i >= p1))
+			for (int q = 0; q < NARR; q++)
+				memcpy(b[q] + (size_t)map[i] * item[q], a[q] + i * item[q],
+				       item[q]);
+	}
+	for (int q = 0; q < NARR; q++) /* the own ones in one piece */
+		memcpy(b[q] + p0 * item[q], a[q] + p0 * item[q], (p1 - p0) * item[q]);
+	/* The lists' particles: the bonds' other ends and the crossing slots'
+	 * are held (above); a contact is dropped with an end. */
+	pairlist *B = &e->pairs.bonds;
+	for (size_t b2 = 0; b2 < B->n; b2++)
+		B->rec[b2].j = map[B->rec[b2].j];
+	for (size_t c = 0; c < S->ncross; c++) {
+		S->ci[c] = map[S->ci[c]];
+		S->cj[c] = map[S->cj[c]];
+	}
+	size_t dropped = renumber_pairs(&e->pairs.contacts, map);
+	window_array_free(map, P->lo, sizeof *map);
+	particles_free(P); /* x_ref, the own particles', stays */
+	*P = Q;
+	return dropped;
+}
+
+void window_set(engine *e, const int32_t *want, size_t n) { set_window(e, want, n); }
+
+/* The other ranks' particles among the ends ci, cj of n pairs (indices in
+ * the whole specimen: the window is not made yet), in increasing order,
+ * each once, into out: their number. */
+static size_t others(const engine *e, const int32_t *ci, const int32_t *cj, size_t n, int32_t *out)
+{
+	size_t m = 0;
+	for (size_t c = 0; c < n; c++)
+		for (int end = 0; end < 2; end++) {
+			size_t g = (size_t)(end ? cj[c] : ci[c]);
+			if (g < e->ranks.p0 || g >= e->ranks.p1)
+				out[m++] = (int32_t)g;
+		}
+	qsort(out, m, sizeof *out, cmp_i32);
+	size_t k = 0;
+	for (size_t q = 0; q < m; q++)
+		if (!k || out[q] != out[k - 1])
+			out[k++] = out[q];
+	return k;
+}
+
+void window_start(engine *e)
+{
+	if (e->ranks.size == 1)
+		return;
+	particles *P = &e->p;
+	const bond_split *S = &e->pairs.split;
+	P->fixed = xmalloc((2 * S->ncross + 1) * sizeof *P->fixed);
+	P->nfixed = others(e, S->ci, S->cj, S->ncross, P->fixed);
+	const pairlist *C = &e->pairs.contacts;
+	int32_t *want = xmalloc((2 * C->n + 1) * sizeof *want);
+	int32_t *ci = xmalloc((C->n + 1) * sizeof *ci), *cj = xmalloc((C->n + 1) * sizeof *cj);
+	for (size_t c = 0; c < C->n; c++)
+		ci[c] = C->rec[c].i, cj[c] = C->rec[c].j;
+	size_t n = others(e, ci, cj, C->n, want);
+	free(ci), free(cj);
+	size_t dropped = set_window(e, want, n);
+	free(want);
+	if (dropped)
+		fatal("window_start: %zu contacts lost", dropped);
+	/* The halo in the new numbering. */
+	ranks_contacts(e);
+}

@@ -1,0 +1,53 @@
+/* The particles a rank holds (engine.h, particles): its own and the other
+ * ranks' particles it reads, a window of indices (window.c).
+ *
+ * Once the run starts (window_start) a rank holds, besides its own
+ * particles: the other ends of its crossing bonds (bonds.h) for the whole
+ * run, and the other ends of its contacts and its ghosts (ranks.h), renewed
+ * at each neighbour rebuild (window_set). The others are numbered next to
+ * its own, those of lower index before them and those of higher index
+ * after them, each side in the order of their indices: every list sorted
+ * by particle (bonds, contacts, the crossing slots, the halo) keeps the
+ * order one process gives it, and its own particles keep their index in
+ * the whole specimen. What a rank writes or sends of a particle index (the
+ * checkpoint's contacts, the diagnoses, the rank of a particle) is the
+ * index in the whole specimen (particle_global). */
+#ifndef DEM_WINDOW_H
+#define DEM_WINDOW_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct engine engine;
+typedef struct particles particles;
+
+/* An array of items of `size` bytes addressed by the indices [lo, hi),
+ * zeroed, and its release. */
+void *window_array(size_t lo, size_t hi, size_t size);
+void window_array_free(void *a, size_t lo, size_t size);
+/* The particles' arrays (not x_ref) for the window [lo, hi) of a specimen of n
+ * particles (zero, no particle on a platen or the surface), glob NULL. */
+void particles_alloc(particles *P, size_t n, size_t lo, size_t hi);
+void particles_free(particles *P);
+/* Particle i's position, velocity, spin, radius, mass and index in the
+ * assembly as a row of PARTICLE_ROW doubles (what a rank sends of a
+ * particle another rank is to hold), and back. */
+enum { PARTICLE_ROW = 12 };
+void particle_row(const particles *P, size_t i, double *row);
+void particle_set_row(particles *P, size_t i, const double *row);
+/* The window's index of the specimen's particle g, or -1 if this rank does
+ * not hold it. */
+int64_t window_local(const particles *P, size_t g);
+/* Where the run starts (after setup, or after a checkpoint is read), with
+ * several ranks: the window of this rank's own particles and the other
+ * ends of its crossing bonds and contacts; the others' arrays freed. */
+void window_start(engine *e);
+/* Hold the specimen's particles want[0..n) (increasing, other ranks') as
+ * well as the own ones and the other ends of the crossing bonds: a new
+ * window, the particles kept from the old one in place and every list
+ * renumbered; the contacts with an end no longer held dropped (the
+ * neighbour rebuild replaces them). The arrays of the particles new to the
+ * window are the caller's to fill. */
+void window_set(engine *e, const int32_t *want, size_t n);
+
+#endif
