@@ -30,51 +30,111 @@ static int nested(const particles *P, size_t i, int32_t j)
 	return d2 < r * r;
 }
 
+/* The particles j > i within the bond range of particle i (Eq. 16), in
+ * increasing order, into js (CELLS_CAP): their number, or -1. */
+static int partners(const engine *e, size_t i, int32_t *js)
+{
+	const bond_search *f = &e->pairs.formed;
+	return cells_partners(&f->grid, e->p.x, e->p.r, i, f->range, 0, js, CELLS_CAP);
+}
+
 int bonds_form(engine *e)
 {
 	particles *P = &e->p;
-	double range = e->law->bond_range(e->lp);
-	cells_pairs cp;
-	size_t crowded;
-	if (cells_pairs_within(P->x, P->r, P->n, range, range * 2 * e->frame.r_max, &cp, &crowded))
-		return err_set("particle %d has more than %d neighbours within the bond range: "
-		               "overlapping spheres?",
-		               P->orig[crowded], CELLS_CAP);
-	for (size_t b = 0; b < cp.n; b++)
-		if (nested(P, (size_t)cp.i[b], cp.j[b])) {
-			size_t i = (size_t)cp.i[b];
-			int32_t j = cp.j[b];
-			const double *xi = P->x + 3 * i;
-			int rc = err_set(
-			    "particles %d and %d (radii %g and %g m, at (%g, %g, %g) m): the "
-			    "centre of one lies inside the other: expected the spheres of a "
-			    "packing (a damaged assembly?)",
-			    P->orig[i], P->orig[j], P->r[i], P->r[j], xi[0], xi[1], xi[2]);
-			cells_pairs_free(&cp);
-			return rc;
-		}
-	e->pairs.formed = cp;
-	e->pairs.nbonds = cp.n;
+	bond_search *f = &e->pairs.formed;
+	f->range = e->law->bond_range(e->lp);
+	cells_build(&f->grid, P->x, P->n, f->range * 2 * e->frame.r_max);
+	/* Count them by particle block: the bonds are found again where they
+	 * are needed (bonds_split, bonds_own). */
+	size_t nblk = nblocks(P->n);
+	f->bfirst = xcalloc(nblk + 1, sizeof *f->bfirst);
+	int32_t js[CELLS_CAP];
+	for (size_t i = 0; i < P->n; i++) {
+		int nj = partners(e, i, js);
+		if (nj < 0)
+			return err_set("particle %d has more than %d neighbours within the bond "
+			               "range: overlapping spheres?",
+			               P->orig[i], CELLS_CAP);
+		for (int q = 0; q < nj; q++)
+			if (nested(P, i, js[q])) {
+				const double *xi = P->x + 3 * i;
+				return err_set("particles %d and %d (radii %g and %g m, at (%g, "
+				               "%g, %g) m): the "
+				               "centre of one lies inside the other: expected the "
+				               "spheres of a "
+				               "packing (a damaged assembly?)",
+				               P->orig[i], P->orig[js[q]], P->r[i], P->r[js[q]],
+				               xi[0], xi[1], xi[2]);
+			}
+		f->bfirst[i / BLOCK + 1] += (size_t)nj;
+	}
+	for (size_t k = 0; k < nblk; k++)
+		f->bfirst[k + 1] += f->bfirst[k];
+	e->pairs.nbonds = f->bfirst[nblk];
 	return 0;
 }
 
-/* The ends of bond b of the whole specimen: as formed, or (one rank, every
- * record its own) from its record. */
-static void bond_ends(const engine *e, size_t b, int32_t *i, int32_t *j)
+void bonds_search_free(bond_search *f)
 {
-	const cells_pairs *cp = &e->pairs.formed;
-	*i = cp->i ? cp->i[b] : e->pairs.bonds.rec[b].i;
-	*j = cp->i ? cp->j[b] : e->pairs.bonds.rec[b].j;
+	cells_free(&f->grid);
+	free(f->bfirst);
+	f->bfirst = NULL;
 }
 
-/* The records of bonds [b0, b1) of the whole specimen as this rank's (the
- * formed list released), or, after that, the records it holds (one rank:
- * all of them). */
-static void bonds_keep(engine *e, size_t b0, size_t b1)
+/* Call visit(ctx, b, i, j, js) for each bond b (of the whole specimen) of
+ * the particles [p0, p1), p0 the first of a block, in bond order; from the
+ * search, or (one rank, every record its own) from the records. */
+typedef void (*bond_visit)(void *ctx, size_t b, int32_t i, int32_t j);
+static void each_bond(const engine *e, size_t p0, size_t p1, bond_visit visit, void *ctx)
+{
+	const bond_search *f = &e->pairs.formed;
+	if (!f->bfirst) {
+		const pairlist *L = &e->pairs.bonds;
+		const size_t *bfirst = e->pairs.split.bfirst;
+		for (size_t b = bfirst[p0 / BLOCK]; b < L->n && (size_t)L->rec[b].i < p1; b++)
+			visit(ctx, b, L->rec[b].i, L->rec[b].j);
+		return;
+	}
+	int32_t js[CELLS_CAP];
+	size_t b = f->bfirst[p0 / BLOCK];
+	for (size_t i = p0; i < p1; i++) {
+		int nj = partners(e, i, js);
+		for (int q = 0; q < nj; q++)
+			visit(ctx, b++, (int32_t)i, js[q]);
+	}
+}
+
+/* A bond's record, its length from the search (as cells_pairs_within
+ * measures it). */
+typedef struct {
+	const particles *P;
+	bond *rec;
+	size_t b0;
+} keep_ctx;
+
+static void keep_one(void *ctx, size_t b, int32_t i, int32_t j)
+{
+	keep_ctx *k = ctx;
+	const double *x = k->P->x;
+	double d2 = 0;
+	for (int c = 0; c < 3; c++) {
+		double dx = x[3 * (size_t)j + c] - x[3 * (size_t)i + c];
+		d2 += dx * dx;
+	}
+	bond *bd = &k->rec[b - k->b0];
+	bd->i = i;
+	bd->j = j;
+	bd->d0 = sqrt(d2);
+}
+
+/* The records of the bonds of the particles [p0, p1), bonds [b0, b1) of the
+ * whole specimen, as this rank's (the search released), or, after that,
+ * the records it holds (one rank: all of them). */
+static void bonds_keep(engine *e, size_t p0, size_t p1, size_t b0, size_t b1)
 {
 	pairlist *L = &e->pairs.bonds;
-	cells_pairs *cp = &e->pairs.formed;
-	if (!cp->i) {
+	bond_search *f = &e->pairs.formed;
+	if (!f->bfirst) {
 		if (b1 - b0 != L->n || (L->n && b0 != e->pairs.bond0))
 			fatal("the bonds are split again on other ranks than they were formed for");
 		e->pairs.bond0 = b0;
@@ -83,16 +143,11 @@ static void bonds_keep(engine *e, size_t b0, size_t b1)
 	pairlist_free(L);
 	L->n = L->cap = b1 - b0;
 	L->rec = xcalloc(L->n + 1, sizeof *L->rec);
-	for (size_t b = b0; b < b1; b++) {
-		bond *bd = &L->rec[b - b0];
-		bd->i = cp->i[b];
-		bd->j = cp->j[b];
-		bd->d0 = cp->d[b];
-	}
+	each_bond(e, p0, p1, keep_one, &(keep_ctx){&e->p, L->rec, b0});
 	L->fcols = 3;
 	L->f = xcalloc(3 * L->n + 1, sizeof *L->f);
 	e->pairs.bond0 = b0;
-	cells_pairs_free(cp);
+	bonds_search_free(f);
 }
 
 /* The law's pair description of bond b (for init and constants). */
@@ -429,17 +484,42 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 	}
 }
 
+/* A share's bond reaching past its particles (up to p1) as a crossing
+ * slot. */
+typedef struct {
+	bond_split *S;
+	size_t p1, cap;
+} cross_ctx;
+
+static void add_cross(void *ctx, size_t b, int32_t i, int32_t j)
+{
+	cross_ctx *c = ctx;
+	bond_split *S = c->S;
+	if ((size_t)j < c->p1)
+		return;
+	if (S->ncross == c->cap) {
+		c->cap = c->cap ? 2 * c->cap : 1024;
+		S->cross = xrealloc(S->cross, c->cap * sizeof *S->cross);
+		S->ci = xrealloc(S->ci, c->cap * sizeof *S->ci);
+		S->cj = xrealloc(S->cj, c->cap * sizeof *S->cj);
+	}
+	S->cross[S->ncross] = (int32_t)b;
+	S->ci[S->ncross] = i;
+	S->cj[S->ncross++] = j;
+}
+
 void bonds_split(engine *e, int shares)
 {
 	bond_split *S = &e->pairs.split;
 	size_t n = e->p.n, nblk = nblocks(n), nb = e->pairs.nbonds;
 	bonds_split_free(S);
 	S->bfirst = xmalloc((nblk + 1) * sizeof *S->bfirst);
+	const bond_search *f = &e->pairs.formed;
+	const pairlist *L = &e->pairs.bonds;
 	for (size_t blk = 0, b = 0; blk <= nblk; blk++) {
-		int32_t i, j;
-		while (b < nb && (bond_ends(e, b, &i, &j), (size_t)i < blk * BLOCK))
+		while (!f->bfirst && b < nb && (size_t)L->rec[b].i < blk * BLOCK)
 			b++;
-		S->bfirst[blk] = b;
+		S->bfirst[blk] = f->bfirst ? f->bfirst[blk] : b;
 	}
 	/* Shares of about equal work (a bond costs about a particle), in whole
 	 * particle blocks. */
@@ -462,27 +542,11 @@ void bonds_split(engine *e, int shares)
 	S->pfirst[shares] = n;
 	/* Every share's crossing bonds, in bond order (bonds_own keeps this
 	 * rank's). */
-	size_t cap = 0;
+	cross_ctx c = {S, 0, 0};
 	for (int k = 0; k < shares; k++) {
 		S->cfirst[k] = S->ncross;
-		size_t p1 = S->pfirst[k + 1];
-		for (size_t b = S->bfirst[S->pfirst[k] / BLOCK]; S->pfirst[k] < p1 && b < nb; b++) {
-			int32_t i, j;
-			bond_ends(e, b, &i, &j);
-			if ((size_t)i >= p1)
-				break;
-			if ((size_t)j < p1)
-				continue;
-			if (S->ncross == cap) {
-				cap = cap ? 2 * cap : 1024;
-				S->cross = xrealloc(S->cross, cap * sizeof *S->cross);
-				S->ci = xrealloc(S->ci, cap * sizeof *S->ci);
-				S->cj = xrealloc(S->cj, cap * sizeof *S->cj);
-			}
-			S->cross[S->ncross] = (int32_t)b;
-			S->ci[S->ncross] = i;
-			S->cj[S->ncross++] = j;
-		}
+		c.p1 = S->pfirst[k + 1];
+		each_bond(e, S->pfirst[k], c.p1, add_cross, &c);
 	}
 	S->cfirst[shares] = S->ncross;
 }
@@ -546,7 +610,7 @@ void bonds_own(engine *e, int s0, int s1)
 		if (k >= 0)
 			S->in[S->infirst[k + 1]++] = (int32_t)c;
 	}
-	bonds_keep(e, b0, b1);
+	bonds_keep(e, p0, p1, b0, b1);
 	free(S->staged);
 	S->staged = xcalloc(e->pairs.bonds.n + 1, sizeof *S->staged);
 }

@@ -7,6 +7,7 @@
 #include <stdint.h>
 
 #include "lib/runfile.h"
+#include "solve/cells.h"
 #include "solve/law.h"
 #include "solve/pairlist.h"
 
@@ -63,8 +64,17 @@ typedef struct {
 } bond_split;
 
 /* Bonds between the particles within the law's range (Eq. 16), as
- * e->pairs.formed, until bonds_own keeps a rank's records. */
+ * e->pairs.formed until bonds_own makes a rank's records: a cell grid
+ * over every particle, from which the bonds of any particle are found
+ * again in bond order, and the first bond of each particle block. No rank
+ * holds every bond. */
+typedef struct {
+	cells grid;
+	double range;   /* Eq. 16, times r_i + r_j */
+	size_t *bfirst; /* [particle blocks + 1] */
+} bond_search;
 int bonds_form(engine *e);
+void bonds_search_free(bond_search *f);
 /* The history of this rank's bonds at the start, and the largest fraction
  * of critical damping of any bond (Eq. 13) into e->clock.xi_max.
  * Collective. */

@@ -94,9 +94,9 @@ typedef struct {
 	 * (i, j). */
 	pairlist bonds;
 	size_t bond0, nbonds;
-	/* Between bonds_form and ranks_split: every bond's ends and length, of
-	 * which each rank then keeps its own as records. */
-	cells_pairs formed;
+	/* Between bonds_form and ranks_split: the search that finds the bonds,
+	 * which each rank then makes the records of its own from. */
+	bond_search formed;
 	pairlist contacts, contacts_old;
 	bond_split split; /* the shares of the particles and bonds among threads */
 	cells grid;

@@ -280,7 +280,7 @@ void engine_free(engine *e)
 	particles_free(P);
 	free(P->x_ref), free(P->fixed);
 	pairlist_free(&e->pairs.bonds);
-	cells_pairs_free(&e->pairs.formed);
+	bonds_search_free(&e->pairs.formed);
 	pairlist_free(&e->pairs.contacts);
 	pairlist_free(&e->pairs.contacts_old);
 	platens_free(&e->bc.pl);
