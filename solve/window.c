@@ -163,10 +163,7 @@ static size_t merge(const int32_t *a, size_t na, const int32_t *b, size_t nb, in
 	return m;
 }
 
-/* The window of the own particles, the other ends of the crossing bonds
- * (P->fixed) and want[0..nw) (increasing indices in the whole specimen,
- * other ranks'); returns the number of contacts dropped. */
-static size_t set_window(engine *e, const int32_t *want, size_t nw)
+size_t window_set(engine *e, const int32_t *want, size_t nw)
 {
 	particles *P = &e->p;
 	bond_split *S = &e->pairs.split;
@@ -222,26 +219,21 @@ static size_t set_window(engine *e, const int32_t *want, size_t nw)
 	return dropped;
 }
 
-void window_set(engine *e, const int32_t *want, size_t n) { set_window(e, want, n); }
-
-/* The other ranks' particles among the ends ci, cj of n pairs (indices in
- * the whole specimen: the window is not made yet), in increasing order,
- * each once, into out: their number. */
-static size_t others(const engine *e, const int32_t *ci, const int32_t *cj, size_t n, int32_t *out)
+/* Of the m particles list[0..m) (indices in the whole specimen: the window
+ * is not made yet), the other ranks', in increasing order, each once: their
+ * number. */
+static size_t others(const engine *e, int32_t *list, size_t m)
 {
-	size_t m = 0;
-	for (size_t c = 0; c < n; c++)
-		for (int end = 0; end < 2; end++) {
-			size_t g = (size_t)(end ? cj[c] : ci[c]);
-			if (g < e->ranks.p0 || g >= e->ranks.p1)
-				out[m++] = (int32_t)g;
-		}
-	qsort(out, m, sizeof *out, cmp_i32);
 	size_t k = 0;
 	for (size_t q = 0; q < m; q++)
-		if (!k || out[q] != out[k - 1])
-			out[k++] = out[q];
-	return k;
+		if ((size_t)list[q] < e->ranks.p0 || (size_t)list[q] >= e->ranks.p1)
+			list[k++] = list[q];
+	qsort(list, k, sizeof *list, cmp_i32);
+	size_t u = 0;
+	for (size_t q = 0; q < k; q++)
+		if (!u || list[q] != list[u - 1])
+			list[u++] = list[q];
+	return u;
 }
 
 void window_start(engine *e)
@@ -251,18 +243,17 @@ void window_start(engine *e)
 	particles *P = &e->p;
 	const bond_split *S = &e->pairs.split;
 	P->fixed = xmalloc((2 * S->ncross + 1) * sizeof *P->fixed);
-	P->nfixed = others(e, S->ci, S->cj, S->ncross, P->fixed);
+	for (size_t c = 0; c < S->ncross; c++)
+		P->fixed[2 * c] = S->ci[c], P->fixed[2 * c + 1] = S->cj[c];
+	P->nfixed = others(e, P->fixed, 2 * S->ncross);
 	const pairlist *C = &e->pairs.contacts;
 	int32_t *want = xmalloc((2 * C->n + 1) * sizeof *want);
-	int32_t *ci = xmalloc((C->n + 1) * sizeof *ci), *cj = xmalloc((C->n + 1) * sizeof *cj);
 	for (size_t c = 0; c < C->n; c++)
-		ci[c] = C->rec[c].i, cj[c] = C->rec[c].j;
-	size_t n = others(e, ci, cj, C->n, want);
-	free(ci), free(cj);
-	size_t dropped = set_window(e, want, n);
+		want[2 * c] = C->rec[c].i, want[2 * c + 1] = C->rec[c].j;
+	size_t dropped = window_set(e, want, others(e, want, 2 * C->n));
 	free(want);
 	if (dropped)
-		fatal("window_start: %zu contacts lost", dropped);
+		fatal("window_start: %zu contacts without their ends (an internal error)", dropped);
 	/* The halo in the new numbering. */
 	ranks_contacts(e);
 }

@@ -46,8 +46,8 @@ void window_start(engine *e);
  * well as the own ones and the other ends of the crossing bonds: a new
  * window, the particles kept from the old one in place and every list
  * renumbered; the contacts with an end no longer held dropped (the
- * neighbour rebuild replaces them). The arrays of the particles new to the
- * window are the caller's to fill. */
-void window_set(engine *e, const int32_t *want, size_t n);
+ * neighbour rebuild replaces them), their number returned. The arrays of
+ * the particles new to the window are the caller's to fill. */
+size_t window_set(engine *e, const int32_t *want, size_t n);
 
 #endif
