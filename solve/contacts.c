@@ -68,7 +68,7 @@ static void reserve(const engine *e, pairlist *l, size_t n)
 	if (!l->off) {
 		size_t p0, p1;
 		ranks_own(e, &p0, &p1);
-		l->off = (int32_t *)xcalloc(p1 - p0 + 2, sizeof *l->off) - p0;
+		l->off = window_array(p0, p1 + 1, sizeof *l->off);
 		l->off0 = p0;
 	}
 	l->cap = cap;

@@ -3,12 +3,12 @@
 #include <string.h>
 
 #include "solve/pairlist.h"
+#include "solve/window.h"
 
 void pairlist_free(pairlist *l)
 {
 	free(l->rec), free(l->f), free(l->ref);
-	if (l->off)
-		free(l->off + l->off0);
+	window_array_free(l->off, l->off0, sizeof *l->off);
 	memset(l, 0, sizeof *l);
 }
 
