@@ -76,29 +76,51 @@ static unsigned char *exchange(size_t row, const size_t *lo, size_t piece, const
 	}
 	size_t nrecv = have - keep;
 	unsigned char *send = xmalloc((mine - keep) * row + 1), *recv = xmalloc(nrecv * row + 1);
-	int64_t *sidx = xmalloc((mine - keep + 1) * sizeof *sidx);
-	int64_t *ridx = xmalloc((nrecv + 1) * sizeof *ridx);
+	/* Items in row order (no order, no dest) send each rank one run of
+	 * rows: its first row, per rank; else each row's. */
+	int runs = !it->order && !it->dest;
+	size_t nidx = runs ? (size_t)size : mine - keep, ridx_n = runs ? (size_t)size : nrecv;
+	int64_t *sidx = xmalloc((nidx + 1) * sizeof *sidx);
+	int64_t *ridx = xmalloc((ridx_n + 1) * sizeof *ridx);
+	for (size_t q = 0; runs && q < (size_t)size; q++)
+		sidx[q] = -1;
 	/* In row order: the rows of earlier ranks, this rank's own, then
 	 * later ranks'. A run of consecutive items is filled at once. */
 	size_t ns = 0;
 	for (size_t s = it->s0, m; s < it->s1; s += m) {
 		size_t k = item_of(it, s), at = row_of(it, k);
 		int q = run_of(lo, size, at);
-		for (m = 1; s + m < it->s1 && !it->order && !it->dest && at + m < lo[q + 1]; m++)
+		for (m = 1; s + m < it->s1 && runs && at + m < lo[q + 1]; m++)
 			;
 		unsigned char *to = q == rank ? out + (at - lo[rank]) * row : send + ns * row;
 		it->fill(it->ctx, k, m, to);
-		for (size_t u = 0; q != rank && u < m; u++)
-			sidx[ns++] = (int64_t)(at + u);
+		if (q == rank)
+			continue;
+		if (runs && sidx[q] < 0)
+			sidx[q] = (int64_t)at;
+		for (size_t u = 0; !runs && u < m; u++)
+			sidx[ns + u] = (int64_t)(at + u);
+		ns += m;
 	}
 	MPI_Datatype t;
 	MPI_Type_contiguous((int)row, MPI_BYTE, &t);
 	MPI_Type_commit(&t);
-	MPI_Alltoallv(sidx, scnt, sdsp, MPI_INT64_T, ridx, rcnt, rdsp, MPI_INT64_T, MPI_COMM_WORLD);
+	if (runs)
+		MPI_Alltoall(sidx, 1, MPI_INT64_T, ridx, 1, MPI_INT64_T, MPI_COMM_WORLD);
+	else
+		MPI_Alltoallv(sidx, scnt, sdsp, MPI_INT64_T, ridx, rcnt, rdsp, MPI_INT64_T,
+		              MPI_COMM_WORLD);
 	MPI_Alltoallv(send, scnt, sdsp, t, recv, rcnt, rdsp, t, MPI_COMM_WORLD);
 	MPI_Type_free(&t);
-	for (size_t k = 0; k < nrecv; k++)
-		memcpy(out + ((size_t)ridx[k] - lo[rank]) * row, recv + k * row, row);
+	if (runs) {
+		for (int q = 0; q < size; q++)
+			if (rcnt[q])
+				memcpy(out + ((size_t)ridx[q] - lo[rank]) * row,
+				       recv + (size_t)rdsp[q] * row, (size_t)rcnt[q] * row);
+	} else {
+		for (size_t k = 0; k < nrecv; k++)
+			memcpy(out + ((size_t)ridx[k] - lo[rank]) * row, recv + k * row, row);
+	}
 	*recv_bytes += (double)(nrecv * row);
 	free(send), free(recv), free(sidx), free(ridx);
 	free(scnt), free(rcnt), free(sdsp), free(rdsp);
