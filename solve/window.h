@@ -22,7 +22,8 @@ typedef struct engine engine;
 typedef struct particles particles;
 
 /* An array of items of `size` bytes addressed by the indices [lo, hi),
- * zeroed, and its release. */
+ * zeroed (the pointer returned is that of index 0: its memory starts at
+ * index lo), and its release. */
 void *window_array(size_t lo, size_t hi, size_t size);
 void window_array_free(void *a, size_t lo, size_t size);
 /* The particles' arrays (not x_ref) for the window [lo, hi) of a specimen of n
@@ -44,8 +45,8 @@ int64_t window_local(const particles *P, size_t g);
 void window_start(engine *e);
 /* Hold the specimen's particles want[0..n) (increasing, other ranks') as
  * well as the own ones and the other ends of the crossing bonds: a new
- * window, the particles kept from the old one in place and every list
- * renumbered; the contacts with an end no longer held dropped (the
+ * window, the particles kept from the old one copied into it and every
+ * list renumbered; the contacts with an end no longer held dropped (the
  * neighbour rebuild replaces them), their number returned. The arrays of
  * the particles new to the window are the caller's to fill. */
 size_t window_set(engine *e, const int32_t *want, size_t n);
