@@ -59,10 +59,9 @@ int bonds_form(engine *e)
 			if (nested(P, i, js[q])) {
 				const double *xi = P->x + 3 * i;
 				return err_set("particles %d and %d (radii %g and %g m, at (%g, "
-				               "%g, %g) m): the "
-				               "centre of one lies inside the other: expected the "
-				               "spheres of a "
-				               "packing (a damaged assembly?)",
+				               "%g, %g) m): the centre of one lies inside the "
+				               "other: expected the spheres of a packing (a "
+				               "damaged assembly?)",
 				               P->orig[i], P->orig[js[q]], P->r[i], P->r[js[q]],
 				               xi[0], xi[1], xi[2]);
 			}
@@ -81,7 +80,7 @@ void bonds_search_free(bond_search *f)
 	f->bfirst = NULL;
 }
 
-/* Call visit(ctx, b, i, j, js) for each bond b (of the whole specimen) of
+/* Call visit(ctx, b, i, j) for each bond b (of the whole specimen) of
  * the particles [p0, p1), p0 the first of a block, in bond order; from the
  * search, or (one rank, every record its own) from the records. */
 typedef void (*bond_visit)(void *ctx, size_t b, int32_t i, int32_t j);
