@@ -10,6 +10,7 @@
 #define DEM_BLOCKS_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "solve/clones.h"
 
@@ -34,6 +35,20 @@ static inline int run_of(const size_t *first, int n, size_t p)
 			lo = mid;
 		else
 			hi = mid - 1;
+	}
+	return lo;
+}
+
+/* Of the increasing indices a[lo, hi), the first not below g (hi if
+ * none). */
+static inline size_t first_not_below(const int32_t *a, size_t lo, size_t hi, size_t g)
+{
+	while (lo < hi) {
+		size_t mid = lo + (hi - lo) / 2;
+		if ((size_t)a[mid] < g)
+			lo = mid + 1;
+		else
+			hi = mid;
 	}
 	return lo;
 }

@@ -124,7 +124,7 @@ int diagnose_speed(engine *e, char *msg, size_t n)
 	double dt = e->clock.dt, limit = 0.5 * e->pairs.skin;
 	if (!(sqrt(e->sums.particles.v2max) * dt > limit))
 		return 0;
-	double v2, info[3];
+	double v2, info[2];
 	size_t i = fastest(e, 0, &v2);
 	ranks_particle(e, i, info);
 	double odt = omega_dt(e, i);
@@ -146,7 +146,7 @@ int diagnose_runaway(engine *e, char *msg, size_t n)
 	double input = e->energy.initial + fabs(e->energy.work), ke = e->sums.particles.ke_new;
 	if (!(ke > 2 * input + e->energy.noise))
 		return 0;
-	double top, info[3];
+	double top, info[2];
 	size_t worst = fastest(e, 1, &top);
 	ranks_particle(e, worst, info);
 	double odt = omega_dt(e, worst);
@@ -154,7 +154,7 @@ int diagnose_runaway(engine *e, char *msg, size_t n)
 	         "stopped: kinetic energy %g J exceeds twice the energy put in (%g J) at step "
 	         "%" PRId64 ": the integration is unstable; fastest particle %d (speed %g m/s, "
 	         "bonds give omega dt = %.3g, stable below 2)",
-	         ke, input, e->clock.step - 1, (int)info[0], sqrt(top / info[2]), odt);
+	         ke, input, e->clock.step - 1, (int)info[0], sqrt(top / info[1]), odt);
 	return 1;
 }
 
@@ -164,7 +164,7 @@ int diagnose_timestep(engine *e, char *msg, size_t n)
 	double crit = timestep_critical(e, 1, &worst);
 	if (e->clock.dt <= crit)
 		return 0;
-	double info[3];
+	double info[2];
 	ranks_particle(e, worst, info);
 	/* The contacts of a particle are on its rank's list (ranks.h). */
 	ranks_own(e, &p0, &p1);

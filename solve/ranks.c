@@ -797,20 +797,15 @@ int ranks_own(const engine *e, size_t *p0, size_t *p1)
 	return split;
 }
 
-void ranks_particle(const engine *e, size_t g, double info[3])
+void ranks_particle(const engine *e, size_t g, double info[2])
 {
 	const rank_split *R = &e->ranks;
 	int64_t i = window_local(&e->p, g);
 	int mine = i >= 0 && (R->size == 1 || (g >= R->p0 && g < R->p1));
-	for (int k = 0; k < 3; k++)
-		info[k] = -INFINITY;
-	if (mine) {
-		info[0] = e->p.orig[i];
-		info[1] = e->p.r[i];
-		info[2] = e->p.m[i];
-	}
+	info[0] = mine ? e->p.orig[i] : -INFINITY;
+	info[1] = mine ? e->p.m[i] : -INFINITY;
 	if (R->size > 1)
-		par_max(info, 3);
+		par_max(info, 2);
 }
 
 size_t ranks_gather_list(int32_t **list, size_t *cap, size_t mine)

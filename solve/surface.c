@@ -135,21 +135,6 @@ void surface_room(surface *S, size_t cap)
 	S->area = xrealloc(S->area, (cap + 1) * sizeof *S->area);
 }
 
-/* The place of particle i (the index in the whole specimen) in the
- * surface list, which is in increasing order; i is in it. */
-static size_t slot(const surface *S, size_t i)
-{
-	size_t lo = 0, hi = S->n;
-	while (lo < hi) {
-		size_t mid = lo + (hi - lo) / 2;
-		if ((size_t)S->idx[mid] < i)
-			lo = mid + 1;
-		else
-			hi = mid;
-	}
-	return lo;
-}
-
 /* Each rank bins its own particles, whose state is current (ranks.h); the
  * bins' outermost spheres are then a maximum over the ranks (the lowest
  * index among equals, as on one rank), and the surface layer each rank's
@@ -198,8 +183,10 @@ void surface_update(engine *e)
 			S->idx[mine++] = (int32_t)i;
 		}
 	}
-	S->n = split ? ranks_gather_list(&S->idx, &S->cap, mine) : mine;
-	S->area = xrealloc(S->area, (S->cap + 1) * sizeof *S->area); /* as idx */
+	size_t cap = S->cap;
+	S->n = split ? ranks_gather_list(&S->idx, &cap, mine) : mine;
+	if (cap > S->cap) /* the other ranks' entries grew the list */
+		surface_room(S, cap);
 	for (size_t k = 0; k < S->n; k++) {
 		S->area[k] = 0;
 		if ((size_t)S->idx[k] >= p0 && (size_t)S->idx[k] < p1)
@@ -213,7 +200,8 @@ void surface_update(engine *e)
 		if (i < 0)
 			continue;
 		double a = S->best_rho[b] * dth * dz;
-		S->area[slot(S, (size_t)i)] += a;
+		/* i's place in the surface list, which holds it */
+		S->area[first_not_below(S->idx, 0, S->n, (size_t)i)] += a;
 		S->lateral_area += a;
 		S->volume += 0.5 * S->best_rho[b] * a;
 		rsum += S->best_rho[b];

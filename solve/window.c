@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "lib/err.h"
+#include "solve/blocks.h"
 #include "solve/engine.h"
 #include "solve/ranks.h"
 #include "solve/window.h"
@@ -97,19 +98,6 @@ void particle_set_row(particles *P, size_t i, const double *row)
 	P->orig[i] = (int32_t)row[11];
 }
 
-/* The first of glob[lo, hi) (increasing) not below g. */
-static size_t lower(const int32_t *glob, size_t lo, size_t hi, size_t g)
-{
-	while (lo < hi) {
-		size_t mid = lo + (hi - lo) / 2;
-		if ((size_t)glob[mid] < g)
-			lo = mid + 1;
-		else
-			hi = mid;
-	}
-	return lo;
-}
-
 int64_t window_local(const particles *P, size_t g)
 {
 	if (!P->glob)
@@ -117,7 +105,7 @@ int64_t window_local(const particles *P, size_t g)
 	if (g >= P->own0 && g < P->own1)
 		return (int64_t)g;
 	size_t a = g < P->own0 ? P->lo : P->own1, b = g < P->own0 ? P->own0 : P->hi;
-	size_t k = lower(P->glob, a, b, g);
+	size_t k = first_not_below(P->glob, a, b, g);
 	return k < b && (size_t)P->glob[k] == g ? (int64_t)k : -1;
 }
 
