@@ -373,6 +373,31 @@ int h5_slab(hid_t d, hid_t type, size_t at, size_t m, size_t cols, void *buf, in
 	return rc < 0 ? -1 : 0;
 }
 
+int h5_rows_at(hid_t d, hid_t type, const int32_t *rows, size_t m, size_t cols, void *buf)
+{
+	if (!m)
+		return 0;
+	size_t w = cols ? cols : 1, rank = cols ? 2 : 1;
+	hsize_t *at = xmalloc(m * w * rank * sizeof *at);
+	for (size_t k = 0; k < m; k++)
+		for (size_t c = 0; c < w; c++) {
+			hsize_t *p = at + (k * w + c) * rank;
+			p[0] = (hsize_t)rows[k];
+			if (cols)
+				p[1] = c;
+		}
+	hid_t fs = H5Dget_space(d);
+	herr_t rc = H5Sselect_elements(fs, H5S_SELECT_SET, m * w, at);
+	hsize_t count = m * w;
+	hid_t mem = H5Screate_simple(1, &count, NULL);
+	if (rc >= 0)
+		rc = H5Dread(d, type, mem, fs, H5P_DEFAULT, buf);
+	H5Sclose(mem);
+	H5Sclose(fs);
+	free(at);
+	return rc < 0 ? -1 : 0;
+}
+
 int h5_rows_open(h5_rows *r, hid_t loc, const char *name, hid_t type, size_t rows, size_t cols,
                  const char *unit)
 {

@@ -69,6 +69,10 @@ typedef struct {
 /* Write (or read) rows [at, at + m) of an open dataset of cols columns
  * (0: rank 1) from (into) buf. No message set: the caller names the file. */
 int h5_slab(hid_t d, hid_t type, size_t at, size_t m, size_t cols, void *buf, int write);
+/* Read the m rows rows[0..m) (any order, each in range) of an open dataset
+ * of cols columns (0: rank 1) into buf, row k's values k-th. No message
+ * set. */
+int h5_rows_at(hid_t d, hid_t type, const int32_t *rows, size_t m, size_t cols, void *buf);
 int h5_rows_open(h5_rows *r, hid_t loc, const char *name, hid_t type, size_t rows, size_t cols,
                  const char *unit);
 size_t h5_rows_piece(const h5_rows *r);

@@ -322,14 +322,14 @@ static int get_field(hid_t g, const field *f, bond *rec, size_t first, size_t ro
 }
 
 /* Rows [first, first + rows) of a dataset of exactly n rows of cols
- * doubles into dst. */
-static int get_rows(hid_t g, const char *name, double *dst, size_t first, size_t rows, size_t n,
-                    size_t cols)
+ * values of the type into dst. */
+static int get_rows(hid_t g, const char *name, hid_t type, void *dst, size_t first, size_t rows,
+                    size_t n, size_t cols)
 {
 	hid_t d = open_rows(g, name, n, cols);
 	if (d < 0)
 		return -1;
-	herr_t rc = rows ? h5_slab(d, H5T_NATIVE_DOUBLE, first, rows, cols, dst, 0) : 0;
+	herr_t rc = rows ? h5_slab(d, type, first, rows, cols, dst, 0) : 0;
 	H5Dclose(d);
 	if (rc < 0)
 		return err_set("%s: checkpoint dataset '%s': unreadable", h5_name(g), name);
@@ -572,7 +572,7 @@ static int read_bond_h_f(hid_t g, const engine *e, size_t first, size_t rows, si
 	*is_old = columns(g, "bond_h") == OLD_NHIST;
 	if (!*is_old)
 		return get_field(g, &bond_fields[1], L->rec, first, rows, nb) ||
-		       get_rows(g, "bond_force", L->f, first, rows, nb, 3);
+		       get_rows(g, "bond_force", H5T_NATIVE_DOUBLE, L->f, first, rows, nb, 3);
 	if (h5_read_n(g, "bond_h", H5T_NATIVE_DOUBLE, (void **)&old->h, nb, OLD_NHIST) ||
 	    h5_read_n(g, "bond_force", H5T_NATIVE_DOUBLE, (void **)&old->f, nb, OLD_FCOLS))
 		return -1;
@@ -589,7 +589,8 @@ static int read_bond_h_f(hid_t g, const engine *e, size_t first, size_t rows, si
 /* The checkpoint's nc contacts, read in pieces: those with an end of this
  * rank's own, in the file's order, which is that of their i: first those
  * of earlier ranks' i, then those of its own (contacts_restore keeps what
- * each rank lists). */
+ * each rank lists). Their ends are indices in the whole specimen, and
+ * with the engine's conventions their d0 is not set yet (hold_contacts). */
 static int read_pairs(hid_t g, engine *e, size_t nc)
 {
 	pairlist *L = &e->pairs.contacts;
@@ -618,8 +619,6 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 					L->f = xrealloc(L->f, 6 * L->cap * sizeof *L->f);
 					L->ref = xrealloc(L->ref, 2 * L->cap * sizeof *L->ref);
 				}
-				if (!yade_contacts(e))
-					b->d0 = e->p.r[i] + e->p.r[j];
 				b->state = BOND_BROKEN_TENSION;
 				L->rec[L->n++] = *b;
 			}
@@ -660,8 +659,6 @@ static int read_platens(hid_t g, engine *e)
 			memcpy(e->bc.pl.who[k], ids, n * sizeof *ids);
 		free(ids);
 		int rc = 0;
-		for (size_t i = 0; i < P->n; i++)
-			P->pslot[k][i] = -1;
 		for (size_t c = 0; !rc && c < n; c++) {
 			int32_t p = e->bc.pl.who[k][c];
 			if (p < 0 || (size_t)p >= P->n) {
@@ -675,7 +672,6 @@ static int read_platens(hid_t g, engine *e)
 			q->ks = pc[6 * c + 4];
 			q->cn = pc[6 * c + 5];
 			q->u0 = 0;
-			P->pslot[k][p] = (int32_t)c;
 		}
 		if (!rc && n && yade_contacts(e)) {
 			snprintf(con, sizeof con, "platen%d_start", k);
@@ -701,13 +697,79 @@ static int read_surface(hid_t g, engine *e)
 	if (get(g, "surface_particle", H5T_NATIVE_INT32, S->idx, S->n, 0) ||
 	    get(g, "surface_area", H5T_NATIVE_DOUBLE, S->area, S->n, 0))
 		return -1;
-	for (size_t i = 0; i < P->n; i++)
+	size_t p0, p1;
+	ranks_own(e, &p0, &p1);
+	for (size_t i = P->lo; i < P->hi; i++)
 		P->surf[i] = -1;
 	for (size_t k = 0; k < S->n; k++) {
-		if (S->idx[k] < 0 || (size_t)S->idx[k] >= P->n)
+		size_t i = (size_t)S->idx[k];
+		if (S->idx[k] < 0 || i >= P->n)
 			return err_set("%s: checkpoint surface particle out of range", h5_name(g));
-		P->surf[S->idx[k]] = (int32_t)k;
+		if (i >= p0 && i < p1)
+			P->surf[i] = (int32_t)k;
 	}
+	return 0;
+}
+
+/* The particles [a, a + m) of the window, the other ranks': their rows of
+ * the checkpoint (index in the assembly, x, v, ω, flags), their radii from
+ * the run file's assembly and their masses. */
+static int read_others(hid_t g, hid_t f, engine *e, size_t a, size_t m)
+{
+	particles *P = &e->p;
+	const int32_t *rows = P->glob + a;
+	struct {
+		const char *name;
+		hid_t type;
+		size_t cols;
+		void *dst;
+	} get[] = {{"orig", H5T_NATIVE_INT32, 0, P->orig + a},
+	           {"x", H5T_NATIVE_DOUBLE, 3, P->x + 3 * a},
+	           {"v", H5T_NATIVE_DOUBLE, 3, P->v + 3 * a},
+	           {"w", H5T_NATIVE_DOUBLE, 3, P->w + 3 * a},
+	           {"flag", H5T_NATIVE_UINT8, 0, P->flag + a}};
+	for (size_t k = 0; k < sizeof get / sizeof get[0]; k++) {
+		hid_t d = open_rows(g, get[k].name, P->n, get[k].cols);
+		if (d < 0)
+			return -1;
+		int rc = h5_rows_at(d, get[k].type, rows, m, get[k].cols, get[k].dst);
+		H5Dclose(d);
+		if (rc)
+			return err_set("%s: checkpoint dataset '%s': unreadable", h5_name(g),
+			               get[k].name);
+	}
+	for (size_t i = a; i < a + m; i++)
+		if (P->orig[i] < 0 || (size_t)P->orig[i] >= P->n)
+			return err_set(
+			    "%s: checkpoint dataset 'orig': value %d at row %d: expected an "
+			    "index in the assembly below %zu",
+			    h5_name(g), P->orig[i], P->glob[i], P->n);
+	hid_t d = H5Dopen2(f, "particles/r", H5P_DEFAULT);
+	int rc = d < 0 || h5_rows_at(d, H5T_NATIVE_DOUBLE, P->orig + a, m, 0, P->r + a);
+	if (d >= 0)
+		H5Dclose(d);
+	if (rc)
+		return err_set("%s: dataset '/particles/r': unreadable", h5_name(f));
+	for (size_t i = a; i < a + m; i++)
+		P->m[i] = particle_mass(e->cs->mat.density, P->r[i]);
+	return 0;
+}
+
+/* The window made to hold the contacts' ends (window.h), the other ranks'
+ * particles read, the contacts' ends renumbered and, with the engine's
+ * conventions, their d0 (r_i + r_j) set. */
+static int hold_contacts(hid_t g, hid_t f, engine *e)
+{
+	particles *P = &e->p;
+	if (P->glob) {
+		window_hold_contacts(e);
+		if (read_others(g, f, e, P->lo, P->own0 - P->lo) ||
+		    read_others(g, f, e, P->own1, P->hi - P->own1))
+			return -1;
+	}
+	pairlist *L = &e->pairs.contacts;
+	for (size_t c = 0; !yade_contacts(e) && c < L->n; c++)
+		L->rec[c].d0 = P->r[L->rec[c].i] + P->r[L->rec[c].j];
 	return 0;
 }
 
@@ -755,24 +817,25 @@ int checkpoint_read_file(engine *e, hid_t f)
 	size_t first = e->pairs.bond0, rows = L->n;
 	old_bonds old = {NULL, NULL};
 	int is_old = 0;
-	int32_t *orig = rc ? NULL : xmalloc((n + 1) * sizeof *orig);
-	rc = rc || get(g, "orig", H5T_NATIVE_INT32, orig, n, 0);
-	if (!rc && memcmp(orig, P->orig, n * sizeof *orig))
+	/* Each rank checks the order of its own particles. */
+	int32_t *orig = rc ? NULL : xmalloc((own + 1) * sizeof *orig);
+	rc = rc || get_rows(g, "orig", H5T_NATIVE_INT32, orig, p0, own, n, 0);
+	if (!rc && memcmp(orig, P->orig + p0, own * sizeof *orig))
 		rc = err_set("%s: the checkpoint's particle order differs from this build's (not "
 		             "restartable with this version)",
 		             path);
 	free(orig);
 	if (!rc && (e->prog.stage < 0 || e->prog.stage >= e->cs->nstages))
 		rc = err_set("%s: checkpoint stage %d out of range", path, e->prog.stage);
-	rc = rc || get(g, "x", H5T_NATIVE_DOUBLE, P->x, n, 3) ||
-	     get(g, "v", H5T_NATIVE_DOUBLE, P->v, n, 3) ||
-	     get(g, "w", H5T_NATIVE_DOUBLE, P->w, n, 3) ||
-	     get_rows(g, "x_ref", P->x_ref, p0, own, n, 3) ||
-	     get(g, "flag", H5T_NATIVE_UINT8, P->flag, n, 0) ||
+	rc = rc || get_rows(g, "x", H5T_NATIVE_DOUBLE, P->x + 3 * p0, p0, own, n, 3) ||
+	     get_rows(g, "v", H5T_NATIVE_DOUBLE, P->v + 3 * p0, p0, own, n, 3) ||
+	     get_rows(g, "w", H5T_NATIVE_DOUBLE, P->w + 3 * p0, p0, own, n, 3) ||
+	     get_rows(g, "x_ref", H5T_NATIVE_DOUBLE, P->x_ref, p0, own, n, 3) ||
+	     get_rows(g, "flag", H5T_NATIVE_UINT8, P->flag + p0, p0, own, n, 0) ||
 	     get_field(g, &bond_fields[0], L->rec, first, rows, nb) ||
 	     get_field(g, &bond_fields[2], L->rec, first, rows, nb) ||
 	     read_bond_h_f(g, e, first, rows, nb, &old, &is_old) || read_surface(g, e) ||
-	     read_pairs(g, e, count[0]) || read_platens(g, e);
+	     read_pairs(g, e, count[0]) || read_platens(g, e) || hold_contacts(g, f, e);
 	for (size_t b = 0; !rc && b < rows; b++)
 		if (L->rec[b].state > BOND_BROKEN_SHEAR)
 			rc = err_set("%s: checkpoint dataset 'bond_state': value %d at row %zu: "

@@ -124,7 +124,7 @@ int diagnose_speed(engine *e, char *msg, size_t n)
 	double dt = e->clock.dt, limit = 0.5 * e->pairs.skin;
 	if (!(sqrt(e->sums.particles.v2max) * dt > limit))
 		return 0;
-	double v2, info[2];
+	double v2, info[PARTICLE_ROW];
 	size_t i = fastest(e, 0, &v2);
 	ranks_particle(e, i, info);
 	double odt = omega_dt(e, i);
@@ -133,7 +133,8 @@ int diagnose_speed(engine *e, char *msg, size_t n)
 	         ", more than half the Verlet skin (%g m): contacts would pass unseen; the "
 	         "integration is unstable, or the particle was thrown out by an overlap "
 	         "(bonds give omega dt = %.3g, stable below 2)",
-	         (int)info[0], sqrt(v2) * dt, sqrt(v2), e->clock.step - 1, e->pairs.skin, odt);
+	         (int)info[PARTICLE_ORIG], sqrt(v2) * dt, sqrt(v2), e->clock.step - 1,
+	         e->pairs.skin, odt);
 	return 1;
 }
 
@@ -146,7 +147,7 @@ int diagnose_runaway(engine *e, char *msg, size_t n)
 	double input = e->energy.initial + fabs(e->energy.work), ke = e->sums.particles.ke_new;
 	if (!(ke > 2 * input + e->energy.noise))
 		return 0;
-	double top, info[2];
+	double top, info[PARTICLE_ROW];
 	size_t worst = fastest(e, 1, &top);
 	ranks_particle(e, worst, info);
 	double odt = omega_dt(e, worst);
@@ -154,7 +155,8 @@ int diagnose_runaway(engine *e, char *msg, size_t n)
 	         "stopped: kinetic energy %g J exceeds twice the energy put in (%g J) at step "
 	         "%" PRId64 ": the integration is unstable; fastest particle %d (speed %g m/s, "
 	         "bonds give omega dt = %.3g, stable below 2)",
-	         ke, input, e->clock.step - 1, (int)info[0], sqrt(top / info[1]), odt);
+	         ke, input, e->clock.step - 1, (int)info[PARTICLE_ORIG],
+	         sqrt(top / info[PARTICLE_M]), odt);
 	return 1;
 }
 
@@ -164,7 +166,7 @@ int diagnose_timestep(engine *e, char *msg, size_t n)
 	double crit = timestep_critical(e, 1, &worst);
 	if (e->clock.dt <= crit)
 		return 0;
-	double info[2];
+	double info[PARTICLE_ROW];
 	ranks_particle(e, worst, info);
 	/* The contacts of a particle are on its rank's list (ranks.h). */
 	ranks_own(e, &p0, &p1);
@@ -174,6 +176,6 @@ int diagnose_timestep(engine *e, char *msg, size_t n)
 	snprintf(msg, n,
 	         "stopped: time step %g s above the stable limit %g s at step %" PRId64
 	         ": particle %d has %d bonds and %d contacts (lower time_step.safety)",
-	         e->clock.dt, crit, e->clock.step, (int)info[0], nb, nc);
+	         e->clock.dt, crit, e->clock.step, (int)info[PARTICLE_ORIG], nb, nc);
 	return 1;
 }

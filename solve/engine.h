@@ -22,6 +22,7 @@
 #include <stdint.h>
 
 #include "lib/assembly.h"
+#include "lib/vec3.h"
 #include "solve/blocks.h"
 #include "solve/bonds.h"
 #include "solve/boundary.h"
@@ -46,8 +47,8 @@ enum { PF_LAYER_BOTTOM = 1, PF_LAYER_TOP = 2, PF_CONSTRAINED = 4 };
  * of their indices, so that every pair keeps its order. The arrays below
  * are indexed by the window's indices (their memory starts at lo); glob
  * gives each one's index in the whole specimen. With one rank, and on
- * every rank until the run starts, the window is the whole specimen
- * (glob NULL). */
+ * every rank until setup splits the particles among the ranks, the window
+ * is the whole specimen (glob NULL). */
 typedef struct particles {
 	size_t n;       /* particles of the whole specimen */
 	size_t lo, hi;  /* the window */
@@ -66,6 +67,12 @@ typedef struct particles {
 	int32_t *surf;     /* slot in the lateral surface list, or -1 */
 	int32_t *pslot[2]; /* contact slot with platen 0 (bottom) / 1 (top), or -1 */
 } particles;
+
+/* The mass of a solid sphere of radius r (m) and density rho (kg/m^3). */
+static inline double particle_mass(double rho, double r)
+{
+	return rho * 4.0 / 3.0 * DEM_PI * r * r * r;
+}
 
 /* The index in the whole specimen of the window's particle i. */
 static inline size_t particle_global(const particles *P, size_t i)
@@ -215,11 +222,14 @@ static inline double *engine_acc(const engine *e, size_t i)
 typedef struct {
 	int threads; /* OpenMP threads; 0: the case's "threads", else all cores */
 	int quiet;   /* no summary on stderr */
+	int whole;   /* with several ranks, every rank keeps every particle (no
+	                window_start: for tests that change them all) */
 } engine_opts;
 
 /* The state at the start of a run (particles sorted, bonds formed, time
- * step chosen). Prints a summary with the time step on stderr unless
- * quiet. */
+ * step chosen); with several ranks, each holds its window of particles
+ * (window.h) once they are split among the ranks, unless o->whole. Prints a summary with the time
+ * step on stderr unless quiet. */
 int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const engine_opts *o);
 void engine_free(engine *e);
 

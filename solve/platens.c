@@ -13,6 +13,7 @@
 #include "lib/err.h"
 #include "solve/engine.h"
 #include "solve/laws/contact.h"
+#include "solve/par.h"
 #include "solve/platens.h"
 #include "solve/ranks.h"
 
@@ -27,14 +28,18 @@ void platens_init(engine *e)
 {
 	platens *pl = &e->bc.pl;
 	const particles *P = &e->p;
-	double lo = INFINITY, hi = -INFINITY;
-	for (size_t i = 0; i < P->n; i++) {
+	size_t p0, p1;
+	int split = ranks_own(e, &p0, &p1);
+	double m[2] = {-INFINITY, -INFINITY}; /* -lo, hi */
+	for (size_t i = p0; i < p1; i++) {
 		double z = axial(e, P->x + 3 * i);
-		lo = fmin(lo, z - P->r[i]);
-		hi = fmax(hi, z + P->r[i]);
+		m[0] = fmax(m[0], -(z - P->r[i]));
+		m[1] = fmax(m[1], z + P->r[i]);
 	}
-	pl->z[0] = lo;
-	pl->z[1] = hi;
+	if (split)
+		par_max(m, 2);
+	pl->z[0] = -m[0];
+	pl->z[1] = m[1];
 	for (int k = 0; k < 2; k++) {
 		pl->cap[k] = 64;
 		pl->pc[k] = xmalloc(pl->cap[k] * sizeof *pl->pc[k]);
@@ -99,7 +104,7 @@ void platens_restore(engine *e)
 	ranks_own(e, &p0, &p1);
 	for (int k = 0; k < 2; k++) {
 		size_t m = 0;
-		for (size_t i = 0; i < P->n; i++)
+		for (size_t i = P->lo; i < P->hi; i++)
 			P->pslot[k][i] = -1;
 		for (size_t c = 0; c < pl->ncand[k]; c++) {
 			int32_t i = pl->who[k][c];

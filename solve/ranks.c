@@ -797,15 +797,18 @@ int ranks_own(const engine *e, size_t *p0, size_t *p1)
 	return split;
 }
 
-void ranks_particle(const engine *e, size_t g, double info[2])
+void ranks_particle(const engine *e, size_t g, double row[PARTICLE_ROW])
 {
-	const rank_split *R = &e->ranks;
+	size_t p0, p1;
+	int split = ranks_own(e, &p0, &p1);
 	int64_t i = window_local(&e->p, g);
-	int mine = i >= 0 && (R->size == 1 || (g >= R->p0 && g < R->p1));
-	info[0] = mine ? e->p.orig[i] : -INFINITY;
-	info[1] = mine ? e->p.m[i] : -INFINITY;
-	if (R->size > 1)
-		par_max(info, 2);
+	if (i >= 0 && g >= p0 && g < p1)
+		particle_row(&e->p, (size_t)i, row);
+	else
+		for (int k = 0; k < PARTICLE_ROW; k++)
+			row[k] = -INFINITY;
+	if (split && e->ranks.size > 1)
+		par_max(row, PARTICLE_ROW);
 }
 
 size_t ranks_gather_list(int32_t **list, size_t *cap, size_t mine)

@@ -170,9 +170,10 @@ void ranks_own_pairs(const engine *e, pairs_view *v);
  * returned, else 1: what the rank computes from its own particles must then
  * be combined with the other ranks'. */
 int ranks_own(const engine *e, size_t *p0, size_t *p1);
-/* Particle g's (its index in the whole specimen) index in the assembly
- * and mass, from its rank. Collective. */
-void ranks_particle(const engine *e, size_t g, double info[2]);
+/* Particle g's (its index in the whole specimen) row (particle_row,
+ * window.h), from its rank; x, v and ω only where finite. Collective once
+ * the particles are split. */
+void ranks_particle(const engine *e, size_t g, double row[PARTICLE_ROW]);
 /* This rank's `mine` entries (*list)[0..mine), then every rank's, in rank
  * order, in *list (of room for *cap, grown to hold them all): their
  * number. Collective. */

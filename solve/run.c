@@ -340,7 +340,6 @@ static void loop(loop_state *L)
 static int run_loop(engine *e, run_writer *w, const run_opts *o)
 {
 	phase_start(&e->tm, TM_TOTAL);
-	window_start(e);
 	ranks_traffic_start(e);
 	loop_state L = {.e = e, .w = w, .o = o, .last_snapshot_step = -1};
 	L.wall0 = L.last_checkpoint = L.last_row_wall = L.last_flush = timer_now();

@@ -26,6 +26,7 @@
 #include "solve/surface.h"
 #include "solve/timers.h"
 #include "solve/timestep.h"
+#include "solve/window.h"
 
 /* Morton (Z-order) permutation of the assembly's particles into perm: their
  * bounding cube scaled to cells 0 to 2^21 - 1 a side (lib/morton.h). */
@@ -71,6 +72,24 @@ static void keep_own(engine *e)
 	e->scratch.acc = xcalloc(6 * (p1 - p0) + 1, sizeof *e->scratch.acc);
 }
 
+/* The exact sum of the values v[i] of this rank's particles, over the
+ * ranks once the particles are split (ranks_own): the same bits for any
+ * split (lib/xsum.h). */
+static double own_sum(const engine *e, double (*v)(const engine *, size_t))
+{
+	size_t p0, p1;
+	int split = ranks_own(e, &p0, &p1);
+	xsum s;
+	xsum_clear(&s);
+	for (size_t i = p0; i < p1; i++)
+		xsum_add(&s, v(e, i));
+	if (split)
+		par_sum(&s, 1);
+	return xsum_round(&s);
+}
+
+static double radius(const engine *e, size_t i) { return e->p.r[i]; }
+
 static int load_particles(engine *e, const dem_assembly *a)
 {
 	particles *P = &e->p;
@@ -78,7 +97,7 @@ static int load_particles(engine *e, const dem_assembly *a)
 	particles_alloc(P, n, 0, n);
 	P->own1 = n;
 	morton_order(a, P->orig);
-	double rho = e->cs->mat.density, rsum = 0;
+	double rho = e->cs->mat.density;
 	for (size_t i = 0; i < n; i++) {
 		int32_t o = P->orig[i];
 		double r = a->r[o];
@@ -90,7 +109,7 @@ static int load_particles(engine *e, const dem_assembly *a)
 			    o, r, x[0], x[1], x[2]);
 		memcpy(P->x + 3 * i, a->x + 3 * o, 3 * sizeof *P->x);
 		P->r[i] = r;
-		P->m[i] = rho * 4.0 / 3.0 * DEM_PI * r * r * r;
+		P->m[i] = particle_mass(rho, r);
 		double inv_m = particle_inv_m(P, i), inv_i = particle_inv_i(P, i);
 		if (!(inv_m > 0 && inv_i > 0 && isfinite(inv_i)))
 			return err_set(
@@ -98,10 +117,9 @@ static int load_particles(engine *e, const dem_assembly *a)
 			    "finite positive mass and moment of inertia (check the "
 			    "material's density)",
 			    o, P->m[i], rho);
-		rsum += r;
 		e->frame.r_max = fmax(e->frame.r_max, r);
 	}
-	e->frame.r_mean = rsum / (double)n;
+	e->frame.r_mean = own_sum(e, radius) / (double)n;
 	return 0;
 }
 
@@ -111,31 +129,47 @@ static int load_particles(engine *e, const dem_assembly *a)
 static int check_compact(const engine *e)
 {
 	const particles *P = &e->p;
-	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-	double mid[3] = {0, 0, 0};
-	for (size_t i = 0; i < P->n; i++)
+	size_t p0, p1;
+	int split = ranks_own(e, &p0, &p1);
+	double m[6] = {-INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY};
+	xsum mid[3];
+	for (int k = 0; k < 3; k++)
+		xsum_clear(&mid[k]);
+	for (size_t i = p0; i < p1; i++)
 		for (int k = 0; k < 3; k++) {
-			lo[k] = fmin(lo[k], P->x[3 * i + k]);
-			hi[k] = fmax(hi[k], P->x[3 * i + k]);
-			mid[k] += P->x[3 * i + k] / (double)P->n;
+			m[k] = fmax(m[k], -P->x[3 * i + k]); /* -lo */
+			m[3 + k] = fmax(m[3 + k], P->x[3 * i + k]);
+			xsum_add(&mid[k], P->x[3 * i + k]);
 		}
+	if (split)
+		par_max(m, 6);
+	double lo[3] = {-m[0], -m[1], -m[2]}, hi[3] = {m[3], m[4], m[5]};
 	double reach = 2 * e->frame.r_max + e->pairs.skin;
 	if (cells_size(lo, hi, P->n, reach) == reach)
 		return 0;
-	size_t far = 0;
+	if (split)
+		par_sum(mid, 3);
+	double c[3];
+	for (int k = 0; k < 3; k++)
+		c[k] = xsum_round(&mid[k]) / (double)P->n;
+	/* The farthest from their centre, the first of equals. */
 	double d2max = -1;
-	for (size_t i = 0; i < P->n; i++) {
+	int32_t far = 0;
+	for (size_t i = p0; i < p1; i++) {
 		double d[3];
-		v3_sub(d, P->x + 3 * i, mid);
+		v3_sub(d, P->x + 3 * i, c);
 		if (v3_dot(d, d) > d2max)
-			d2max = v3_dot(d, d), far = i;
+			d2max = v3_dot(d, d), far = (int32_t)i;
 	}
-	const double *x = P->x + 3 * far;
+	if (split)
+		par_maxloc(&d2max, &far, 1);
+	double row[PARTICLE_ROW];
+	ranks_particle(e, (size_t)far, row);
 	return err_set("the particles span %g x %g x %g m, too sparse for spheres of radius up "
 	               "to %g m: particle %d at (%g, %g, %g) m lies %g m from their centre: "
 	               "expected a packed specimen (check the assembly's positions)",
-	               hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], e->frame.r_max, P->orig[far],
-	               x[0], x[1], x[2], sqrt(d2max));
+	               hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], e->frame.r_max,
+	               (int)row[PARTICLE_ORIG], row[0], row[1], row[2], sqrt(d2max));
 }
 
 /* The loading axis (the case's, else the geometry's, else z) through the
@@ -150,17 +184,28 @@ static void specimen_frame(engine *e, const dem_assembly *a)
 	v3_copy(e->frame.center, a->geom.center);
 }
 
+static double volume(const engine *e, size_t i)
+{
+	double r = e->p.r[i];
+	return 4.0 / 3.0 * DEM_PI * r * r * r;
+}
+
 /* Porosity and bonds per sphere for the law's setup (Eq. 22). */
 static law_packing packing_of(const engine *e, const dem_assembly *a)
 {
-	double vs = 0;
-	for (size_t i = 0; i < e->p.n; i++)
-		vs += 4.0 / 3.0 * DEM_PI * e->p.r[i] * e->p.r[i] * e->p.r[i];
+	double vs = own_sum(e, volume);
 	double phi = a->report.solid_fraction > 0 ? a->report.solid_fraction
 	             : a->geom.volume > 0         ? vs / a->geom.volume
 	                                          : 0.64;
 	return (law_packing){.porosity = 1 - phi,
 	                     .coordination = 2.0 * (double)e->pairs.nbonds / (double)e->p.n};
+}
+
+/* The kinetic energy of particle i moving 1e-12 of its radius per step. */
+static double noise(const engine *e, size_t i)
+{
+	double v = 1e-12 * e->p.r[i] / e->clock.dt;
+	return 0.5 * e->p.m[i] * v * v;
 }
 
 static void geometry_sizes(engine *e, const dem_assembly *a)
@@ -204,21 +249,16 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 	e->pairs.skin = cs->skin > 0 ? cs->skin : 0.25 * e->frame.r_mean;
 	if (check_compact(e))
 		return -1;
-	if (bonds_form(e))
-		return -1;
-	law_packing pk = packing_of(e, a);
-	e->law->setup(e->lp, &pk);
-	platens_init(e);
 	if (cs->surface_bin > 0 && cs->surface_bin < 0.2 * e->frame.r_mean)
 		return err_set("surface.bin %g m: expected at least a tenth of the mean sphere "
 		               "diameter (%g m)",
 		               cs->surface_bin, 2 * e->frame.r_mean);
-	surface_init(e);
-	gauge_init(e);
-	geometry_sizes(e, a);
+	if (bonds_form(e))
+		return -1;
 	scratch_alloc(e, o->threads);
 	/* Every rank splits the particles alike: into shares for the largest
-	 * team of any rank, times the ranks (ranks.h). */
+	 * team of any rank, times the ranks (ranks.h). From here on each rank
+	 * computes from its own particles, combined over the ranks. */
 	double team = e->team;
 	par_max(&team, 1);
 	bonds_split(e, (int)team * par_size());
@@ -229,18 +269,29 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 		               e->pairs.split.n > 1 ? "s" : "");
 	ranks_split(e);
 	keep_own(e);
+	if (!o->whole)
+		window_start(e);
+	law_packing pk = packing_of(e, a);
+	e->law->setup(e->lp, &pk);
+	platens_init(e);
+	surface_init(e);
+	gauge_init(e);
+	geometry_sizes(e, a);
 	bonds_init_history(e);
 	e->prog.peak = e->prog.stage_peak = -INFINITY;
 	boundary_begin_stage(e);
 	contacts_rebuild(e);
 	size_t worst;
 	e->clock.dt_crit = timestep_critical(e, 1, &worst);
+	double w[PARTICLE_ROW]; /* that particle, from its rank */
+	ranks_particle(e, worst, w);
+	int w_orig = (int)w[PARTICLE_ORIG];
 	if (cs->dt > 0 && cs->dt > e->clock.dt_crit) {
 		int nb;
 		timestep_bond_omega2(e, worst, &nb);
 		return err_set("time step %g s above the stable limit %g s, set by particle %d "
 		               "(radius %g m, %d bonds): lower time_step.dt or leave it out",
-		               cs->dt, e->clock.dt_crit, e->p.orig[worst], e->p.r[worst], nb);
+		               cs->dt, e->clock.dt_crit, w_orig, w[PARTICLE_R], nb);
 	}
 	if (!isfinite(e->clock.dt_crit) && !(cs->dt > 0))
 		return err_set("no bond or contact: the critical time step is undefined "
@@ -249,7 +300,7 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 		return err_set(
 		    "the critical time step is 0 s, set by particle %d (radius %g m, mass "
 		    "%g kg): the material's stiffness is out of range for its density",
-		    e->p.orig[worst], e->p.r[worst], e->p.m[worst]);
+		    w_orig, w[PARTICLE_R], w[PARTICLE_M]);
 	if (cs->dt > 0 && isfinite(e->clock.dt_crit) && cs->dt < 1e-6 * e->clock.dt_crit)
 		return err_set("time step %g s below a millionth of the stable limit %g s: the run "
 		               "would take a million times the steps it needs (raise time_step.dt "
@@ -258,10 +309,7 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 	e->clock.dt = cs->dt > 0 ? cs->dt : cs->safety * e->clock.dt_crit;
 	if (plan_check(e, o->quiet))
 		return -1;
-	for (size_t i = 0; i < e->p.n; i++) {
-		double v = 1e-12 * e->p.r[i] / e->clock.dt;
-		e->energy.noise += 0.5 * e->p.m[i] * v * v;
-	}
+	e->energy.noise = own_sum(e, noise);
 	phase_stop(&e->tm, TM_SETUP);
 	if (!o->quiet)
 		fprintf(
@@ -269,8 +317,7 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 		    "%s: %zu particles, %zu bonds (%.2f per particle, law %s); time step %.4g s "
 		    "= %.3g x critical %.4g s (Eq. 11-15, set by particle %d)\n",
 		    err_program_name(), e->p.n, e->pairs.nbonds, pk.coordination, e->law->name,
-		    e->clock.dt, e->clock.dt / e->clock.dt_crit, e->clock.dt_crit,
-		    e->p.orig[worst]);
+		    e->clock.dt, e->clock.dt / e->clock.dt_crit, e->clock.dt_crit, w_orig);
 	return 0;
 }
 

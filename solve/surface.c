@@ -68,17 +68,23 @@ void surface_init(engine *e)
 {
 	particles *P = &e->p;
 	surface *S = &e->bc.surf;
+	size_t p0, p1;
+	int split = ranks_own(e, &p0, &p1);
 	/* θ origin: the outermost particle (lowest index among equals). */
 	double best = -1, lo, hi;
-	for (size_t i = 0; i < P->n; i++) {
+	int32_t at = 0;
+	for (size_t i = p0; i < p1; i++) {
 		double rho[3];
 		frame(e, P->x + 3 * i, rho);
 		double out = v3_norm(rho) + P->r[i];
-		if (out > best) {
-			best = out;
-			v3_copy(e->frame.e1, rho);
-		}
+		if (out > best)
+			best = out, at = (int32_t)i;
 	}
+	if (split)
+		par_maxloc(&best, &at, 1);
+	double row[PARTICLE_ROW];
+	ranks_particle(e, (size_t)at, row);
+	frame(e, row, e->frame.e1);
 	double l = v3_norm(e->frame.e1);
 	if (l == 0) {
 		/* A column on the axis: any direction normal to it. */
@@ -90,7 +96,7 @@ void surface_init(engine *e)
 	}
 	v3_scale(e->frame.e1, e->frame.e1, 1 / l);
 	v3_cross(e->frame.e2, e->frame.axis, e->frame.e1);
-	extent(e, 0, P->n, 0, &lo, &hi);
+	extent(e, p0, p1, split, &lo, &hi);
 	S->bin = e->cs->surface_bin > 0 ? e->cs->surface_bin : 2 * e->frame.r_mean;
 	S->ntheta = (int)fmax(8, round(2 * DEM_PI * best / S->bin));
 	S->nz = (int)fmax(1, round((hi - lo) / S->bin));
@@ -217,29 +223,39 @@ void gauge_init(engine *e)
 {
 	const particles *P = &e->p;
 	gauge *G = &e->bc.gauge;
+	size_t p0, p1;
+	int split = ranks_own(e, &p0, &p1);
 	double lo, hi;
-	extent(e, 0, P->n, 0, &lo, &hi);
+	extent(e, p0, p1, split, &lo, &hi);
 	double mid = 0.5 * (lo + hi), half = fmax(0.05 * (hi - lo), e->frame.r_mean);
 	double outer = -INFINITY;
-	for (size_t i = 0; i < P->n; i++) {
+	for (size_t i = p0; i < p1; i++) {
 		double rho[3], z = frame(e, P->x + 3 * i, rho);
 		if (fabs(z - mid) <= half)
 			outer = fmax(outer, v3_norm(rho) + P->r[i]);
 	}
-	G->idx = xmalloc((P->n + 1) * sizeof *G->idx);
-	G->rho0 = xmalloc((P->n + 1) * sizeof *G->rho0);
+	if (split)
+		par_max(&outer, 1);
+	/* Each rank its own gauge particles. */
+	G->idx = xmalloc((p1 - p0 + 1) * sizeof *G->idx);
+	G->rho0 = xmalloc((p1 - p0 + 1) * sizeof *G->rho0);
 	G->n = 0;
-	double rsum = 0;
-	for (size_t i = 0; i < P->n; i++) {
+	xsum s[2]; /* outer radii, count */
+	xsum_clear(&s[0]), xsum_clear(&s[1]);
+	for (size_t i = p0; i < p1; i++) {
 		double rho[3], z = frame(e, P->x + 3 * i, rho);
 		double r = v3_norm(rho);
 		if (fabs(z - mid) <= half && r + P->r[i] >= outer - 2 * e->frame.r_mean) {
 			G->idx[G->n] = (int32_t)i;
 			G->rho0[G->n++] = r;
-			rsum += r + P->r[i];
+			xsum_add(&s[0], r + P->r[i]);
+			xsum_add(&s[1], 1);
 		}
 	}
-	G->radius0 = G->n ? rsum / G->n : 0;
+	if (split)
+		par_sum(s, 2);
+	G->total = xsum_round(&s[1]);
+	G->radius0 = G->total > 0 ? xsum_round(&s[0]) / G->total : 0;
 	G->idx = xrealloc(G->idx, (G->n + 1) * sizeof *G->idx);
 	G->rho0 = xrealloc(G->rho0, (G->n + 1) * sizeof *G->rho0);
 }
@@ -247,24 +263,20 @@ void gauge_init(engine *e)
 double gauge_strain(const engine *e)
 {
 	const gauge *G = &e->bc.gauge;
-	if (!G->n || G->radius0 <= 0)
+	if (!(G->total > 0) || G->radius0 <= 0)
 		return 0;
 	/* Each rank its own gauge particles, summed exactly over the ranks. */
-	size_t p0, p1;
-	int split = ranks_own(e, &p0, &p1);
 	xsum sum;
 	xsum_clear(&sum);
 	for (size_t k = 0; k < G->n; k++) {
-		size_t i = (size_t)G->idx[k];
-		if (i < p0 || i >= p1)
-			continue;
 		double rho[3];
-		frame(e, e->p.x + 3 * i, rho);
+		frame(e, e->p.x + 3 * (size_t)G->idx[k], rho);
 		xsum_add(&sum, v3_norm(rho) - G->rho0[k]);
 	}
-	if (split)
+	size_t p0, p1;
+	if (ranks_own(e, &p0, &p1))
 		par_sum(&sum, 1);
-	return -xsum_round(&sum) / G->n / G->radius0;
+	return -xsum_round(&sum) / G->total / G->radius0;
 }
 
 void gauge_free(gauge *g) { free(g->idx), free(g->rho0); }

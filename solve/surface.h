@@ -22,10 +22,12 @@ typedef struct {
 	long updated;        /* step of the last update */
 } surface;
 
+/* The gauge's particles: this rank's own (ranks.h). */
 typedef struct {
 	size_t n;
 	int32_t *idx;
 	double *rho0;   /* m, initial radial distance */
+	double total;   /* particles of the whole gauge */
 	double radius0; /* m, initial outer radius */
 } gauge;
 

@@ -83,9 +83,9 @@ void particle_row(const particles *P, size_t i, double *row)
 	memcpy(row, P->x + 3 * i, 3 * sizeof *row);
 	memcpy(row + 3, P->v + 3 * i, 3 * sizeof *row);
 	memcpy(row + 6, P->w + 3 * i, 3 * sizeof *row);
-	row[9] = P->r[i];
-	row[10] = P->m[i];
-	row[11] = P->orig[i];
+	row[PARTICLE_R] = P->r[i];
+	row[PARTICLE_M] = P->m[i];
+	row[PARTICLE_ORIG] = P->orig[i];
 }
 
 void particle_set_row(particles *P, size_t i, const double *row)
@@ -93,9 +93,9 @@ void particle_set_row(particles *P, size_t i, const double *row)
 	memcpy(P->x + 3 * i, row, 3 * sizeof *row);
 	memcpy(P->v + 3 * i, row + 3, 3 * sizeof *row);
 	memcpy(P->w + 3 * i, row + 6, 3 * sizeof *row);
-	P->r[i] = row[9];
-	P->m[i] = row[10];
-	P->orig[i] = (int32_t)row[11];
+	P->r[i] = row[PARTICLE_R];
+	P->m[i] = row[PARTICLE_M];
+	P->orig[i] = (int32_t)row[PARTICLE_ORIG];
 }
 
 int64_t window_local(const particles *P, size_t g)
@@ -244,4 +244,22 @@ void window_start(engine *e)
 		fatal("window_start: %zu contacts without their ends (an internal error)", dropped);
 	/* The halo in the new numbering. */
 	ranks_contacts(e);
+}
+
+void window_hold_contacts(engine *e)
+{
+	particles *P = &e->p;
+	pairlist *L = &e->pairs.contacts;
+	size_t n = L->n;
+	int32_t *want = xmalloc((2 * n + 1) * sizeof *want);
+	for (size_t c = 0; c < n; c++)
+		want[2 * c] = L->rec[c].i, want[2 * c + 1] = L->rec[c].j;
+	L->n = 0; /* not renumbered: their ends are not the window's */
+	window_set(e, want, others(e, want, 2 * n));
+	free(want);
+	L->n = n;
+	for (size_t c = 0; c < n; c++) {
+		L->rec[c].i = (int32_t)window_local(P, (size_t)L->rec[c].i);
+		L->rec[c].j = (int32_t)window_local(P, (size_t)L->rec[c].j);
+	}
 }

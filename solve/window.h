@@ -1,10 +1,11 @@
 /* The particles a rank holds (engine.h, particles): its own and the other
  * ranks' particles it reads, a window of indices (window.c).
  *
- * Once the run starts (window_start) a rank holds, besides its own
- * particles: the other ends of its crossing bonds (bonds.h) for the whole
- * run, and the other ends of its contacts and its ghosts (ranks.h), renewed
- * at each neighbour rebuild (window_set). The others are numbered next to
+ * Once the particles are split among the ranks in setup (or, at a
+ * restart, once the checkpoint is read: window_start) a rank holds,
+ * besides its own particles: the other ends of its crossing bonds
+ * (bonds.h) for the whole run, and the other ends of its contacts and its
+ * ghosts (ranks.h), renewed at each neighbour rebuild (window_set). The others are numbered next to
  * its own, those of lower index before them and those of higher index
  * after them, each side in the order of their indices: every list sorted
  * by particle (bonds, contacts, the crossing slots, the halo) keeps the
@@ -33,15 +34,16 @@ void particles_free(particles *P);
 /* Particle i's position, velocity, spin, radius, mass and index in the
  * assembly as a row of PARTICLE_ROW doubles (what a rank sends of a
  * particle another rank is to hold), and back. */
-enum { PARTICLE_ROW = 12 };
+enum { PARTICLE_R = 9, PARTICLE_M, PARTICLE_ORIG, PARTICLE_ROW };
 void particle_row(const particles *P, size_t i, double *row);
 void particle_set_row(particles *P, size_t i, const double *row);
 /* The window's index of the specimen's particle g, or -1 if this rank does
  * not hold it. */
 int64_t window_local(const particles *P, size_t g);
-/* Where the run starts (after setup, or after a checkpoint is read), with
- * several ranks: the window of this rank's own particles and the other
- * ends of its crossing bonds and contacts; the others' arrays freed. */
+/* With several ranks, once the particles are split (in setup, or after a
+ * checkpoint is read): the window of this rank's own particles and the
+ * other ends of its crossing bonds and contacts; the others' arrays
+ * freed. */
 void window_start(engine *e);
 /* Hold the specimen's particles want[0..n) (increasing, other ranks') as
  * well as the own ones and the other ends of the crossing bonds: a new
@@ -50,5 +52,11 @@ void window_start(engine *e);
  * neighbour rebuild replaces them), their number returned. The arrays of
  * the particles new to the window are the caller's to fill. */
 size_t window_set(engine *e, const int32_t *want, size_t n);
+/* Hold the ends of the contacts (e->pairs.contacts, as read from a
+ * checkpoint: their ends given by their index in the whole specimen) as
+ * well as the own particles and the other ends of the crossing bonds: a
+ * new window (window_set), the contacts' ends turned into its indices. The
+ * arrays of the other ranks' particles are the caller's to fill. */
+void window_hold_contacts(engine *e);
 
 #endif
