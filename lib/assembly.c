@@ -153,20 +153,75 @@ static int read_report(hid_t file, dem_report *r)
 	return rc ? -1 : 0;
 }
 
+/* Rows of a dataset of another file (h5_fill), read one reader at a time
+ * (HDF5 serves one thread). */
+typedef struct {
+	hid_t d, type;
+	size_t cols;
+	int failed;
+} from_file;
+
+static void read_rows(void *ctx, size_t at, size_t m, void *buf)
+{
+	from_file *f = ctx;
+	int rc;
+#pragma omp critical(dem_hdf5)
+	rc = h5_slab(f->d, f->type, at, m, f->cols, buf, 0);
+	if (rc)
+#pragma omp atomic write
+		f->failed = 1;
+}
+
+/* Dataset `name` of n rows and cols columns written into p: from data, or
+ * (data NULL) copied from the dataset of that name in src. */
+static int write_or_copy(hid_t p, hid_t src, const char *name, hid_t type, const void *data,
+                         size_t n, size_t cols, const char *unit)
+{
+	if (data)
+		return h5_write(p, name, type, data, n, cols, unit);
+	from_file f = {H5Dopen2(src, name, H5P_DEFAULT), type, cols, 0};
+	if (f.d < 0)
+		return err_set("%s: dataset '%s': cannot open", h5_name(src), name);
+	h5_rows r;
+	int rc = h5_rows_open(&r, p, name, type, n, cols, unit);
+	rc = rc || h5_rows_fill(&r, read_rows, &f);
+	rc = h5_rows_close(&r) || rc;
+	H5Dclose(f.d);
+	if (!rc && f.failed)
+		rc = err_set("%s: dataset '%s': unreadable", h5_name(src), name);
+	return rc ? -1 : 0;
+}
+
 int assembly_write_groups(hid_t file, const dem_assembly *a)
 {
+	hid_t src = -1;
+	if (a->piece) {
+		hid_t f = h5_open(a->file, ASSEMBLY_FORMAT, 0);
+		src = f < 0 ? -1 : h5_open_group(f, "particles");
+		if (f >= 0)
+			H5Fclose(f); /* the group keeps the file open */
+		if (src < 0)
+			return -1;
+	}
 	hid_t p = h5_group(file, "particles");
-	if (p < 0)
+	if (p < 0) {
+		if (src >= 0)
+			H5Gclose(src);
 		return -1;
+	}
+	const int whole = !a->piece;
 	int rc = prov_write(p, NULL, &a->prov) ||
-	         h5_write(p, "x", H5T_NATIVE_DOUBLE, a->x, a->n, 3, "m") ||
-	         h5_write(p, "r", H5T_NATIVE_DOUBLE, a->r, a->n, 0, "m") ||
-	         h5_write(p, "material", H5T_NATIVE_INT32, a->material, a->n, 0, NULL) ||
+	         write_or_copy(p, src, "x", H5T_NATIVE_DOUBLE, whole ? a->x : NULL, a->n, 3, "m") ||
+	         write_or_copy(p, src, "r", H5T_NATIVE_DOUBLE, whole ? a->r : NULL, a->n, 0, "m") ||
+	         write_or_copy(p, src, "material", H5T_NATIVE_INT32, whole ? a->material : NULL,
+	                       a->n, 0, NULL) ||
 	         h5_index(p, "particle", a->n, 0) || h5_index(p, "xyz", 3, 0) ||
 	         h5_attach(p, "x", (const char *[]){"particle", "xyz"}, 2) ||
 	         h5_attach(p, "r", (const char *[]){"particle"}, 1) ||
 	         h5_attach(p, "material", (const char *[]){"particle"}, 1);
 	H5Gclose(p);
+	if (src >= 0)
+		H5Gclose(src);
 	if (rc || write_geometry(file, &a->geom) || write_report(file, &a->report))
 		return -1;
 	return 0;
@@ -191,40 +246,53 @@ static int outside(const dem_geometry *g, const double x[3], double r)
 	return 0;
 }
 
-int assembly_read_groups(hid_t file, dem_assembly *a)
+int assembly_read_groups_part(hid_t file, int part, int parts, dem_assembly *a)
 {
 	hid_t p = h5_open_group(file, "particles");
 	if (p < 0)
 		return -1;
+	size_t first, held, n;
 	int rc = prov_read(p, &a->prov) ||
-	         h5_read(p, "x", H5T_NATIVE_DOUBLE, (void **)&a->x, &a->n, 3) ||
-	         h5_read_n(p, "r", H5T_NATIVE_DOUBLE, (void **)&a->r, a->n, 0) ||
-	         h5_read_n(p, "material", H5T_NATIVE_INT32, (void **)&a->material, a->n, 0);
+	         h5_read_part(p, "x", H5T_NATIVE_DOUBLE, (void **)&a->x, &a->n, 3, part, parts,
+	                      &a->first, &a->held) ||
+	         h5_read_part(p, "r", H5T_NATIVE_DOUBLE, (void **)&a->r, &n, 0, part, parts, &first,
+	                      &held);
+	if (!rc && n != a->n)
+		rc = err_set("%s: dataset 'r': has %zu rows, expected %zu", h5_name(p), n, a->n);
+	a->piece = parts > 1;
+	if (!rc && !a->piece)
+		rc = h5_read_n(p, "material", H5T_NATIVE_INT32, (void **)&a->material, a->n, 0);
 	H5Gclose(p);
 	if (rc || read_geometry(file, &a->geom) || read_report(file, &a->report))
 		return -1;
-	for (size_t i = 0; i < a->n; i++) {
-		if (!(a->r[i] > 0 && isfinite(a->r[i])))
+	for (size_t k = 0; k < a->held; k++) {
+		size_t i = a->first + k;
+		const double *x = a->x + 3 * k, r = a->r[k];
+		if (!(r > 0 && isfinite(r)))
 			return err_set(
 			    "%s: dataset '/particles/r': value %g at row %zu: expected a "
 			    "finite positive radius (m)",
-			    h5_name(file), a->r[i], i);
-		const double *x = a->x + 3 * i;
+			    h5_name(file), r, i);
 		if (!isfinite(x[0] + x[1] + x[2]))
 			return err_set(
 			    "%s: dataset '/particles/x': row %zu is (%g, %g, %g): expected a "
 			    "finite position (m)",
 			    h5_name(file), i, x[0], x[1], x[2]);
-		if (outside(&a->geom, x, a->r[i]))
+		if (outside(&a->geom, x, r))
 			return err_set(
 			    "%s: particle %zu (radius %g m at (%g, %g, %g) m) does not fit "
 			    "the geometry's bounding box [%g, %g] x [%g, %g] x [%g, %g] m: "
 			    "expected the spheres of the specimen",
-			    h5_name(file), i, a->r[i], x[0], x[1], x[2], a->geom.bbox_min[0],
+			    h5_name(file), i, r, x[0], x[1], x[2], a->geom.bbox_min[0],
 			    a->geom.bbox_max[0], a->geom.bbox_min[1], a->geom.bbox_max[1],
 			    a->geom.bbox_min[2], a->geom.bbox_max[2]);
 	}
 	return 0;
+}
+
+int assembly_read_groups(hid_t file, dem_assembly *a)
+{
+	return assembly_read_groups_part(file, 0, 1, a);
 }
 
 int assembly_write_with(const char *path, const dem_assembly *a, int (*before)(void *), void *ctx)
@@ -256,14 +324,19 @@ int assembly_read_file(hid_t file, dem_assembly *a)
 	return 0;
 }
 
-int assembly_read(const char *path, dem_assembly *a)
+int assembly_read(const char *path, dem_assembly *a) { return assembly_read_part(path, 0, 1, a); }
+
+int assembly_read_part(const char *path, int part, int parts, dem_assembly *a)
 {
 	memset(a, 0, sizeof *a);
 	hid_t f = h5_open(path, ASSEMBLY_FORMAT, 0);
 	if (f < 0)
 		return -1;
-	int rc = assembly_read_file(f, a);
+	int rc = assembly_read_groups_part(f, part, parts, a);
 	H5Fclose(f);
+	snprintf(a->file, sizeof a->file, "%s", path);
+	if (rc)
+		assembly_free(a);
 	return rc;
 }
 

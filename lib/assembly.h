@@ -67,9 +67,14 @@ typedef struct {
 typedef struct {
 	dem_provenance prov;
 	size_t n;
-	double *x;         /* [n][3] m */
-	double *r;         /* [n] m */
-	int32_t *material; /* [n] material index (0 for a single material) */
+	int piece;       /* x and r hold rows [first, first + held) only
+	                    (assembly_read_part), else all n */
+	char file[1024]; /* with a piece: the file it is of */
+	size_t first, held;
+	double *x;         /* [n or held][3] m */
+	double *r;         /* [n or held] m */
+	int32_t *material; /* [n] material index (0 for a single material),
+	                      or NULL (assembly_read_part) */
 	dem_geometry geom;
 	dem_report report;
 } dem_assembly;
@@ -80,6 +85,10 @@ int assembly_write(const char *path, const dem_assembly *a);
  * fails, the file is discarded and whatever was at `path` stays. */
 int assembly_write_with(const char *path, const dem_assembly *a, int (*before)(void *), void *ctx);
 int assembly_read(const char *path, dem_assembly *a);
+/* The same, but of the particles only the positions and radii of part
+ * `part` of `parts` even parts of the rows (a->first, a->held): a piece
+ * of a large assembly for each of `parts` processes. */
+int assembly_read_part(const char *path, int part, int parts, dem_assembly *a);
 /* The same from an open file whose format was checked (h5_open, or
  * h5_open_image); the file stays open. */
 int assembly_read_file(hid_t file, dem_assembly *a);
@@ -87,8 +96,10 @@ void assembly_free(dem_assembly *a);
 
 /* Particles (with the assembly's provenance as attributes of /particles),
  * geometry and report as groups of an open file: shared with run.h5, which
- * embeds the assembly it started from. */
+ * embeds the assembly it started from. Of a piece, the particles are
+ * copied from its file (a->file) a chunk at a time. */
 int assembly_write_groups(hid_t file, const dem_assembly *a);
 int assembly_read_groups(hid_t file, dem_assembly *a);
+int assembly_read_groups_part(hid_t file, int part, int parts, dem_assembly *a);
 
 #endif

@@ -541,7 +541,10 @@ static int fill_chunks(h5_rows *r, h5_fill fill, void *ctx, size_t piece)
 #pragma omp ordered
 			if (!stop) {
 				hsize_t offset[2] = {at, 0};
-				if (H5Dwrite_chunk(r->d, H5P_DEFAULT, mask, offset, zn, data) < 0) {
+				herr_t w;
+#pragma omp critical(dem_hdf5) /* fill may read another file (assembly.c) */
+				w = H5Dwrite_chunk(r->d, H5P_DEFAULT, mask, offset, zn, data);
+				if (w < 0) {
 					werrno = errno;
 #pragma omp atomic write
 					failed = 1;
@@ -628,6 +631,13 @@ static int stored_holds(hid_t d, double n)
 
 int h5_read(hid_t loc, const char *name, hid_t type, void **data, size_t *rows, size_t cols)
 {
+	size_t first, held;
+	return h5_read_part(loc, name, type, data, rows, cols, 0, 1, &first, &held);
+}
+
+int h5_read_part(hid_t loc, const char *name, hid_t type, void **data, size_t *rows, size_t cols,
+                 int part, int parts, size_t *first, size_t *held)
+{
 	*data = NULL;
 	if (!h5_exists(loc, name))
 		return err_set("%s: dataset '%s' in '%s': missing", h5_name(loc), name,
@@ -655,9 +665,13 @@ int h5_read(hid_t loc, const char *name, hid_t type, void **data, size_t *rows, 
 		               "file)",
 		               h5_name(loc), name, (unsigned long long)dims[0]);
 	}
-	size_t n = (size_t)dims[0] * (cols ? cols : 1);
-	void *buf = xmalloc(n * H5Tget_size(type));
-	if (n && H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0) {
+	*first = (size_t)dims[0] * (size_t)part / (size_t)parts;
+	*held = (size_t)dims[0] * (size_t)(part + 1) / (size_t)parts - *first;
+	size_t n = *held * (cols ? cols : 1);
+	void *buf = xmalloc(n * H5Tget_size(type) + 1);
+	int whole = *held == (size_t)dims[0];
+	if (n && (whole ? H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf)
+	                : h5_slab(d, type, *first, *held, cols, buf, 0)) < 0) {
 		free(buf);
 		H5Dclose(d);
 		return err_set("%s: dataset '%s': unreadable (truncated or corrupt file?)",

@@ -85,7 +85,8 @@ int h5_rows_close(h5_rows *r);
  * deflate filters its creation properties declare (exactly what HDF5 would
  * write), and its chunks written in order: the file is the same whatever
  * the thread count. fill is then called on several threads at once, each
- * with its own rows and buffer. */
+ * with its own rows and buffer; a fill that calls HDF5 does it inside
+ * `#pragma omp critical(dem_hdf5)`, as the chunks' writes are. */
 typedef void (*h5_fill)(void *ctx, size_t at, size_t m, void *buf);
 int h5_rows_fill(h5_rows *r, h5_fill fill, void *ctx);
 /* The same by hand, where the rows are not all in one place (solve's
@@ -111,6 +112,10 @@ void h5_set_threads(int n);
  * *rows gets the row count; the data is allocated (caller frees). Reading a
  * dataset of zero rows gives a valid pointer. */
 int h5_read(hid_t loc, const char *name, hid_t type, void **data, size_t *rows, size_t cols);
+/* As h5_read, but only part `part` of `parts` even parts of the rows:
+ * rows [*first, *first + *held) of the *rows. */
+int h5_read_part(hid_t loc, const char *name, hid_t type, void **data, size_t *rows, size_t cols,
+                 int part, int parts, size_t *first, size_t *held);
 /* As h5_read but the row count must equal rows. */
 int h5_read_n(hid_t loc, const char *name, hid_t type, void **data, size_t rows, size_t cols);
 

@@ -144,6 +144,9 @@ int run_read(const char *path, dem_run *r);
 /* Only the provenance, the status, the assembly and the history's row
  * count (what a restart needs; the rest stays empty). */
 int run_read_head(const char *path, dem_run *r);
+/* The same with only part `part` of `parts` of the assembly's particles
+ * (assembly_read_part). */
+int run_read_head_part(const char *path, int part, int parts, dem_run *r);
 /* The same from an open file whose format was checked (h5_open, or
  * h5_open_image); the file stays open. */
 int run_read_file(hid_t file, dem_run *r);

@@ -197,12 +197,13 @@ static int history_rows(hid_t f, dem_run *r)
 	return 0;
 }
 
-/* The run in file f; with head, only what run_read_head reads. */
-static int read_run(hid_t f, dem_run *r, int head)
+/* The run in file f; with head, only what run_read_head reads, of the
+ * assembly part `part` of `parts`. */
+static int read_run(hid_t f, dem_run *r, int head, int part, int parts)
 {
 	memset(r, 0, sizeof *r);
 	int rc = prov_read(f, &r->prov) || !(r->status = h5_read_attr_str(f, "status")) ||
-	         assembly_read_groups(f, &r->assembly) ||
+	         assembly_read_groups_part(f, part, parts, &r->assembly) ||
 	         (head ? history_rows(f, r)
 	               : read_bonds(f, &r->bonds, r->assembly.n) || read_history(f, r) ||
 	                     read_snapshot_index(f, r) || read_cracks(f, r));
@@ -213,20 +214,26 @@ static int read_run(hid_t f, dem_run *r, int head)
 	return 0;
 }
 
-static int read_path(const char *path, dem_run *r, int head)
+static int read_path(const char *path, dem_run *r, int head, int part, int parts)
 {
 	memset(r, 0, sizeof *r);
 	hid_t f = h5_open(path, RUN_FORMAT, 0);
 	if (f < 0)
 		return -1;
-	int rc = read_run(f, r, head);
+	int rc = read_run(f, r, head, part, parts);
 	H5Fclose(f);
+	if (!rc)
+		snprintf(r->assembly.file, sizeof r->assembly.file, "%s", path);
 	return rc;
 }
 
-int run_read_file(hid_t f, dem_run *r) { return read_run(f, r, 0); }
-int run_read(const char *path, dem_run *r) { return read_path(path, r, 0); }
-int run_read_head(const char *path, dem_run *r) { return read_path(path, r, 1); }
+int run_read_file(hid_t f, dem_run *r) { return read_run(f, r, 0, 0, 1); }
+int run_read(const char *path, dem_run *r) { return read_path(path, r, 0, 0, 1); }
+int run_read_head(const char *path, dem_run *r) { return read_path(path, r, 1, 0, 1); }
+int run_read_head_part(const char *path, int part, int parts, dem_run *r)
+{
+	return read_path(path, r, 1, part, parts);
+}
 
 void run_free(dem_run *r)
 {

@@ -4,6 +4,7 @@
  * force_batch, each force added to both its particles in bond order (the
  * shares of bond_split, bonds.h). Bond failures are collected per thread
  * and merged in bond order. */
+#include <inttypes.h>
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,6 +18,7 @@
 #include "solve/measure.h"
 #include "solve/pairlist.h"
 #include "solve/par.h"
+#include "solve/ranks.h"
 
 /* Whether the centre of one of spheres i, j lies inside the other. */
 static int nested(const particles *P, size_t i, int32_t j)
@@ -35,7 +37,27 @@ static int nested(const particles *P, size_t i, int32_t j)
 static int partners(const engine *e, size_t i, int32_t *js)
 {
 	const bond_search *f = &e->pairs.formed;
-	return cells_partners(&f->grid, e->p.x, e->p.r, i, f->range, 0, js, CELLS_CAP);
+	size_t lo = f->lo;
+	int nj = cells_partners(&f->grid, e->p.x + 3 * lo, e->p.r + lo, i - lo, f->range, 0, js,
+	                        CELLS_CAP);
+	for (int q = 0; q < nj; q++)
+		js[q] += (int32_t)lo;
+	return nj;
+}
+
+/* The search's grid over the particles this rank holds: with several
+ * ranks its own and the others' within the bond range of them (window.h),
+ * which a pair within range is closer than along each axis (the margin
+ * covers the rounding of both tests). */
+void bonds_search_grid(engine *e)
+{
+	particles *P = &e->p;
+	bond_search *f = &e->pairs.formed;
+	double reach = f->range * 2 * e->frame.r_max;
+	if (P->glob)
+		window_ghosts(e, reach * (1 + 1e-9));
+	f->lo = P->lo;
+	cells_build(&f->grid, P->x + 3 * P->lo, P->hi - P->lo, reach);
 }
 
 int bonds_form(engine *e)
@@ -43,13 +65,16 @@ int bonds_form(engine *e)
 	particles *P = &e->p;
 	bond_search *f = &e->pairs.formed;
 	f->range = e->law->bond_range(e->lp);
-	cells_build(&f->grid, P->x, P->n, f->range * 2 * e->frame.r_max);
-	/* Count them by particle block: the bonds are found again where they
-	 * are needed (bonds_split, bonds_own). */
-	size_t nblk = nblocks(P->n);
-	f->bfirst = xcalloc(nblk + 1, sizeof *f->bfirst);
+	bonds_search_grid(e);
+	/* Count them by particle block, each rank its own particles' (whole
+	 * blocks), gathered: the bonds are found again where they are needed
+	 * (bonds_split, bonds_own). */
+	size_t nblk = nblocks(P->n), p0, p1;
+	int split = ranks_own(e, &p0, &p1);
+	size_t b0 = p0 / BLOCK, nb = p1 > p0 ? nblocks(p1) - b0 : 0;
+	size_t *count = xcalloc(nb + 1, sizeof *count);
 	int32_t js[CELLS_CAP];
-	for (size_t i = 0; i < P->n; i++) {
+	for (size_t i = p0; i < p1; i++) {
 		int nj = partners(e, i, js);
 		if (nj < 0)
 			return err_set("particle %d has more than %d neighbours within the bond "
@@ -65,8 +90,14 @@ int bonds_form(engine *e)
 				               P->orig[i], P->orig[js[q]], P->r[i], P->r[js[q]],
 				               xi[0], xi[1], xi[2]);
 			}
-		f->bfirst[i / BLOCK + 1] += (size_t)nj;
+		count[i / BLOCK - b0] += (size_t)nj;
 	}
+	f->bfirst = xcalloc(nblk + 1, sizeof *f->bfirst);
+	if (split)
+		par_allgather_rows(count, nb, sizeof *count, f->bfirst + 1);
+	else
+		memcpy(f->bfirst + 1, count, nb * sizeof *count);
+	free(count);
 	for (size_t k = 0; k < nblk; k++)
 		f->bfirst[k + 1] += f->bfirst[k];
 	e->pairs.nbonds = f->bfirst[nblk];
@@ -507,6 +538,19 @@ static void add_cross(void *ctx, size_t b, int32_t i, int32_t j)
 	S->cj[S->ncross++] = j;
 }
 
+/* The crossing bonds of the shares [s0, s1) as slots, in bond order. */
+static void cross_slots(engine *e, int s0, int s1)
+{
+	bond_split *S = &e->pairs.split;
+	cross_ctx c = {S, 0, 0};
+	for (int k = s0; k < s1; k++) {
+		S->cfirst[k] = S->ncross;
+		c.p1 = S->pfirst[k + 1];
+		each_bond(e, S->pfirst[k], c.p1, add_cross, &c);
+	}
+	S->cfirst[s1] = S->ncross;
+}
+
 void bonds_split(engine *e, int shares)
 {
 	bond_split *S = &e->pairs.split;
@@ -540,14 +584,11 @@ void bonds_split(engine *e, int shares)
 	}
 	S->pfirst[shares] = n;
 	/* Every share's crossing bonds, in bond order (bonds_own keeps this
-	 * rank's). */
-	cross_ctx c = {S, 0, 0};
-	for (int k = 0; k < shares; k++) {
-		S->cfirst[k] = S->ncross;
-		c.p1 = S->pfirst[k + 1];
-		each_bond(e, S->pfirst[k], c.p1, add_cross, &c);
-	}
-	S->cfirst[shares] = S->ncross;
+	 * rank's), where this rank holds every particle; else each rank finds
+	 * its own shares' (bonds_own). */
+	memset(S->cfirst, 0, ((size_t)shares + 1) * sizeof *S->cfirst);
+	if (!e->p.glob)
+		cross_slots(e, 0, shares);
 }
 
 /* Slot c's share in [s0, s1) by its particle j, or -1. */
@@ -562,11 +603,20 @@ void bonds_own(engine *e, int s0, int s1)
 {
 	bond_split *S = &e->pairs.split;
 	size_t p0 = S->pfirst[s0], p1 = S->pfirst[s1];
-	size_t c0 = S->cfirst[s0], c1 = S->cfirst[s1];
 	size_t b0 = S->bfirst[nblocks(p0)], b1 = S->bfirst[nblocks(p1)];
+	/* With several ranks, each finds its shares' slots (the search holds
+	 * its particles and those within the bond range), and receives the
+	 * incoming ones from the ranks of their i. */
+	int64_t *in = NULL;
+	size_t nin = 0;
+	if (e->p.glob) {
+		cross_slots(e, s0, s1);
+		nin = ranks_incoming(e, &in);
+	}
+	size_t c0 = S->cfirst[s0], c1 = S->cfirst[s1];
 	/* The slots of the shares [s0, s1), then the incoming ones: the earlier
 	 * shares' (bond order) whose j is in [p0, p1). */
-	size_t m = c1 - c0;
+	size_t m = c1 - c0 + nin;
 	for (size_t c = 0; c < c0; c++)
 		m += (size_t)S->cj[c] >= p0 && (size_t)S->cj[c] < p1;
 	int32_t *cross = xmalloc((m + 1) * sizeof *cross), *ci = xmalloc((m + 1) * sizeof *ci),
@@ -583,6 +633,18 @@ void bonds_own(engine *e, int s0, int s1)
 			ci[m] = S->ci[c];
 			cj[m++] = S->cj[c];
 		}
+	for (size_t q = 0; q < nin; q++, m++) {
+		int64_t i = window_local(&e->p, (size_t)in[3 * q + 1]),
+		        j = window_local(&e->p, (size_t)in[3 * q + 2]);
+		if (i < 0 || j < 0)
+			fatal("bonds_own: bond %" PRId64 " between particles %" PRId64
+			      " and %" PRId64 " not held (an internal error)",
+			      in[3 * q], in[3 * q + 1], in[3 * q + 2]);
+		cross[m] = -1;
+		ci[m] = (int32_t)i;
+		cj[m] = (int32_t)j;
+	}
+	free(in);
 	free(S->cross), free(S->ci), free(S->cj);
 	S->cross = cross, S->ci = ci, S->cj = cj;
 	S->ncross = m;

@@ -64,16 +64,23 @@ typedef struct {
 } bond_split;
 
 /* Bonds between the particles within the law's range (Eq. 16), as
- * e->pairs.formed until bonds_own makes a rank's records: a cell grid
- * over every particle, from which the bonds of any particle are found
- * again in bond order, and the first bond of each particle block. No rank
- * holds every bond. */
+ * e->pairs.formed until bonds_own makes a rank's records: a cell grid over
+ * the particles the rank holds (with several ranks its own and the others'
+ * within the bond range), from which the bonds of its particles are found
+ * again in bond order, and the first bond of each particle block of the
+ * whole specimen (each rank counts its own, bonds_form). No rank holds
+ * every bond. */
 typedef struct {
-	cells grid;
+	cells grid; /* over the particles held from lo on */
+	size_t lo;
 	double range;   /* Eq. 16, times r_i + r_j */
 	size_t *bfirst; /* [particle blocks + 1] */
 } bond_search;
 int bonds_form(engine *e);
+/* The search's grid (again) over the particles this rank holds: with
+ * several ranks, its own and, first fetched, the others' within the bond
+ * range of them (window_ghosts). Collective. */
+void bonds_search_grid(engine *e);
 void bonds_search_free(bond_search *f);
 /* The history of this rank's bonds at the start, and the largest fraction
  * of critical damping of any bond (Eq. 13) into e->clock.xi_max.

@@ -50,12 +50,13 @@ enum { PF_LAYER_BOTTOM = 1, PF_LAYER_TOP = 2, PF_CONSTRAINED = 4 };
  * every rank until setup splits the particles among the ranks, the window
  * is the whole specimen (glob NULL). */
 typedef struct particles {
-	size_t n;       /* particles of the whole specimen */
-	size_t lo, hi;  /* the window */
-	int32_t *glob;  /* [lo, hi) index in the whole specimen, or NULL */
-	int32_t *fixed; /* the other ranks' particles held for the whole run
-	                   (the other ends of the crossing bonds), index in
-	                   the whole specimen, increasing */
+	size_t n;         /* particles of the whole specimen */
+	size_t lo, hi;    /* the window */
+	size_t held_peak; /* the largest window so far, setup included */
+	int32_t *glob;    /* [lo, hi) index in the whole specimen, or NULL */
+	int32_t *fixed;   /* the other ranks' particles held for the whole run
+	                     (the other ends of the crossing bonds), index in
+	                     the whole specimen, increasing */
 	size_t nfixed;
 	double *x, *v, *w; /* [window][3] m, m/s (at t - dt/2), rad/s */
 	double *r, *m;     /* m, kg */

@@ -110,8 +110,8 @@ static int solve_main(int argc, char **argv)
 	cli_check_outputs(&spec, outs, 3, ins, 3);
 	if (depfile && par_rank() == 0 && depfile_write(depfile, output, inputs, 3))
 		fatal(NULL);
-	dem_assembly a;
-	if (assembly_read(cs.assembly, &a))
+	dem_assembly a; /* each rank a piece (solve/order.h) */
+	if (assembly_read_part(cs.assembly, par_rank(), par_size(), &a))
 		fatal(NULL);
 	int code = run_case(&cs, &a, &o);
 	case_free(&cs);

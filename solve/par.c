@@ -179,6 +179,73 @@ void par_sum_max(xsum *a, int n, double *mx, int m)
 #endif
 }
 
+void par_sum_u64(uint64_t *v, size_t n)
+{
+#ifdef DEM_MPI
+	reduce(v, (int)n, MPI_UINT64_T, sizeof *v, MPI_SUM);
+#else
+	(void)v, (void)n;
+#endif
+}
+
+size_t par_alltoall_rows(const void *send, const size_t *count, size_t row, void **recv)
+{
+	size_t mine = size_ == 1 ? count[0] : 0;
+#ifdef DEM_MPI
+	if (size_ > 1) {
+		int64_t *sn = xmalloc(4 * (size_t)size_ * sizeof *sn), *rn = sn + size_;
+		int *c = xmalloc(4 * (size_t)size_ * sizeof *c);
+		int *sc = c, *sd = c + size_, *rc = c + 2 * size_, *rd = c + 3 * size_;
+		for (int q = 0; q < size_; q++)
+			sn[q] = (int64_t)count[q];
+		MPI_Alltoall(sn, 1, MPI_INT64_T, rn, 1, MPI_INT64_T, MPI_COMM_WORLD);
+		for (int q = 0, s = 0; q < size_; q++) {
+			if (sn[q] > INT32_MAX || rn[q] > INT32_MAX ||
+			    mine + (size_t)rn[q] > INT32_MAX || s + sn[q] > INT32_MAX)
+				fatal("par_alltoall_rows: more than 2^31 rows to exchange between "
+				      "two ranks");
+			sc[q] = (int)sn[q], sd[q] = s, s += sc[q];
+			rc[q] = (int)rn[q], rd[q] = (int)mine, mine += (size_t)rn[q];
+		}
+		*recv = xmalloc((mine + 1) * row);
+		MPI_Datatype t;
+		MPI_Type_contiguous((int)row, MPI_BYTE, &t);
+		MPI_Type_commit(&t);
+		MPI_Alltoallv(send, sc, sd, t, *recv, rc, rd, t, MPI_COMM_WORLD);
+		MPI_Type_free(&t);
+		free(sn), free(c);
+		return mine;
+	}
+#endif
+	*recv = xmalloc((mine + 1) * row);
+	memcpy(*recv, send, mine * row);
+	return mine;
+}
+
+void par_allgather_rows(const void *mine, size_t n, size_t row, void *all)
+{
+#ifdef DEM_MPI
+	if (size_ > 1) {
+		int64_t k = (int64_t)n, *each = xmalloc((size_t)size_ * sizeof *each);
+		MPI_Allgather(&k, 1, MPI_INT64_T, each, 1, MPI_INT64_T, MPI_COMM_WORLD);
+		int *c = xmalloc(2 * (size_t)size_ * sizeof *c), *d = c + size_;
+		for (int q = 0, s = 0; q < size_; q++) {
+			if (each[q] > INT32_MAX || s + each[q] > INT32_MAX)
+				fatal("par_allgather_rows: more than 2^31 rows");
+			c[q] = (int)each[q], d[q] = s, s += c[q];
+		}
+		MPI_Datatype t;
+		MPI_Type_contiguous((int)row, MPI_BYTE, &t);
+		MPI_Type_commit(&t);
+		MPI_Allgatherv(mine, (int)n, t, all, c, d, t, MPI_COMM_WORLD);
+		MPI_Type_free(&t);
+		free(each), free(c);
+		return;
+	}
+#endif
+	memcpy(all, mine, n * row);
+}
+
 #ifdef DEM_MPI
 void par_max(double *v, int n) { reduce(v, n, MPI_DOUBLE, sizeof *v, MPI_MAX); }
 void par_min(double *v, int n) { reduce(v, n, MPI_DOUBLE, sizeof *v, MPI_MIN); }

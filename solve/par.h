@@ -35,6 +35,15 @@ void par_max_int(int *v, int n);
 /* For each k < n, the largest v[k] over the ranks and, of the ranks that
  * hold it, the smallest at[k] (MPI_MAXLOC), in place. */
 void par_maxloc(double *v, int32_t *at, size_t n);
+/* Each of v[0..n) summed over the ranks, in place. */
+void par_sum_u64(uint64_t *v, size_t n);
+/* Rows of `row` bytes: count[q] of them to rank q, from send in rank
+ * order; the rows received, in the order of their ranks, into *recv (the
+ * caller's to free): their number. Collective. */
+size_t par_alltoall_rows(const void *send, const size_t *count, size_t row, void **recv);
+/* Every rank's n rows of `row` bytes, in rank order, into all (room for
+ * them all). Collective. */
+void par_allgather_rows(const void *mine, size_t n, size_t row, void *all);
 
 /* The reductions above (each one MPI_Allreduce) this process took part in
  * since par_tally_reset: their number, their payload (the bytes each rank

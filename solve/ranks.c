@@ -92,10 +92,69 @@ static void halo_links(const engine *e, const rank_links *b, const rank_links *c
 	links_buffers(h, 9);
 }
 
+/* The particles this rank held in setup, [own0, own1) of its share of the
+ * order (order.h), sent to the ranks that own them now (R->pfirst): its
+ * window becomes its own particles. Collective. */
+static void move_particles(engine *e)
+{
+	rank_split *R = &e->ranks;
+	particles *P = &e->p;
+	size_t q0 = P->own0, q1 = P->own1;
+	double *rows = xmalloc((PARTICLE_ROW * (q1 - q0) + 1) * sizeof *rows);
+	size_t *count = xcalloc((size_t)R->size, sizeof *count);
+	for (size_t i = q0; i < q1; i++) {
+		particle_row(P, i, rows + PARTICLE_ROW * (i - q0));
+		count[rank_of(R, i)]++;
+	}
+	size_t n = P->n;
+	particles_free(P);
+	double *got;
+	size_t m = par_alltoall_rows(rows, count, PARTICLE_ROW * sizeof *rows, (void **)&got);
+	free(rows), free(count);
+	if (m != R->p1 - R->p0)
+		fatal("ranks_split: %zu particles received for %zu (an internal error)", m,
+		      R->p1 - R->p0);
+	particles_alloc_own(P, n, R->p0, R->p1);
+	for (size_t i = R->p0; i < R->p1; i++)
+		particle_set_row(P, i, got + PARTICLE_ROW * (i - R->p0));
+	free(got);
+}
+
+size_t ranks_incoming(const engine *e, int64_t **in)
+{
+	const rank_split *R = &e->ranks;
+	const bond_split *S = &e->pairs.split;
+	const particles *P = &e->p;
+	size_t *count = xcalloc((size_t)R->size + 1, sizeof *count);
+	int *to = xmalloc((S->ncross + 1) * sizeof *to);
+	for (size_t c = 0; c < S->ncross; c++) {
+		to[c] = rank_of(R, particle_global(P, (size_t)S->cj[c]));
+		if (to[c] != R->rank)
+			count[to[c] + 1]++;
+	}
+	size_t *at = xmalloc(((size_t)R->size + 1) * sizeof *at);
+	for (int q = 0; q <= R->size; q++)
+		at[q] = q ? at[q - 1] + count[q] : 0;
+	int64_t *rows = xmalloc((3 * at[R->size] + 1) * sizeof *rows);
+	for (size_t c = 0; c < S->ncross; c++) /* by rank, each in bond order */
+		if (to[c] != R->rank) {
+			int64_t *row = rows + 3 * at[to[c]]++;
+			row[0] = S->cross[c];
+			row[1] = (int64_t)particle_global(P, (size_t)S->ci[c]);
+			row[2] = (int64_t)particle_global(P, (size_t)S->cj[c]);
+		}
+	size_t m = par_alltoall_rows(rows, count + 1, 3 * sizeof *rows, (void **)in);
+	free(count), free(to), free(at), free(rows);
+	return m;
+}
+
 void ranks_split(engine *e)
 {
 	rank_split *R = &e->ranks;
 	const bond_split *S = &e->pairs.split;
+	/* In setup with several ranks each holds its share of the order
+	 * (order.h) until here. */
+	int moving = e->p.glob && e->pairs.formed.bfirst;
 	ranks_free(R);
 	R->size = par_size();
 	R->rank = par_rank();
@@ -110,12 +169,18 @@ void ranks_split(engine *e)
 	R->p1 = S->pfirst[R->s1];
 	R->blk0 = nblocks(R->p0);
 	R->blk1 = R->p1 > R->p0 ? nblocks(R->p1) : R->blk0;
+	if (moving) {
+		move_particles(e);
+		bonds_search_grid(e);
+	}
 	bonds_own(e, R->s0, R->s1);
 	/* This rank's crossing bonds whose j is another rank's send it their
 	 * forces; the incoming ones receive theirs from the rank of their i.
 	 * Both lists go in bond order, so sender's and receiver's match. */
+	const particles *P = &e->p;
 	for (size_t c = 0; c < S->ncross; c++) {
-		int ri = rank_of(R, (size_t)S->ci[c]), rj = rank_of(R, (size_t)S->cj[c]);
+		int ri = rank_of(R, particle_global(P, (size_t)S->ci[c])),
+		    rj = rank_of(R, particle_global(P, (size_t)S->cj[c]));
 		if (ri == R->rank && rj != R->rank)
 			link_add(&R->bsend, rj, c);
 		else if (rj == R->rank && ri != R->rank)
@@ -871,7 +936,7 @@ void ranks_traffic(engine *e, double steps, const double memory[2])
 #endif
 	double own = (double)(R->p1 - R->p0), per = steps > 0 ? 1 / steps : 0;
 	R->sec[RANKS_REDUCTIONS] = red.seconds;
-	enum { NT = 8, NV = NT + RANKS_NX };
+	enum { NT = 9, NV = NT + RANKS_NX };
 	double v[NV] = {R->recv_halo * per,
 	                R->recv_ghosts * per,
 	                (R->recv_halo + R->recv_ghosts + R->recv_all) * per,
@@ -879,7 +944,8 @@ void ranks_traffic(engine *e, double steps, const double memory[2])
 	                R->recv_forces * per,
 	                memory[0],
 	                memory[1],
-	                (double)(e->p.hi - e->p.lo)};
+	                (double)(e->p.hi - e->p.lo),
+	                (double)e->p.held_peak};
 	for (int k = 0; k < RANKS_NX; k++)
 		v[NT + k] = R->sec[k];
 	double top[NV];
@@ -891,9 +957,9 @@ void ranks_traffic(engine *e, double steps, const double memory[2])
 		xsum_add(&s[k], v[k]);
 	}
 	par_sum(s, NV);
-	double *out[NT] = {
-	    R->traffic_halo,   R->traffic_ghosts, R->traffic_state, R->traffic_allgather,
-	    R->traffic_forces, R->memory_state,   R->memory_rss,    R->held};
+	double *out[NT] = {R->traffic_halo,      R->traffic_ghosts, R->traffic_state,
+	                   R->traffic_allgather, R->traffic_forces, R->memory_state,
+	                   R->memory_rss,        R->held,           R->held_peak};
 	for (int k = 0; k < NV; k++) {
 		double *o = k < NT ? out[k] : R->seconds[k - NT];
 		o[0] = top[k];

@@ -100,9 +100,10 @@ typedef struct {
 	/* Each rank's engine state and peak resident size in bytes, the
 	 * largest and the mean over the ranks (ranks_traffic). */
 	double memory_state[2], memory_rss[2];
-	/* The particles each rank holds at the end (window.h), the largest and
-	 * the mean over the ranks. */
-	double held[2];
+	/* The particles each rank holds at the end (window.h), and the most it
+	 * held at once (setup included), the largest and the mean over the
+	 * ranks. */
+	double held[2], held_peak[2];
 	/* Every rank's bonds (a view of rank 0's own list, grown to hold
 	 * them), contacts and platen contacts, gathered on rank 0
 	 * (ranks_gather_all, ranks_pairs). */
@@ -122,8 +123,16 @@ typedef struct {
 	const int32_t *who[2];
 } pairs_view;
 
-/* This rank's part of the shares (after bonds_split). */
+/* This rank's part of the shares (after bonds_split). In setup with
+ * several ranks, where each holds its share of the particles' order
+ * (order.h), the particles first go to the ranks that own them. */
 void ranks_split(engine *e);
+/* Of this rank's crossing bond slots (bonds.h: its shares', found by
+ * bonds_own), those whose j is another rank's sent to that rank; the
+ * slots whose j is this rank's from the ranks of their i, in bond order,
+ * as rows of (bond, i, j), indices in the whole specimen, into *in (the
+ * caller's to free): their number. Collective. */
+size_t ranks_incoming(const engine *e, int64_t **in);
 /* The crossing contacts (after each contact rebuild). */
 void ranks_contacts(engine *e);
 /* Inside the step's parallel region, by one thread: the forces of the

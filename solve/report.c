@@ -90,11 +90,12 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 			        R->reduction_bytes_per_step, R->gathers_per_step);
 			fprintf(stderr,
 			        "  memory per rank: particles held %.0f at most, %.0f on average "
-			        "(of %.0f); engine state %.4g MB at most, %.4g on average; "
-			        "peak resident %.4g MB, %.4g\n",
-			        R->held[0], R->held[1], n, 1e-6 * R->memory_state[0],
-			        1e-6 * R->memory_state[1], 1e-6 * R->memory_rss[0],
-			        1e-6 * R->memory_rss[1]);
+			        "(of %.0f; at any time, setup included, %.0f at most); engine "
+			        "state %.4g MB at most, %.4g on average; peak resident %.4g MB, "
+			        "%.4g\n",
+			        R->held[0], R->held[1], n, R->held_peak[0],
+			        1e-6 * R->memory_state[0], 1e-6 * R->memory_state[1],
+			        1e-6 * R->memory_rss[0], 1e-6 * R->memory_rss[1]);
 			fprintf(stderr, "  exchanges per rank, largest and mean over the ranks "
 			                "(waiting for the others included):");
 			for (int k = 0; k < RANKS_NX; k++)
@@ -137,6 +138,8 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	json_num(j, "gathers_per_step", e->ranks.gathers_per_step);
 	json_num(j, "rank_particles_held_max", e->ranks.held[0]);
 	json_num(j, "rank_particles_held_mean", e->ranks.held[1]);
+	json_num(j, "rank_particles_held_peak_max", e->ranks.held_peak[0]);
+	json_num(j, "rank_particles_held_peak_mean", e->ranks.held_peak[1]);
 	json_num(j, "rank_state_bytes_max", e->ranks.memory_state[0]);
 	json_num(j, "rank_state_bytes_mean", e->ranks.memory_state[1]);
 	json_num(j, "rank_peak_rss_bytes_max", e->ranks.memory_rss[0]);

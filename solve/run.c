@@ -413,11 +413,17 @@ static int killed_before(const dem_case *cs, const dem_assembly *a, const char *
 {
 	if (access(ckpt, F_OK) != 0)
 		return 0;
-	int same = run_read_head(ckpt, r) == 0;
-	same = same && strcmp(r->prov.config, cs->config) == 0 && r->assembly.n == a->n &&
-	       memcmp(r->assembly.x, a->x, 3 * a->n * sizeof *a->x) == 0 &&
-	       memcmp(r->assembly.r, a->r, a->n * sizeof *a->r) == 0;
-	if (same)
+	/* Each rank compares its piece of the two assemblies. */
+	const dem_assembly *b = &r->assembly;
+	int same = run_read_head_part(ckpt, par_rank(), par_size(), r) == 0;
+	same = same && strcmp(r->prov.config, cs->config) == 0 && b->n == a->n &&
+	       b->piece == a->piece && b->first == a->first && b->held == a->held;
+	size_t m = a->piece ? a->held : a->n;
+	same = same && memcmp(b->x, a->x, 3 * m * sizeof *a->x) == 0 &&
+	       memcmp(b->r, a->r, m * sizeof *a->r) == 0;
+	int differ = !same;
+	par_max_int(&differ, 1);
+	if (!differ)
 		return 1;
 	run_free(r);
 	unlink(ckpt);
@@ -494,10 +500,11 @@ static void restart_source(const char *path, char *from, size_t n, dem_run *r)
 		fatal("%s: missing, and no recovery copy %s beside it: nothing to continue", path,
 		      ckpt);
 	dem_run c;
-	if (has_ckpt && run_read_head(ckpt, &c))
+	int rank = par_rank(), ranks = par_size(); /* each rank a piece of the assembly */
+	if (has_ckpt && run_read_head_part(ckpt, rank, ranks, &c))
 		fatal(NULL);
 	if (has_run) {
-		if (run_read_head(path, r))
+		if (run_read_head_part(path, rank, ranks, r))
 			fatal(NULL);
 		if (strcmp(r->status, "interrupted") != 0)
 			fatal("%s: the run has status '%s': only an interrupted run continues",

@@ -1,8 +1,8 @@
-/* The state at the start of a run: particles in Morton order (neighbours in
- * space sit near each other in memory, so the bond and gather loops stay in
- * cache), masses and inertias of solid spheres, the specimen frame, bonds
+/* The state at the start of a run: particles in Morton order (order.h),
+ * masses and inertias of solid spheres, the specimen frame, bonds
  * within the law's range, the law's packing constants (Eq. 22), the
  * neighbour lists, and the time step. */
+#include <malloc.h>
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -10,7 +10,6 @@
 #include <string.h>
 
 #include "lib/err.h"
-#include "lib/morton.h"
 #include "lib/vec3.h"
 #include "solve/blocks.h"
 #include "solve/bonds.h"
@@ -18,6 +17,7 @@
 #include "solve/cells.h"
 #include "solve/contacts.h"
 #include "solve/engine.h"
+#include "solve/order.h"
 #include "solve/pairlist.h"
 #include "solve/par.h"
 #include "solve/plan.h"
@@ -27,35 +27,6 @@
 #include "solve/timers.h"
 #include "solve/timestep.h"
 #include "solve/window.h"
-
-/* Morton (Z-order) permutation of the assembly's particles into perm: their
- * bounding cube scaled to cells 0 to 2^21 - 1 a side (lib/morton.h). */
-static void morton_order(const dem_assembly *a, int32_t *perm)
-{
-	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-	for (size_t i = 0; i < a->n; i++)
-		for (int k = 0; k < 3; k++) {
-			lo[k] = fmin(lo[k], a->x[3 * i + k]);
-			hi[k] = fmax(hi[k], a->x[3 * i + k]);
-		}
-	double span = 0;
-	for (int k = 0; k < 3; k++)
-		span = fmax(span, hi[k] - lo[k]);
-	double scale = span > 0 ? 2097151.0 / span : 0;
-	uint64_t *key = xmalloc((a->n + 1) * sizeof *key);
-	for (size_t i = 0; i < a->n; i++) {
-		uint64_t c[3];
-		for (int k = 0; k < 3; k++)
-			c[k] = (uint64_t)((a->x[3 * i + k] - lo[k]) * scale);
-		key[i] = morton_key(c);
-	}
-	size_t *order = xmalloc((a->n + 1) * sizeof *order);
-	morton_sort(key, a->n, order);
-	for (size_t i = 0; i < a->n; i++)
-		perm[i] = (int32_t)order[i];
-	free(key);
-	free(order);
-}
 
 /* The arrays only a rank's own particles need (the positions at the last
  * rebuild, the sums of the bond forces) for its own from now on, once the
@@ -90,25 +61,51 @@ static double own_sum(const engine *e, double (*v)(const engine *, size_t))
 
 static double radius(const engine *e, size_t i) { return e->p.r[i]; }
 
-static int load_particles(engine *e, const dem_assembly *a)
+/* The particles in Morton order (order.h: neighbours in space sit near
+ * each other in memory, so the bond and gather loops stay in cache), with
+ * their masses. With several ranks each holds its share of the order
+ * until they are split by their bonds (ranks_split), or, whole, every
+ * particle. */
+static int load_particles(engine *e, const dem_assembly *a, int whole)
 {
 	particles *P = &e->p;
+	rank_split *R = &e->ranks;
 	size_t n = a->n;
-	particles_alloc(P, n, 0, n);
-	P->own1 = n;
-	morton_order(a, P->orig);
+	order_range o;
+	order_morton(a, &o);
+	int ranks = par_size();
+	if (ranks > 1 && !whole) {
+		R->size = ranks;
+		R->rank = par_rank();
+		R->pfirst = xmalloc(((size_t)ranks + 1) * sizeof *R->pfirst);
+		for (int q = 0; q <= ranks; q++)
+			R->pfirst[q] = order_share(n, q, ranks);
+		R->p0 = o.first;
+		R->p1 = o.first + o.n;
+		particles_alloc_own(P, n, R->p0, R->p1);
+		memcpy(P->orig + R->p0, o.orig, o.n * sizeof *o.orig);
+		memcpy(P->x + 3 * R->p0, o.x, 3 * o.n * sizeof *o.x);
+		memcpy(P->r + R->p0, o.r, o.n * sizeof *o.r);
+	} else {
+		particles_alloc(P, n, 0, n);
+		P->own1 = n;
+		par_allgather_rows(o.orig, o.n, sizeof *o.orig, P->orig);
+		par_allgather_rows(o.x, o.n, 3 * sizeof *o.x, P->x);
+		par_allgather_rows(o.r, o.n, sizeof *o.r, P->r);
+	}
+	order_free(&o);
 	double rho = e->cs->mat.density;
-	for (size_t i = 0; i < n; i++) {
-		int32_t o = P->orig[i];
-		double r = a->r[o];
-		const double *x = a->x + 3 * o;
+	size_t p0, p1;
+	ranks_own(e, &p0, &p1);
+	for (size_t i = p0; i < p1; i++) {
+		int32_t orig = P->orig[i];
+		double r = P->r[i];
+		const double *x = P->x + 3 * i;
 		if (!(r > 0 && isfinite(r)) || !isfinite(x[0] + x[1] + x[2]))
 			return err_set(
 			    "particle %d: radius %g m at (%g, %g, %g) m: expected a finite "
 			    "positive radius and position",
-			    o, r, x[0], x[1], x[2]);
-		memcpy(P->x + 3 * i, a->x + 3 * o, 3 * sizeof *P->x);
-		P->r[i] = r;
+			    orig, r, x[0], x[1], x[2]);
 		P->m[i] = particle_mass(rho, r);
 		double inv_m = particle_inv_m(P, i), inv_i = particle_inv_i(P, i);
 		if (!(inv_m > 0 && inv_i > 0 && isfinite(inv_i)))
@@ -116,9 +113,10 @@ static int load_particles(engine *e, const dem_assembly *a)
 			    "particle %d: mass %g kg from the density %g kg/m^3: expected a "
 			    "finite positive mass and moment of inertia (check the "
 			    "material's density)",
-			    o, P->m[i], rho);
+			    orig, P->m[i], rho);
 		e->frame.r_max = fmax(e->frame.r_max, r);
 	}
+	par_max(&e->frame.r_max, 1);
 	e->frame.r_mean = own_sum(e, radius) / (double)n;
 	return 0;
 }
@@ -243,7 +241,7 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 	e->lp = e->law->copy(cs->mat.params);
 	if (a->n == 0)
 		return err_set("the assembly has no particles");
-	if (load_particles(e, a))
+	if (load_particles(e, a, o->whole))
 		return -1;
 	specimen_frame(e, a);
 	e->pairs.skin = cs->skin > 0 ? cs->skin : 0.25 * e->frame.r_mean;
@@ -311,6 +309,11 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 		return -1;
 	e->energy.noise = own_sum(e, noise);
 	phase_stop(&e->tm, TM_SETUP);
+#ifdef __GLIBC__
+	/* Setup's buffers, freed, back to the system rather than kept in the
+	 * heap for the rest of the run (tens of MB at 10^6 particles). */
+	malloc_trim(0);
+#endif
 	if (!o->quiet)
 		fprintf(
 		    stderr,

@@ -42,6 +42,7 @@ static void alloc_arrays(particles *P, size_t lo, size_t hi, int zero)
 		P->pslot[k] = get(lo, hi, sizeof *P->pslot[k]);
 	P->lo = lo;
 	P->hi = hi;
+	P->held_peak = hi - lo > P->held_peak ? hi - lo : P->held_peak;
 }
 
 /* The particles' arrays as bytes, each with its item size. */
@@ -66,6 +67,16 @@ void particles_alloc(particles *P, size_t n, size_t lo, size_t hi)
 		P->surf[i] = P->pslot[0][i] = P->pslot[1][i] = -1;
 	P->n = n;
 	P->glob = NULL;
+}
+
+void particles_alloc_own(particles *P, size_t n, size_t p0, size_t p1)
+{
+	particles_alloc(P, n, p0, p1);
+	P->own0 = p0;
+	P->own1 = p1;
+	P->glob = window_array(p0, p1, sizeof *P->glob);
+	for (size_t i = p0; i < p1; i++)
+		P->glob[i] = (int32_t)i;
 }
 
 void particles_free(particles *P)
@@ -231,13 +242,17 @@ void window_start(engine *e)
 	particles *P = &e->p;
 	const bond_split *S = &e->pairs.split;
 	P->fixed = xmalloc((2 * S->ncross + 1) * sizeof *P->fixed);
-	for (size_t c = 0; c < S->ncross; c++)
-		P->fixed[2 * c] = S->ci[c], P->fixed[2 * c + 1] = S->cj[c];
+	for (size_t c = 0; c < S->ncross; c++) {
+		P->fixed[2 * c] = (int32_t)particle_global(P, (size_t)S->ci[c]);
+		P->fixed[2 * c + 1] = (int32_t)particle_global(P, (size_t)S->cj[c]);
+	}
 	P->nfixed = others(e, P->fixed, 2 * S->ncross);
 	const pairlist *C = &e->pairs.contacts;
 	int32_t *want = xmalloc((2 * C->n + 1) * sizeof *want);
-	for (size_t c = 0; c < C->n; c++)
-		want[2 * c] = C->rec[c].i, want[2 * c + 1] = C->rec[c].j;
+	for (size_t c = 0; c < C->n; c++) {
+		want[2 * c] = (int32_t)particle_global(P, (size_t)C->rec[c].i);
+		want[2 * c + 1] = (int32_t)particle_global(P, (size_t)C->rec[c].j);
+	}
 	size_t dropped = window_set(e, want, others(e, want, 2 * C->n));
 	free(want);
 	if (dropped)
@@ -262,4 +277,20 @@ void window_hold_contacts(engine *e)
 		L->rec[c].i = (int32_t)window_local(P, (size_t)L->rec[c].i);
 		L->rec[c].j = (int32_t)window_local(P, (size_t)L->rec[c].j);
 	}
+}
+
+size_t window_ghosts(engine *e, double reach)
+{
+	particles *P = &e->p;
+	double *gh;
+	size_t ng = ranks_share_ghosts(e, reach, &gh);
+	int32_t *want = xmalloc((ng + 1) * sizeof *want);
+	for (size_t k = 0; k < ng; k++)
+		want[k] = (int32_t)gh[GHOST_COLS * k];
+	window_set(e, want, ng);
+	for (size_t k = 0; k < ng; k++)
+		particle_set_row(P, (size_t)window_local(P, (size_t)want[k]),
+		                 gh + GHOST_COLS * k + 1);
+	free(want), free(gh);
+	return ng;
 }

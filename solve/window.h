@@ -31,6 +31,8 @@ void window_array_free(void *a, size_t lo, size_t size);
  * particles (zero, no particle on a platen or the surface), glob NULL. */
 void particles_alloc(particles *P, size_t n, size_t lo, size_t hi);
 void particles_free(particles *P);
+/* The same for a rank's own particles [p0, p1) as its window. */
+void particles_alloc_own(particles *P, size_t n, size_t p0, size_t p1);
 /* Particle i's position, velocity, spin, radius, mass and index in the
  * assembly as a row of PARTICLE_ROW doubles (what a rank sends of a
  * particle another rank is to hold), and back. */
@@ -52,6 +54,9 @@ void window_start(engine *e);
  * neighbour rebuild replaces them), their number returned. The arrays of
  * the particles new to the window are the caller's to fill. */
 size_t window_set(engine *e, const int32_t *want, size_t n);
+/* Hold the other ranks' particles within `reach` of the box around this
+ * rank's own (ranks_share_ghosts) as well: their number. Collective. */
+size_t window_ghosts(engine *e, double reach);
 /* Hold the ends of the contacts (e->pairs.contacts, as read from a
  * checkpoint: their ends given by their index in the whole specimen) as
  * well as the own particles and the other ends of the crossing bonds: a

@@ -98,13 +98,23 @@ DEM_ROWS_ROUND=1 ranks 4 --threads 1 --output lat4.h5 lat.json --report lat4.jso
 same_chunks lat1.h5 lat4.h5
 # Each rank holds its own particles and those it reads of the others (its
 # window, solve/window.h), not the whole specimen: on 4 ranks, well under
-# half of it each.
-/usr/bin/python3 -c '
+# half of it each, at the end and at any time, setup included (each rank
+# reads a piece of the assembly, solve/order.h), and likewise when the run
+# continues from a checkpoint on 4 ranks.
+ranks 4 --threads 1 --max-steps 10 --output lat4r.h5 lat.json
+ranks 4 --threads 1 --restart lat4r.h5 --report lat4r.json
+same_chunks lat1.h5 lat4r.h5
+windows() {
+	/usr/bin/python3 -c '
 import json, sys
-r = json.load(open("lat4.json"))
-held, n = r["rank_particles_held_max"], r["particles"]
-sys.exit(0 if n / 4 < held < 0.45 * n else
-         "lat4: a rank holds %g of %g particles: expected its window" % (held, n))'
+r = json.load(open(sys.argv[1]))
+n = r["particles"]
+for k in ("rank_particles_held_max", "rank_particles_held_peak_max"):
+    if not n / 4 < r[k] < 0.45 * n:
+        sys.exit("%s: %s %g of %g particles: expected its window" % (sys.argv[1], k, r[k], n))' "$1"
+}
+windows lat4.json
+windows lat4r.json
 # More ranks than the specimen has blocks of particles: one clear message
 # on each rank, a failed run, no run file.
 "$bin/pack" --quiet --diameter 0.006 --height 0.012 --radius 0.0005 --dist fuzz small.h5
