@@ -586,21 +586,51 @@ static int read_bond_h_f(hid_t g, const engine *e, size_t first, size_t rows, si
 	return 0;
 }
 
-/* The checkpoint's nc contacts, read in pieces: those with an end of this
- * rank's own, in the file's order, which is that of their i: first those
- * of earlier ranks' i, then those of its own (contacts_restore keeps what
- * each rank lists). Their ends are indices in the whole specimen, and
- * with the engine's conventions their d0 is not set yet (hold_contacts). */
+/* The first of the rows [lo, hi) of the sorted column contact_i (open as
+ * d) whose particle is at least p (hi if none). */
+static size_t first_contact_of(hid_t d, size_t lo, size_t hi, size_t p, int *rc)
+{
+	while (lo < hi && !*rc) {
+		size_t mid = lo + (hi - lo) / 2;
+		int32_t i;
+		*rc = h5_slab(d, H5T_NATIVE_INT32, mid, 1, 0, &i, 0);
+		if ((size_t)i < p)
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	return lo;
+}
+
+/* The checkpoint's nc contacts with an end of this rank's own, in the
+ * file's order, which is that of their i: first those of earlier ranks' i
+ * (sent by their ranks), then those of its own (a run of the file, read in
+ * pieces). Their ends are indices in the whole specimen, and with the
+ * engine's conventions their d0 is not set yet (hold_contacts). */
 static int read_pairs(hid_t g, engine *e, size_t nc)
 {
 	pairlist *L = &e->pairs.contacts;
-	size_t p0, p1;
-	int all = !ranks_own(e, &p0, &p1);
-	bond *piece = xmalloc(PIECE * sizeof *piece);
-	int rc = 0;
+	size_t p0, p1, c0 = 0, c1 = nc;
+	int split = ranks_own(e, &p0, &p1) && e->ranks.size > 1, rc = 0;
+	if (split) {
+		hid_t d = open_rows(g, contact_fields[0].name, nc, 0);
+		if (d < 0)
+			return -1;
+		c0 = first_contact_of(d, 0, nc, p0, &rc);
+		c1 = first_contact_of(d, c0, nc, p1, &rc);
+		H5Dclose(d);
+		if (rc)
+			return err_set("%s: checkpoint dataset 'contact_i': unreadable",
+			               h5_name(g));
+	}
 	L->n = 0;
-	for (size_t at = 0; !rc && at < nc; at += PIECE) {
-		size_t m = nc - at < PIECE ? nc - at : PIECE;
+	if (c1 - c0 > L->cap) {
+		L->cap = c1 - c0;
+		L->rec = xrealloc(L->rec, (L->cap + 1) * sizeof *L->rec);
+	}
+	for (size_t at = c0; !rc && at < c1; at += PIECE) {
+		size_t m = c1 - at < PIECE ? c1 - at : PIECE;
+		bond *piece = L->rec + (at - c0);
 		memset(piece, 0, m * sizeof *piece);
 		for (int k = 0; !rc && k < 4; k++)
 			rc = get_field(g, &contact_fields[k], piece, at, m, nc);
@@ -612,21 +642,31 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 			if (b->i < 0 || b->j < 0 || i >= e->p.n || j >= e->p.n)
 				rc = err_set("%s: checkpoint contact %zu: particle out of range",
 				             h5_name(g), at + q);
-			else if (all || (i >= p0 && i < p1) || (j >= p0 && j < p1)) {
-				if (L->n == L->cap) {
-					L->cap = 2 * L->cap + 1024;
-					L->rec = xrealloc(L->rec, L->cap * sizeof *L->rec);
-					L->f = xrealloc(L->f, 6 * L->cap * sizeof *L->f);
-					L->ref = xrealloc(L->ref, 2 * L->cap * sizeof *L->ref);
-				}
-				b->state = BOND_BROKEN_TENSION;
-				L->rec[L->n++] = *b;
-			}
+			else if (i < p0 || i >= p1 || (q + at > c0 && b->i < b[-1].i))
+				rc = err_set(
+				    "%s: checkpoint contact %zu: not in the order of its first "
+				    "particle",
+				    h5_name(g), at + q);
+			b->state = BOND_BROKEN_TENSION;
 		}
 	}
-	free(piece);
 	if (rc)
 		return -1;
+	L->n = c1 - c0;
+	if (split) { /* those of earlier ranks' i with an own j first */
+		bond *in;
+		size_t m = ranks_share_pairs(e, L->rec, L->n, &in);
+		if (L->n + m > L->cap) {
+			L->cap = L->n + m;
+			L->rec = xrealloc(L->rec, (L->cap + 1) * sizeof *L->rec);
+		}
+		memmove(L->rec + m, L->rec, L->n * sizeof *L->rec);
+		memcpy(L->rec, in, m * sizeof *in);
+		L->n += m;
+		free(in);
+	}
+	L->f = xrealloc(L->f, 6 * (L->cap + 1) * sizeof *L->f);
+	L->ref = xrealloc(L->ref, 2 * (L->cap + 1) * sizeof *L->ref);
 	L->fcols = 6;
 	memset(L->f, 0, 6 * L->n * sizeof *L->f);
 	return 0;

@@ -148,6 +148,28 @@ size_t ranks_incoming(const engine *e, int64_t **in)
 	return m;
 }
 
+size_t ranks_share_pairs(const engine *e, const bond *rec, size_t n, bond **in)
+{
+	const rank_split *R = &e->ranks;
+	size_t *count = xcalloc((size_t)R->size + 1, sizeof *count);
+	int *to = xmalloc((n + 1) * sizeof *to);
+	for (size_t c = 0; c < n; c++) {
+		to[c] = rank_of(R, (size_t)rec[c].j);
+		if (to[c] != R->rank)
+			count[to[c] + 1]++;
+	}
+	size_t *at = xmalloc(((size_t)R->size + 1) * sizeof *at);
+	for (int q = 0; q <= R->size; q++)
+		at[q] = q ? at[q - 1] + count[q] : 0;
+	bond *out = xmalloc((at[R->size] + 1) * sizeof *out);
+	for (size_t c = 0; c < n; c++) /* by rank, each in pair order */
+		if (to[c] != R->rank)
+			out[at[to[c]]++] = rec[c];
+	size_t m = par_alltoall_rows(out, count + 1, sizeof *out, (void **)in);
+	free(count), free(to), free(at), free(out);
+	return m;
+}
+
 void ranks_split(engine *e)
 {
 	rank_split *R = &e->ranks;

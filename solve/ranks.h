@@ -133,6 +133,11 @@ void ranks_split(engine *e);
  * as rows of (bond, i, j), indices in the whole specimen, into *in (the
  * caller's to free): their number. Collective. */
 size_t ranks_incoming(const engine *e, int64_t **in);
+/* Of the n pairs rec (ends given by their index in the whole specimen,
+ * each i this rank's own), those whose j is another rank's sent to that
+ * rank; the pairs other ranks send this rank, in the order of their
+ * ranks, into *in (the caller's to free): their number. Collective. */
+size_t ranks_share_pairs(const engine *e, const bond *rec, size_t n, bond **in);
 /* The crossing contacts (after each contact rebuild). */
 void ranks_contacts(engine *e);
 /* Inside the step's parallel region, by one thread: the forces of the
