@@ -38,6 +38,17 @@ static int share_of(size_t n, int ranks, size_t p)
 	return lo;
 }
 
+/* The m items *it sent on, item k to rank dest[k]; those received, in the
+ * order of their ranks, in their place. */
+static size_t send_on(item **it, size_t m, const int *dest)
+{
+	void *recv;
+	size_t got = par_send_rows(*it, dest, m, sizeof **it, &recv);
+	free(*it);
+	*it = recv;
+	return got;
+}
+
 /* The m items sorted by key, equal keys in the order they are in. */
 static void sort_items(item *it, size_t m)
 {
@@ -51,21 +62,6 @@ static void sort_items(item *it, size_t m)
 		tmp[k] = it[order[k]];
 	memcpy(it, tmp, m * sizeof *it);
 	free(tmp), free(key), free(order);
-}
-
-/* The m items (in the order they go) sent on: dest[k] the rank of item k,
- * non-decreasing; those received, in the order of their ranks, into *it. */
-static size_t send_on(item **it, size_t m, const int *dest)
-{
-	int ranks = par_size();
-	size_t *count = xcalloc((size_t)ranks, sizeof *count);
-	for (size_t k = 0; k < m; k++)
-		count[dest[k]]++;
-	void *recv;
-	size_t got = par_alltoall_rows(*it, count, sizeof **it, &recv);
-	free(*it), free(count);
-	*it = recv;
-	return got;
 }
 
 void order_morton(const dem_assembly *a, order_range *o)
@@ -115,24 +111,13 @@ void order_morton(const dem_assembly *a, order_range *o)
 		}
 		free(count);
 		int *dest = xmalloc((m + 1) * sizeof *dest);
-		size_t *at = xcalloc((size_t)ranks + 1, sizeof *at);
 		for (size_t k = 0; k < m; k++)
-			at[to[it[k].key >> LEAD_SHIFT] + 1]++;
-		for (int q = 0; q < ranks; q++)
-			at[q + 1] += at[q];
-		item *by = xmalloc((m + 1) * sizeof *by);
-		for (size_t k = 0; k < m; k++) {
-			int q = to[it[k].key >> LEAD_SHIFT];
-			dest[at[q]] = q;
-			by[at[q]++] = it[k];
-		}
-		free(it), free(at), free(to);
-		it = by;
+			dest[k] = to[it[k].key >> LEAD_SHIFT];
+		free(to);
 		m = send_on(&it, m, dest);
-		free(dest);
 		/* Sorted, they fill places [mine, mine + m): on to their shares. */
 		sort_items(it, m);
-		dest = xmalloc((m + 1) * sizeof *dest);
+		dest = xrealloc(dest, (m + 1) * sizeof *dest);
 		for (size_t k = 0; k < m; k++)
 			dest[k] = share_of(n, ranks, mine + k);
 		m = send_on(&it, m, dest);

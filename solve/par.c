@@ -222,6 +222,24 @@ size_t par_alltoall_rows(const void *send, const size_t *count, size_t row, void
 	return mine;
 }
 
+size_t par_send_rows(const void *rows, const int *to, size_t n, size_t row, void **recv)
+{
+	size_t *count = xcalloc((size_t)size_, sizeof *count);
+	size_t *at = xcalloc((size_t)size_ + 1, sizeof *at);
+	for (size_t k = 0; k < n; k++)
+		if (to[k] >= 0)
+			count[to[k]]++;
+	for (int q = 0; q < size_; q++)
+		at[q + 1] = at[q] + count[q];
+	unsigned char *by = xmalloc(at[size_] * row + 1);
+	for (size_t k = 0; k < n; k++) /* by rank, each in order */
+		if (to[k] >= 0)
+			memcpy(by + at[to[k]]++ * row, (const unsigned char *)rows + k * row, row);
+	size_t m = par_alltoall_rows(by, count, row, recv);
+	free(by), free(count), free(at);
+	return m;
+}
+
 void par_allgather_rows(const void *mine, size_t n, size_t row, void *all)
 {
 #ifdef DEM_MPI

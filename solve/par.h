@@ -41,6 +41,9 @@ void par_sum_u64(uint64_t *v, size_t n);
  * order; the rows received, in the order of their ranks, into *recv (the
  * caller's to free): their number. Collective. */
 size_t par_alltoall_rows(const void *send, const size_t *count, size_t row, void **recv);
+/* The same for n rows of `row` bytes in any order, row k to rank to[k]
+ * (none where negative), each rank's in their order. Collective. */
+size_t par_send_rows(const void *rows, const int *to, size_t n, size_t row, void **recv);
 /* Every rank's n rows of `row` bytes, in rank order, into all (room for
  * them all). Collective. */
 void par_allgather_rows(const void *mine, size_t n, size_t row, void *all);

@@ -125,48 +125,31 @@ size_t ranks_incoming(const engine *e, int64_t **in)
 	const rank_split *R = &e->ranks;
 	const bond_split *S = &e->pairs.split;
 	const particles *P = &e->p;
-	size_t *count = xcalloc((size_t)R->size + 1, sizeof *count);
+	int64_t *rows = xmalloc((3 * S->ncross + 1) * sizeof *rows);
 	int *to = xmalloc((S->ncross + 1) * sizeof *to);
 	for (size_t c = 0; c < S->ncross; c++) {
-		to[c] = rank_of(R, particle_global(P, (size_t)S->cj[c]));
-		if (to[c] != R->rank)
-			count[to[c] + 1]++;
+		int64_t *row = rows + 3 * c;
+		row[0] = S->cross[c];
+		row[1] = (int64_t)particle_global(P, (size_t)S->ci[c]);
+		row[2] = (int64_t)particle_global(P, (size_t)S->cj[c]);
+		to[c] = rank_of(R, (size_t)row[2]);
+		to[c] = to[c] == R->rank ? -1 : to[c];
 	}
-	size_t *at = xmalloc(((size_t)R->size + 1) * sizeof *at);
-	for (int q = 0; q <= R->size; q++)
-		at[q] = q ? at[q - 1] + count[q] : 0;
-	int64_t *rows = xmalloc((3 * at[R->size] + 1) * sizeof *rows);
-	for (size_t c = 0; c < S->ncross; c++) /* by rank, each in bond order */
-		if (to[c] != R->rank) {
-			int64_t *row = rows + 3 * at[to[c]]++;
-			row[0] = S->cross[c];
-			row[1] = (int64_t)particle_global(P, (size_t)S->ci[c]);
-			row[2] = (int64_t)particle_global(P, (size_t)S->cj[c]);
-		}
-	size_t m = par_alltoall_rows(rows, count + 1, 3 * sizeof *rows, (void **)in);
-	free(count), free(to), free(at), free(rows);
+	size_t m = par_send_rows(rows, to, S->ncross, 3 * sizeof *rows, (void **)in);
+	free(rows), free(to);
 	return m;
 }
 
 size_t ranks_share_pairs(const engine *e, const bond *rec, size_t n, bond **in)
 {
 	const rank_split *R = &e->ranks;
-	size_t *count = xcalloc((size_t)R->size + 1, sizeof *count);
 	int *to = xmalloc((n + 1) * sizeof *to);
 	for (size_t c = 0; c < n; c++) {
 		to[c] = rank_of(R, (size_t)rec[c].j);
-		if (to[c] != R->rank)
-			count[to[c] + 1]++;
+		to[c] = to[c] == R->rank ? -1 : to[c];
 	}
-	size_t *at = xmalloc(((size_t)R->size + 1) * sizeof *at);
-	for (int q = 0; q <= R->size; q++)
-		at[q] = q ? at[q - 1] + count[q] : 0;
-	bond *out = xmalloc((at[R->size] + 1) * sizeof *out);
-	for (size_t c = 0; c < n; c++) /* by rank, each in pair order */
-		if (to[c] != R->rank)
-			out[at[to[c]]++] = rec[c];
-	size_t m = par_alltoall_rows(out, count + 1, sizeof *out, (void **)in);
-	free(count), free(to), free(at), free(out);
+	size_t m = par_send_rows(rec, to, n, sizeof *rec, (void **)in);
+	free(to);
 	return m;
 }
 

@@ -2,12 +2,14 @@
  * masses and inertias of solid spheres, the specimen frame, bonds
  * within the law's range, the law's packing constants (Eq. 22), the
  * neighbour lists, and the time step. */
-#include <malloc.h>
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include "lib/err.h"
 #include "lib/vec3.h"
