@@ -46,9 +46,8 @@ enum { PF_LAYER_BOTTOM = 1, PF_LAYER_TOP = 2, PF_CONSTRAINED = 4 };
  * the other ranks' particles it reads numbered next to them in the order
  * of their indices, so that every pair keeps its order. The arrays below
  * are indexed by the window's indices (their memory starts at lo); glob
- * gives each one's index in the whole specimen. With one rank, and on
- * every rank until setup splits the particles among the ranks, the window
- * is the whole specimen (glob NULL). */
+ * gives each one's index in the whole specimen. With one rank (or
+ * engine_opts.whole) the window is the whole specimen (glob NULL). */
 typedef struct particles {
 	size_t n;         /* particles of the whole specimen */
 	size_t lo, hi;    /* the window */

@@ -179,10 +179,11 @@ void ranks_pairs(const engine *e, pairs_view *v);
  * checkpoint is read, before contacts_restore, the whole specimen's
  * contacts). */
 void ranks_own_pairs(const engine *e, pairs_view *v);
-/* This rank's particles [*p0, *p1); before ranks_split (setup, where every
- * rank holds and computes every particle alike) all of them, and 0 is
- * returned, else 1: what the rank computes from its own particles must then
- * be combined with the other ranks'. */
+/* This rank's particles [*p0, *p1), and 1: what the rank computes from its
+ * own particles must be combined with the other ranks'. In setup with
+ * several ranks, before ranks_split, its share of the order (order.h);
+ * before ranks_split where every rank holds every particle (one process,
+ * or engine_opts.whole), all of them, and 0. */
 int ranks_own(const engine *e, size_t *p0, size_t *p1);
 /* Particle g's (its index in the whole specimen) row (particle_row,
  * window.h), from its rank; x, v and ω only where finite. Collective once

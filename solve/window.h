@@ -1,12 +1,14 @@
 /* The particles a rank holds (engine.h, particles): its own and the other
  * ranks' particles it reads, a window of indices (window.c).
  *
- * Once the particles are split among the ranks in setup (or, at a
- * restart, once the checkpoint is read: window_start) a rank holds,
- * besides its own particles: the other ends of its crossing bonds
- * (bonds.h) for the whole run, and the other ends of its contacts and its
- * ghosts (ranks.h), renewed at each neighbour rebuild (window_set). The others are numbered next to
- * its own, those of lower index before them and those of higher index
+ * In setup a rank holds its share of the particles' order (order.h) and
+ * the other ranks' particles within the bond range; once the particles
+ * are split among the ranks (window_start), besides its own particles,
+ * the other ends of its crossing bonds (bonds.h) for the whole run, and
+ * the other ends of its contacts and its ghosts (ranks.h), renewed at each
+ * neighbour rebuild (window_set) and, at a restart, when the checkpoint's
+ * contacts are read (window_hold_contacts). The others are numbered next
+ * to its own, those of lower index before them and those of higher index
  * after them, each side in the order of their indices: every list sorted
  * by particle (bonds, contacts, the crossing slots, the halo) keeps the
  * order one process gives it, and its own particles keep their index in
@@ -42,10 +44,9 @@ void particle_set_row(particles *P, size_t i, const double *row);
 /* The window's index of the specimen's particle g, or -1 if this rank does
  * not hold it. */
 int64_t window_local(const particles *P, size_t g);
-/* With several ranks, once the particles are split (in setup, or after a
- * checkpoint is read): the window of this rank's own particles and the
- * other ends of its crossing bonds and contacts; the others' arrays
- * freed. */
+/* With several ranks, once setup has split the particles: the window of
+ * this rank's own particles and the other ends of its crossing bonds and
+ * contacts; the others' arrays freed. */
 void window_start(engine *e);
 /* Hold the specimen's particles want[0..n) (increasing, other ranks') as
  * well as the own ones and the other ends of the crossing bonds: a new
