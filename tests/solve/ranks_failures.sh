@@ -4,9 +4,9 @@
 # and a non-zero exit on 2 ranks, and leaves the file as it was; a run
 # stopped by a diagnosis on 3 ranks is the run on one, message and all; a
 # rank killed with SIGKILL ends the run (the other rank does not wait forever)
-# without a finished-looking run file, and the run then continues on 2
-# ranks from its recovery copy to the same bits as the uninterrupted run
-# of one process.
+# without a finished-looking run file, and the run then continues from its
+# recovery copy, on 3 ranks by the same command and on 2 by --restart, to
+# the same bits as the uninterrupted run of one process.
 # Usage: ranks_failures.sh BIN_DIR TMP_DIR MPIEXEC
 set -eu
 bin=$1 tmp=$2 mpiexec=$3
@@ -65,5 +65,13 @@ if wait "$job"; then
 	fail "a rank killed: expected the run to fail"
 fi
 [ ! -e k.h5 ] || fail "a rank killed: k.h5 looks finished"
+# The same command again, here on 3 ranks, finds the recovery copy of a
+# run of the same case on the same assembly (each rank comparing its piece
+# of it) and continues it.
+cp k.h5.ckpt k3.h5.ckpt
+"$mpiexec" -np 3 --oversubscribe "$bin/solve" --threads 1 --output k3.h5 ucs.json 2> again.err
+grep -q "a run of this case was killed; continuing it" again.err ||
+	{ cat again.err >&2; fail "3 ranks, the same command: expected it to continue the run"; }
+same ref.h5 k3.h5
 "$mpiexec" -np 2 --oversubscribe "$bin/solve" --quiet --restart k.h5
 same ref.h5 k.h5
