@@ -94,7 +94,7 @@ int bonds_form(engine *e)
 	}
 	f->bfirst = xcalloc(nblk + 1, sizeof *f->bfirst);
 	if (split)
-		par_allgather_rows(count, nb, sizeof *count, f->bfirst + 1);
+		ranks_allgather_rows(count, nb, sizeof *count, f->bfirst + 1);
 	else
 		memcpy(f->bfirst + 1, count, nb * sizeof *count);
 	free(count);

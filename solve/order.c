@@ -24,20 +24,6 @@ size_t order_share(size_t n, int k, int ranks)
 	return at < n ? at : n;
 }
 
-/* The rank whose share holds place p. */
-static int share_of(size_t n, int ranks, size_t p)
-{
-	int lo = 0, hi = ranks - 1;
-	while (lo < hi) {
-		int mid = (lo + hi + 1) / 2;
-		if (order_share(n, mid, ranks) <= p)
-			lo = mid;
-		else
-			hi = mid - 1;
-	}
-	return lo;
-}
-
 /* The m items *it sent on, item k to rank dest[k]; those received, in the
  * order of their ranks, in their place. */
 static size_t send_on(item **it, size_t m, const int *dest)
@@ -100,11 +86,14 @@ void order_morton(const dem_assembly *a, order_range *o)
 		for (size_t k = 0; k < m; k++)
 			count[it[k].key >> LEAD_SHIFT]++;
 		par_sum_u64(count, ngroups);
+		size_t *share = xmalloc(((size_t)ranks + 1) * sizeof *share);
+		for (int q = 0; q <= ranks; q++)
+			share[q] = order_share(n, q, ranks);
 		int *to = xmalloc(ngroups * sizeof *to);
 		size_t place = 0, mine = 0; /* the first place of this rank's groups */
 		int seen = 0;
 		for (size_t g = 0; g < ngroups; g++) {
-			to[g] = share_of(n, ranks, place);
+			to[g] = run_of(share, ranks, place);
 			if (to[g] == rank && !seen)
 				mine = place, seen = 1;
 			place += count[g];
@@ -119,9 +108,9 @@ void order_morton(const dem_assembly *a, order_range *o)
 		sort_items(it, m);
 		dest = xrealloc(dest, (m + 1) * sizeof *dest);
 		for (size_t k = 0; k < m; k++)
-			dest[k] = share_of(n, ranks, mine + k);
+			dest[k] = run_of(share, ranks, mine + k);
 		m = send_on(&it, m, dest);
-		free(dest);
+		free(dest), free(share);
 	} else {
 		sort_items(it, m);
 	}

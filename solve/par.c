@@ -202,8 +202,7 @@ size_t par_alltoall_rows(const void *send, const size_t *count, size_t row, void
 		for (int q = 0, s = 0; q < size_; q++) {
 			if (sn[q] > INT32_MAX || rn[q] > INT32_MAX ||
 			    mine + (size_t)rn[q] > INT32_MAX || s + sn[q] > INT32_MAX)
-				fatal("par_alltoall_rows: more than 2^31 rows to exchange between "
-				      "two ranks");
+				fatal("par_alltoall_rows: more than 2^31 rows to or from a rank");
 			sc[q] = (int)sn[q], sd[q] = s, s += sc[q];
 			rc[q] = (int)rn[q], rd[q] = (int)mine, mine += (size_t)rn[q];
 		}
@@ -238,30 +237,6 @@ size_t par_send_rows(const void *rows, const int *to, size_t n, size_t row, void
 	size_t m = par_alltoall_rows(by, count, row, recv);
 	free(by), free(count), free(at);
 	return m;
-}
-
-void par_allgather_rows(const void *mine, size_t n, size_t row, void *all)
-{
-#ifdef DEM_MPI
-	if (size_ > 1) {
-		int64_t k = (int64_t)n, *each = xmalloc((size_t)size_ * sizeof *each);
-		MPI_Allgather(&k, 1, MPI_INT64_T, each, 1, MPI_INT64_T, MPI_COMM_WORLD);
-		int *c = xmalloc(2 * (size_t)size_ * sizeof *c), *d = c + size_;
-		for (int q = 0, s = 0; q < size_; q++) {
-			if (each[q] > INT32_MAX || s + each[q] > INT32_MAX)
-				fatal("par_allgather_rows: more than 2^31 rows");
-			c[q] = (int)each[q], d[q] = s, s += c[q];
-		}
-		MPI_Datatype t;
-		MPI_Type_contiguous((int)row, MPI_BYTE, &t);
-		MPI_Type_commit(&t);
-		MPI_Allgatherv(mine, (int)n, t, all, c, d, t, MPI_COMM_WORLD);
-		MPI_Type_free(&t);
-		free(each), free(c);
-		return;
-	}
-#endif
-	memcpy(all, mine, n * row);
 }
 
 #ifdef DEM_MPI

@@ -44,9 +44,6 @@ size_t par_alltoall_rows(const void *send, const size_t *count, size_t row, void
 /* The same for n rows of `row` bytes in any order, row k to rank to[k]
  * (none where negative), each rank's in their order. Collective. */
 size_t par_send_rows(const void *rows, const int *to, size_t n, size_t row, void **recv);
-/* Every rank's n rows of `row` bytes, in rank order, into all (room for
- * them all). Collective. */
-void par_allgather_rows(const void *mine, size_t n, size_t row, void *all);
 
 /* The reductions above (each one MPI_Allreduce) this process took part in
  * since par_tally_reset: their number, their payload (the bytes each rank

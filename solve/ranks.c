@@ -902,6 +902,19 @@ size_t ranks_gather_list(int32_t **list, size_t *cap, size_t mine)
 #endif
 }
 
+void ranks_allgather_rows(const void *mine, size_t n, size_t row, void *all)
+{
+#ifdef DEM_MPI
+	if (par_size() > 1) {
+		size_t *at = rank_rows(0, n, par_size());
+		gather_rows_from(mine, all, at, row, par_size(), ALL);
+		free(at);
+		return;
+	}
+#endif
+	memcpy(all, mine, n * row);
+}
+
 void ranks_balance(const engine *e, double particles[2], double bonds[2])
 {
 	const rank_split *R = &e->ranks;

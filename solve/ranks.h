@@ -214,6 +214,9 @@ int ranks_rows_write(engine *e, h5_rows *r, size_t rows, size_t cols, size_t siz
  * failed (no message set). Collective. */
 int ranks_rows_put(engine *e, hid_t d, hid_t type, size_t cols, size_t mine, ranks_fill fill,
                    void *ctx);
+/* Every rank's n rows of `row` bytes (mine), in rank order, into all
+ * (room for them all). Collective. */
+void ranks_allgather_rows(const void *mine, size_t n, size_t row, void *all);
 /* The sum of `mine` over the ranks. Collective. */
 size_t ranks_total(size_t mine);
 /* n values of each rank gathered in rank order into all ([size][n]) on

@@ -91,9 +91,9 @@ static int load_particles(engine *e, const dem_assembly *a, int whole)
 	} else {
 		particles_alloc(P, n, 0, n);
 		P->own1 = n;
-		par_allgather_rows(o.orig, o.n, sizeof *o.orig, P->orig);
-		par_allgather_rows(o.x, o.n, 3 * sizeof *o.x, P->x);
-		par_allgather_rows(o.r, o.n, sizeof *o.r, P->r);
+		ranks_allgather_rows(o.orig, o.n, sizeof *o.orig, P->orig);
+		ranks_allgather_rows(o.x, o.n, 3 * sizeof *o.x, P->x);
+		ranks_allgather_rows(o.r, o.n, sizeof *o.r, P->r);
 	}
 	order_free(&o);
 	double rho = e->cs->mat.density;

@@ -18,6 +18,7 @@
 #include "lib/rng.h"
 #include "solve/order.h"
 #include "solve/par.h"
+#include "solve/ranks.h"
 #include "tests/check.h"
 
 enum { NSETS = 4 };
@@ -80,7 +81,7 @@ int main(int argc, char **argv)
 				CHECK(o.r[q] == r[i]);
 			}
 			int32_t *all = malloc((n + 1) * sizeof *all);
-			par_allgather_rows(o.orig, o.n, sizeof *o.orig, all);
+			ranks_allgather_rows(o.orig, o.n, sizeof *o.orig, all);
 			/* Each particle once; equal positions in the assembly's order. */
 			char *seen = calloc(n, 1);
 			uint64_t h = 0;
