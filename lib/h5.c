@@ -42,6 +42,49 @@ const char *h5_name(hid_t obj)
 	return name;
 }
 
+static const h5_procs *procs_;
+/* The file every process has open (one at a time: solve's run file), by
+ * its name. */
+static char shared_[1024];
+
+void h5_set_procs(const h5_procs *p) { procs_ = p && p->size > 1 ? p : NULL; }
+int h5_rank(void) { return procs_ ? procs_->rank : 0; }
+
+int h5_shared(hid_t obj) { return procs_ && shared_[0] && strcmp(h5_name(obj), shared_) == 0; }
+
+int h5_agree(int rc)
+{
+	if (!procs_)
+		return rc ? -1 : 0;
+	uint64_t bad = rc != 0;
+	procs_->sum(&bad, 1);
+	return bad ? -1 : 0;
+}
+
+void h5_bcast(void *buf, size_t n)
+{
+	if (procs_)
+		procs_->bcast(buf, n);
+}
+
+int h5_begin_shared(const char *final, char *tmp, size_t tmpsize)
+{
+	int rc = h5_rank() == 0 ? afile_begin(final, tmp, tmpsize) : 0;
+	if (!rc && h5_rank() > 0)
+		snprintf(tmp, tmpsize, "%s.tmp", final);
+	h5_bcast(&rc, sizeof rc);
+	return rc;
+}
+
+/* The file-access list of every file written: the oldest format that holds
+ * what is written (HDF5 1.8), and the shared file's driver. */
+static hid_t access_list(int shared)
+{
+	hid_t fapl = shared ? procs_->fapl() : H5Pcreate(H5P_FILE_ACCESS);
+	H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST);
+	return fapl;
+}
+
 static const char *obj_path(hid_t obj)
 {
 	static _Thread_local char path[1024];
@@ -50,24 +93,74 @@ static const char *obj_path(hid_t obj)
 	return path;
 }
 
-hid_t h5_create(const char *final, char *tmp, size_t tmpsize)
+static hid_t check_format(hid_t f, const char *name, const char *format);
+
+static hid_t create(const char *final, char *tmp, size_t tmpsize, int shared)
 {
 	h5_quiet();
-	if (afile_begin(final, tmp, tmpsize))
+	if (shared ? h5_begin_shared(final, tmp, tmpsize) : afile_begin(final, tmp, tmpsize))
 		return -1;
-	hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-	H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST);
+	hid_t fapl = access_list(shared);
 	hid_t f = H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
 	H5Pclose(fapl);
+	if (shared && h5_agree(f < 0)) {
+		if (procs_->rank == 0)
+			afile_discard(tmp);
+		return err_set("%s: cannot create file on every rank (is the directory writable "
+		               "and shared?)",
+		               tmp);
+	}
 	if (f < 0) {
 		afile_discard(tmp);
 		return err_set("%s: cannot create file (is the directory writable?)", tmp);
 	}
+	if (shared)
+		snprintf(shared_, sizeof shared_, "%s", h5_name(f));
 	if (h5_attr_i64(f, "format_version", FORMAT_VERSION)) {
 		h5_discard(f, tmp);
 		return -1;
 	}
 	return f;
+}
+
+hid_t h5_create(const char *final, char *tmp, size_t tmpsize)
+{
+	return create(final, tmp, tmpsize, 0);
+}
+
+hid_t h5_create_shared(const char *final, char *tmp, size_t tmpsize)
+{
+	return create(final, tmp, tmpsize, procs_ != NULL);
+}
+
+hid_t h5_open_shared(const char *path, const char *format)
+{
+	if (!procs_)
+		return h5_open(path, format, 1);
+	h5_quiet();
+	hid_t fapl = access_list(1);
+	hid_t f = H5Fopen(path, H5F_ACC_RDWR, fapl);
+	H5Pclose(fapl);
+	if (h5_agree(f < 0)) {
+		if (f >= 0)
+			H5Fclose(f);
+		return err_set("%s: cannot open HDF5 file on every rank", path);
+	}
+	/* Every rank reads the same attributes: the same answer. */
+	f = check_format(f, path, format);
+	if (f >= 0)
+		snprintf(shared_, sizeof shared_, "%s", h5_name(f));
+	return f;
+}
+
+int h5_close_shared(hid_t file)
+{
+	int shared = h5_shared(file);
+	int rc = H5Fclose(file) < 0;
+	if (!shared)
+		return rc ? -1 : 0;
+	shared_[0] = '\0';
+	return h5_agree(rc);
 }
 
 int h5_write_error(const char *path, const char *what)
@@ -105,6 +198,12 @@ int h5_commit(hid_t file, const char *tmp, const char *final)
 
 void h5_discard(hid_t file, const char *tmp)
 {
+	if (h5_shared(file)) {
+		/* Closing is collective; the others may not be here. */
+		if (procs_->rank == 0)
+			afile_discard(tmp);
+		return;
+	}
 	H5Fclose(file);
 	afile_discard(tmp);
 }
@@ -199,6 +298,14 @@ int h5_exists(hid_t loc, const char *path)
 
 static int write_attr(hid_t obj, const char *name, hid_t type, hid_t space, const void *data)
 {
+	void *own = NULL;
+	if (h5_shared(obj)) { /* rank 0's value (the same size on every rank) */
+		size_t bytes = H5Tget_size(type) * (size_t)H5Sget_simple_extent_npoints(space);
+		own = xmalloc(bytes + 1);
+		memcpy(own, data, bytes);
+		procs_->bcast(own, bytes);
+		data = own;
+	}
 	if (H5Aexists(obj, name) > 0)
 		H5Adelete(obj, name);
 	hid_t a = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
@@ -206,6 +313,7 @@ static int write_attr(hid_t obj, const char *name, hid_t type, hid_t space, cons
 	if (a >= 0)
 		H5Aclose(a);
 	H5Sclose(space);
+	free(own);
 	if (rc < 0)
 		return err_set("%s: cannot write attribute '%s' on '%s'", h5_name(obj), name,
 		               obj_path(obj));
@@ -227,9 +335,20 @@ static hid_t str_type(size_t size)
 
 int h5_attr_str(hid_t obj, const char *name, const char *value)
 {
+	char *own = NULL;
+	if (h5_shared(obj)) { /* rank 0's value */
+		uint64_t n = strlen(value) + 1;
+		procs_->bcast(&n, sizeof n);
+		own = xmalloc(n);
+		if (procs_->rank == 0)
+			memcpy(own, value, n);
+		procs_->bcast(own, n);
+		value = own;
+	}
 	hid_t t = str_type(strlen(value) + 1);
 	int rc = write_attr(obj, name, t, H5Screate(H5S_SCALAR), value);
 	H5Tclose(t);
+	free(own);
 	return rc;
 }
 
@@ -373,6 +492,69 @@ int h5_slab(hid_t d, hid_t type, size_t at, size_t m, size_t cols, void *buf, in
 	return rc < 0 ? -1 : 0;
 }
 
+/* Runs of rows of d from consecutive rows of buf, where mine: run k is
+ * rows [base + at[k], base + at[k] + n[k]). In a shared file a write every
+ * process makes together (collective, as filtered datasets need),
+ * selecting nothing where not mine. */
+static int write_runs(hid_t d, hid_t type, size_t base, const size_t *at, const size_t *n,
+                      size_t nruns, size_t cols, const void *buf, int mine)
+{
+	size_t m = 0, row = (cols ? cols : 1) * H5Tget_size(type);
+	for (size_t k = 0; k < nruns; k++)
+		m += n[k];
+	if (!h5_shared(d)) {
+		int rc = 0;
+		for (size_t k = 0, done = 0; mine && !rc && k < nruns; done += n[k++])
+			rc = n[k] ? h5_slab(d, type, base + at[k], n[k], cols,
+			                    (unsigned char *)buf + done * row, 1)
+			          : 0;
+		return rc;
+	}
+	mine = mine && m > 0;
+	hid_t fs = H5Dget_space(d);
+	herr_t rc = H5Sselect_none(fs);
+	for (size_t k = 0, first = 1; mine && rc >= 0 && k < nruns; k++) {
+		hsize_t start[2] = {base + at[k], 0}, count[2] = {n[k], cols};
+		if (n[k])
+			rc = H5Sselect_hyperslab(fs, first ? H5S_SELECT_SET : H5S_SELECT_OR, start,
+			                         NULL, count, NULL);
+		first = first && !n[k];
+	}
+	hsize_t count[2] = {mine ? m : 1, cols};
+	hid_t mem = H5Screate_simple(cols ? 2 : 1, count, NULL);
+	if (rc >= 0 && !mine)
+		rc = H5Sselect_none(mem);
+	/* Values converted here to the file's type: a conversion would make
+	 * HDF5 write independently, which a filtered dataset refuses. */
+	hid_t ft = H5Dget_type(d);
+	void *conv = NULL;
+	if (rc >= 0 && mine && H5Tequal(ft, type) <= 0) {
+		size_t nv = m * (cols ? cols : 1), sz = H5Tget_size(ft) > H5Tget_size(type)
+		                                            ? H5Tget_size(ft)
+		                                            : H5Tget_size(type);
+		conv = xmalloc(nv * sz);
+		memcpy(conv, buf, nv * H5Tget_size(type));
+		rc = H5Tconvert(type, ft, nv, conv, NULL, H5P_DEFAULT);
+		buf = conv;
+	}
+	hid_t xfer = procs_->dxpl();
+	static const double none;
+	if (rc >= 0)
+		rc = H5Dwrite(d, ft, mem, fs, xfer, mine ? buf : &none);
+	H5Pclose(xfer);
+	H5Tclose(ft);
+	free(conv);
+	H5Sclose(mem);
+	H5Sclose(fs);
+	return rc < 0 ? -1 : 0;
+}
+
+static int write_rows(hid_t d, hid_t type, size_t at, size_t m, size_t cols, const void *buf,
+                      int mine)
+{
+	return write_runs(d, type, at, &(size_t){0}, &m, 1, cols, buf, mine);
+}
+
 int h5_rows_at(hid_t d, hid_t type, const int32_t *rows, size_t m, size_t cols, void *buf)
 {
 	if (!m)
@@ -434,11 +616,26 @@ int h5_rows_put(h5_rows *r, const void *data, size_t m)
 		return err_set("%s: dataset '%s': more rows than declared", h5_name(r->loc),
 		               r->name);
 	}
-	if (h5_slab(r->d, r->type, r->at, m, r->cols, (void *)data, 1)) {
+	if (write_rows(r->d, r->type, r->at, m, r->cols, data, h5_rank() == 0)) {
 		r->failed = 1;
 		return h5_write_dataset_error(r->loc, r->name);
 	}
 	r->at += m;
+	return 0;
+}
+
+int h5_rows_write_at(h5_rows *r, size_t at, size_t m, const void *buf)
+{
+	int bad =
+	    r->failed || at + m > r->rows || write_rows(r->d, r->type, at, m, r->cols, buf, 1) != 0;
+	uint64_t got[2] = {m, (uint64_t)bad};
+	if (h5_shared(r->d))
+		procs_->sum(got, 2);
+	if (got[1]) {
+		r->failed = 1;
+		return h5_write_dataset_error(r->loc, r->name);
+	}
+	r->at += got[0];
 	return 0;
 }
 
@@ -562,11 +759,41 @@ static int fill_chunks(h5_rows *r, h5_fill fill, void *ctx, size_t piece)
 	return 0;
 }
 
+/* The chunks a process writes at a time in a shared file. */
+enum { ROUND_CHUNKS = 16 };
+
+/* h5_rows_fill in a shared file: every process fills and writes an even
+ * share of each round's chunks (HDF5 compresses them where they are
+ * written), all together. */
+static int fill_shared(h5_rows *r, h5_fill fill, void *ctx, size_t piece)
+{
+	size_t row = (r->cols ? r->cols : 1) * H5Tget_size(r->type), at0 = r->at;
+	size_t n = (r->rows - at0 + piece - 1) / piece, np = (size_t)procs_->size;
+	unsigned char *buf = xmalloc(ROUND_CHUNKS * piece * row);
+	int rc = 0;
+	for (size_t c0 = 0, nc; !rc && c0 < n; c0 += nc) {
+		nc = n - c0 < ROUND_CHUNKS * np ? n - c0 : ROUND_CHUNKS * np;
+		size_t q = (size_t)procs_->rank, lo = at0 + (c0 + q * nc / np) * piece,
+		       hi = at0 + (c0 + (q + 1) * nc / np) * piece;
+		lo = lo < r->rows ? lo : r->rows;
+		hi = hi < r->rows ? hi : r->rows;
+		for (size_t at = lo, m; at < hi; at += m) {
+			m = hi - at < piece ? hi - at : piece;
+			fill(ctx, at, m, buf + (at - lo) * row);
+		}
+		rc = h5_rows_write_at(r, lo, hi - lo, buf);
+	}
+	free(buf);
+	return rc;
+}
+
 int h5_rows_fill(h5_rows *r, h5_fill fill, void *ctx)
 {
 	if (r->failed)
 		return -1;
 	size_t piece = chunk_rows(r->cols);
+	if (r->chunked && r->at % piece == 0 && h5_shared(r->d))
+		return fill_shared(r, fill, ctx, piece);
 	/* Several chunks: compressed here. */
 	if (r->chunked && r->at % piece == 0 && r->rows - r->at > piece)
 		return fill_chunks(r, fill, ctx, piece);
@@ -715,7 +942,9 @@ int h5_create_ext(hid_t loc, const char *name, hid_t type, size_t cols, const ch
 	return 0;
 }
 
-int h5_append(hid_t loc, const char *name, hid_t type, const void *data, size_t rows, size_t cols)
+/* Extend dataset name by rows rows and write runs of them (write_runs). */
+static int append(hid_t loc, const char *name, hid_t type, const void *data, size_t rows,
+                  size_t cols, const size_t *run_at, const size_t *run_n, size_t nruns, int mine)
 {
 	if (rows == 0)
 		return 0;
@@ -730,11 +959,22 @@ int h5_append(hid_t loc, const char *name, hid_t type, const void *data, size_t 
 	dims[0] += rows;
 	herr_t rc = H5Dset_extent(d, dims);
 	if (rc >= 0)
-		rc = h5_slab(d, type, at, rows, cols, (void *)data, 1);
+		rc = write_runs(d, type, at, run_at, run_n, nruns, cols, data, mine);
 	H5Dclose(d);
 	if (rc < 0)
 		return h5_write_dataset_error(loc, name);
 	return 0;
+}
+
+int h5_append(hid_t loc, const char *name, hid_t type, const void *data, size_t rows, size_t cols)
+{
+	return append(loc, name, type, data, rows, cols, &(size_t){0}, &rows, 1, h5_rank() == 0);
+}
+
+int h5_append_runs(hid_t loc, const char *name, hid_t type, const void *data, size_t rows,
+                   size_t cols, const size_t *run_at, const size_t *run_n, size_t nruns)
+{
+	return append(loc, name, type, data, rows, cols, run_at, run_n, nruns, 1);
 }
 
 int h5_truncate(hid_t loc, const char *name, size_t rows)
@@ -817,7 +1057,7 @@ static int put_index(hid_t d, size_t at, size_t n)
 	for (size_t done = 0; !rc && done < n;) {
 		size_t m = n - done < H5_PIECE_ELEMENTS ? n - done : H5_PIECE_ELEMENTS;
 		index_rows(NULL, at + done, m, v);
-		rc = h5_slab(d, H5T_NATIVE_INT64, at + done, m, 0, v, 1);
+		rc = write_rows(d, H5T_NATIVE_INT64, at + done, m, 0, v, h5_rank() == 0);
 		done += m;
 	}
 	free(v);

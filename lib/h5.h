@@ -32,6 +32,44 @@ hid_t h5_open(const char *path, const char *format, int readwrite);
 #define H5_IMAGE_NAME "(file image)"
 hid_t h5_open_image(const void *buf, size_t n, const char *format);
 
+/* Files that several processes write together (solve's ranks: parallel
+ * HDF5 over MPI-IO). The program supplies what that needs from MPI and from
+ * HDF5's parallel interface (solve/h5mpi.c: lib is compiled against the
+ * serial headers, which declare neither). Until it does, or with one
+ * process, the _shared functions below are the plain ones.
+ *
+ * In a shared file every process makes the same calls in the same order:
+ * every creation, attribute, extension and close. Attributes take rank 0's
+ * values; h5_write, h5_append, h5_rows_put and h5_rows_fill write rank 0's
+ * rows (h5_rows_fill: every process fills an even share of the chunks, in
+ * rounds, so its fill must be able to give any rows); h5_rows_write_at
+ * writes each process's own; h5_slab writes independently (datasets without
+ * filters only). */
+typedef struct {
+	int rank, size;
+	hid_t (*fapl)(void);                /* a new file-access list: every process's file */
+	hid_t (*dxpl)(void);                /* a new transfer list: a collective write */
+	void (*bcast)(void *buf, size_t n); /* rank 0's n bytes to every process */
+	void (*sum)(uint64_t *v, size_t n); /* v summed over the processes, on each */
+} h5_procs;
+void h5_set_procs(const h5_procs *p);
+int h5_rank(void); /* this process's rank among h5_procs (0 without) */
+/* -1 on every process if rc is nonzero on any, else 0. */
+int h5_agree(int rc);
+/* Rank 0's n bytes at buf to every process (nothing without h5_procs). */
+void h5_bcast(void *buf, size_t n);
+/* The temporary name of final (afile_begin), registered on rank 0 alone. */
+int h5_begin_shared(const char *final, char *tmp, size_t tmpsize);
+/* h5_create and h5_open (read-write) by every process together; only rank
+ * 0 registers tmp for removal (afile.h). h5_close_shared closes such a file
+ * (0 when it closed on every process); h5_discard of one only removes tmp
+ * on rank 0, without closing (the program is ending). */
+hid_t h5_create_shared(const char *final, char *tmp, size_t tmpsize);
+hid_t h5_open_shared(const char *path, const char *format);
+int h5_close_shared(hid_t file);
+/* Whether obj is in a file every process writes. */
+int h5_shared(hid_t obj);
+
 /* The file name an object belongs to (for messages). */
 const char *h5_name(hid_t obj);
 
@@ -77,6 +115,9 @@ int h5_rows_open(h5_rows *r, hid_t loc, const char *name, hid_t type, size_t row
                  const char *unit);
 size_t h5_rows_piece(const h5_rows *r);
 int h5_rows_put(h5_rows *r, const void *data, size_t m);
+/* In a shared file: every process writes its own rows [at, at + m) from
+ * buf (m may be 0), together; r counts the rows of all. */
+int h5_rows_write_at(h5_rows *r, size_t at, size_t m, const void *buf);
 int h5_rows_close(h5_rows *r);
 /* Put all the rows not yet written, a piece at a time from fill(ctx, at, m,
  * buf), which writes rows [at, at + m) (at most one piece) into buf in the
@@ -122,6 +163,11 @@ int h5_read_n(hid_t loc, const char *name, hid_t type, void **data, size_t rows,
 /* Extendible rank-1/2 datasets for tables that grow (history, cracks). */
 int h5_create_ext(hid_t loc, const char *name, hid_t type, size_t cols, const char *unit);
 int h5_append(hid_t loc, const char *name, hid_t type, const void *data, size_t rows, size_t cols);
+/* The same where the rows come in runs, each process its own (in a shared
+ * file): rows rows are added, and run k of this process's data, n[k] rows
+ * of it in order, goes to rows [at[k], at[k] + n[k]) of them. */
+int h5_append_runs(hid_t loc, const char *name, hid_t type, const void *data, size_t rows,
+                   size_t cols, const size_t *at, const size_t *n, size_t nruns);
 /* Keep the first rows rows of an extendible dataset (error if it has fewer). */
 int h5_truncate(hid_t loc, const char *name, size_t rows);
 /* The row count of dataset name under loc (-1 if it cannot be opened). */

@@ -112,7 +112,13 @@ typedef int (*run_put)(void *ctx, int f, h5_rows *r);
 int run_write_bonds_put(run_writer *w, size_t n, run_put put, void *ctx);
 int run_snapshot_put(run_writer *w, const dem_snapshot *s, run_put put, void *ctx);
 void run_field_shape(int snapshot, int f, size_t *cols, size_t *size, int *per_bond);
+/* Append n rows to the crack log (one process). */
 int run_cracks(run_writer *w, const dem_crack *c, size_t n);
+/* Append rows rows, of which this process's n are runs: run k, cnt[k] of
+ * them in order, at rows [at[k], at[k] + cnt[k]) of those appended (every
+ * process of a shared file its own, h5.h). */
+int run_cracks_runs(run_writer *w, const dem_crack *c, size_t n, size_t rows, const size_t *at,
+                    const size_t *cnt, size_t nruns);
 int run_flush(run_writer *w);
 hid_t run_hid(run_writer *w);
 /* Set the root `status` attribute ("complete", "stopped: <why>", ...),

@@ -3,6 +3,7 @@
  * name. The layout is share/doc/format.md; the reader is runfile_read.c. */
 #include <errno.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -82,13 +83,21 @@ static const struct {
 	int type;
 	size_t cols;
 	const char *unit;
+	size_t offset; /* in dem_crack */
 } crack_fields[] = {
-    {"t", F64, 0, "s"},      {"strain_axial", F64, 0, ""},
-    {"step", I64, 0, ""},    {"i", I32, 0, ""},
-    {"j", I32, 0, ""},       {"mode", I32, 0, ""},
-    {"x", F64, 3, "m"},      {"normal", F64, 3, ""},
-    {"radius", F64, 0, "m"}, {"fn", F64, 0, "N"},
-    {"fs", F64, 0, "N"},
+#define CRACK(f) offsetof(dem_crack, f)
+    {"t", F64, 0, "s", CRACK(t)},
+    {"strain_axial", F64, 0, "", CRACK(strain_axial)},
+    {"step", I64, 0, "", CRACK(step)},
+    {"i", I32, 0, "", CRACK(i)},
+    {"j", I32, 0, "", CRACK(j)},
+    {"mode", I32, 0, "", CRACK(mode)},
+    {"x", F64, 3, "m", CRACK(x)},
+    {"normal", F64, 3, "", CRACK(normal)},
+    {"radius", F64, 0, "m", CRACK(radius)},
+    {"fn", F64, 0, "N", CRACK(fn)},
+    {"fs", F64, 0, "N", CRACK(fs)},
+#undef CRACK
 };
 enum { NCRACK_FIELDS = sizeof crack_fields / sizeof crack_fields[0] };
 
@@ -126,7 +135,7 @@ run_writer *run_create(const char *path, const dem_provenance *prov, const dem_a
 {
 	run_writer *w = xcalloc(1, sizeof *w);
 	snprintf(w->path, sizeof w->path, "%s", path);
-	w->file = h5_create(path, w->tmp, sizeof w->tmp);
+	w->file = h5_create_shared(path, w->tmp, sizeof w->tmp);
 	if (w->file < 0) {
 		free(w);
 		return NULL;
@@ -203,14 +212,19 @@ void run_recovery_name(const char *path, char *out, size_t n) { snprintf(out, n,
 
 static int write_series(hid_t file);
 
-int run_save_recovery(run_writer *w)
+/* rc of rank 0, which alone did what it says (what), on every process. */
+static int from_rank0(int rc, const char *path, const char *what)
+{
+	h5_bcast(&rc, sizeof rc);
+	if (rc && h5_rank() > 0)
+		return err_set("%s: cannot %s (rank 0 says why)", path, what);
+	return rc;
+}
+
+static int save_recovery(run_writer *w)
 {
 	char final[4200], tmp[4300];
 	run_recovery_name(w->path, final, sizeof final);
-	if (run_flush(w))
-		return -1;
-	if (H5Fflush(w->file, H5F_SCOPE_GLOBAL) < 0)
-		return h5_write_error(w->tmp, "the run file");
 	if (afile_begin(final, tmp, sizeof tmp))
 		return -1;
 	hid_t f = copy_file(w->tmp, tmp) ? -1 : h5_open(tmp, RUN_FORMAT, 1);
@@ -224,22 +238,29 @@ int run_save_recovery(run_writer *w)
 	return h5_commit(f, tmp, final);
 }
 
+int run_save_recovery(run_writer *w)
+{
+	/* run_flush leaves the file whole on disk; rank 0 copies it. */
+	if (run_flush(w))
+		return -1;
+	return from_rank0(h5_rank() == 0 ? save_recovery(w) : 0, w->path,
+	                  "write the recovery copy");
+}
+
 run_writer *run_reopen(const char *from, const char *path, size_t history_rows, size_t crack_rows)
 {
 	run_writer *w = xcalloc(1, sizeof *w);
 	snprintf(w->path, sizeof w->path, "%s", path);
-	if (afile_begin(path, w->tmp, sizeof w->tmp)) {
+	if (h5_begin_shared(path, w->tmp, sizeof w->tmp)) {
 		free(w);
 		return NULL;
 	}
-	if (copy_file(from, w->tmp)) {
-		afile_discard(w->tmp);
-		free(w);
-		return NULL;
-	}
-	w->file = h5_open(w->tmp, RUN_FORMAT, 1);
-	if (w->file < 0) {
-		afile_discard(w->tmp);
+	/* Rank 0 copies; every rank opens the copy. */
+	int rank = h5_rank();
+	if (from_rank0(rank == 0 ? copy_file(from, w->tmp) : 0, w->tmp, "copy the run file") ||
+	    (w->file = h5_open_shared(w->tmp, RUN_FORMAT)) < 0) {
+		if (rank == 0)
+			afile_discard(w->tmp);
 		free(w);
 		return NULL;
 	}
@@ -588,62 +609,68 @@ static int write_series(hid_t file)
 	return rc ? -1 : 0;
 }
 
+int run_cracks_runs(run_writer *w, const dem_crack *c, size_t n, size_t rows, const size_t *at,
+                    const size_t *cnt, size_t nruns)
+{
+	if (rows == 0)
+		return 0;
+	hid_t g = H5Gopen2(w->file, "cracks", H5P_DEFAULT);
+	int rc = h5_exists(g, "crack") && h5_index_append(g, "crack", rows);
+	unsigned char *buf = xmalloc(n * 3 * sizeof(double) + 1);
+	for (int f = 0; !rc && f < NCRACK_FIELDS; f++) {
+		/* Field f of each crack, in a column of its own. */
+		hid_t type = native(crack_fields[f].type);
+		size_t size = (crack_fields[f].cols ? crack_fields[f].cols : 1) * H5Tget_size(type);
+		for (size_t k = 0; k < n; k++)
+			memcpy(buf + k * size, (const char *)&c[k] + crack_fields[f].offset, size);
+		rc = h5_append_runs(g, crack_fields[f].name, type, buf, rows, crack_fields[f].cols,
+		                    at, cnt, nruns);
+	}
+	free(buf);
+	H5Gclose(g);
+	return rc ? -1 : 0;
+}
+
 int run_cracks(run_writer *w, const dem_crack *c, size_t n)
 {
-	if (n == 0)
-		return 0;
-	double *t = xmalloc(n * sizeof *t), *e = xmalloc(n * sizeof *e);
-	double *rad = xmalloc(n * sizeof *rad), *fn = xmalloc(n * sizeof *fn);
-	double *fs = xmalloc(n * sizeof *fs), *x = xmalloc(3 * n * sizeof *x);
-	double *nn = xmalloc(3 * n * sizeof *nn);
-	int64_t *step = xmalloc(n * sizeof *step);
-	int32_t *i = xmalloc(n * sizeof *i), *j = xmalloc(n * sizeof *j);
-	int32_t *mode = xmalloc(n * sizeof *mode);
-	for (size_t k = 0; k < n; k++) {
-		t[k] = c[k].t;
-		e[k] = c[k].strain_axial;
-		step[k] = c[k].step;
-		i[k] = c[k].i;
-		j[k] = c[k].j;
-		mode[k] = c[k].mode;
-		rad[k] = c[k].radius;
-		fn[k] = c[k].fn;
-		fs[k] = c[k].fs;
-		memcpy(x + 3 * k, c[k].x, sizeof c[k].x);
-		memcpy(nn + 3 * k, c[k].normal, sizeof c[k].normal);
+	return run_cracks_runs(w, c, n, n, &(size_t){0}, &n, 1);
+}
+
+/* The series and the status, then the file under its final name. */
+static int finish(run_writer *w, const char *status)
+{
+	if (write_series(w->file) || h5_attr_str(w->file, "status", status)) {
+		h5_discard(w->file, w->tmp);
+		return -1;
 	}
-	hid_t g = H5Gopen2(w->file, "cracks", H5P_DEFAULT);
-	int rc = (h5_exists(g, "crack") && h5_index_append(g, "crack", n)) ||
-	         h5_append(g, "t", H5T_NATIVE_DOUBLE, t, n, 0) ||
-	         h5_append(g, "strain_axial", H5T_NATIVE_DOUBLE, e, n, 0) ||
-	         h5_append(g, "step", H5T_NATIVE_INT64, step, n, 0) ||
-	         h5_append(g, "i", H5T_NATIVE_INT32, i, n, 0) ||
-	         h5_append(g, "j", H5T_NATIVE_INT32, j, n, 0) ||
-	         h5_append(g, "mode", H5T_NATIVE_INT32, mode, n, 0) ||
-	         h5_append(g, "x", H5T_NATIVE_DOUBLE, x, n, 3) ||
-	         h5_append(g, "normal", H5T_NATIVE_DOUBLE, nn, n, 3) ||
-	         h5_append(g, "radius", H5T_NATIVE_DOUBLE, rad, n, 0) ||
-	         h5_append(g, "fn", H5T_NATIVE_DOUBLE, fn, n, 0) ||
-	         h5_append(g, "fs", H5T_NATIVE_DOUBLE, fs, n, 0);
-	H5Gclose(g);
-	free(t), free(e), free(rad), free(fn), free(fs), free(x), free(nn), free(step);
-	free(i), free(j), free(mode);
-	return rc ? -1 : 0;
+	if (h5_commit(w->file, w->tmp, w->path))
+		return -1;
+	/* The run file holds everything now: its recovery copy is stale. */
+	char ckpt[4200];
+	run_recovery_name(w->path, ckpt, sizeof ckpt);
+	unlink(ckpt);
+	return 0;
 }
 
 int run_finish(run_writer *w, const char *status)
 {
-	int rc = run_flush(w) || write_series(w->file) || h5_attr_str(w->file, "status", status);
-	if (rc) {
+	if (run_flush(w)) {
 		run_abort(w);
 		return -1;
 	}
-	rc = h5_commit(w->file, w->tmp, w->path);
-	if (!rc) {
-		/* The run file holds everything now: its recovery copy is stale. */
-		char ckpt[4200];
-		run_recovery_name(w->path, ckpt, sizeof ckpt);
-		unlink(ckpt);
+	int rc = 0;
+	if (h5_shared(w->file)) {
+		/* Every rank closes the file; rank 0 finishes it alone. */
+		rc = h5_close_shared(w->file);
+		if (h5_rank() == 0) {
+			w->file = rc ? -1 : h5_open(w->tmp, RUN_FORMAT, 1);
+			if (w->file < 0)
+				afile_discard(w->tmp);
+			rc = w->file < 0 || finish(w, status);
+		}
+		rc = from_rank0(rc, w->path, "finish the run file");
+	} else {
+		rc = finish(w, status);
 	}
 	writer_free(w);
 	return rc;

@@ -18,6 +18,11 @@ typedef struct {
 	size_t n, cap;
 	dem_crack *c;
 	int32_t *bond; /* the failed bond of each, for sorting */
+	/* On several ranks (ranks_share_cracks): the rows of all ranks, and
+	 * where this rank's go among them, a run each step it found some:
+	 * rows [run_at[k], run_at[k] + run_n[k]). */
+	size_t all, nruns, runcap;
+	size_t *run_at, *run_n;
 } crack_buf;
 
 /* What a bond computed in this step adds to its block's sums and to its two

@@ -248,13 +248,13 @@ static hid_t open_put(hid_t g, const char *name, hid_t type, size_t rows, size_t
 	return d;
 }
 
-/* Write or overwrite a whole dataset. */
+/* Write or overwrite a whole dataset that every rank holds: rank 0's. */
 static int put(hid_t g, const char *name, hid_t type, const void *data, size_t rows, size_t cols)
 {
 	hid_t d = open_put(g, name, type, rows, cols);
 	if (d < 0)
 		return -1;
-	herr_t rc = rows ? H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) : 0;
+	int rc = rows && par_rank() == 0 ? h5_slab(d, type, 0, rows, cols, (void *)data, 1) : 0;
 	H5Dclose(d);
 	if (rc < 0)
 		return h5_write_dataset_error(g, name);
@@ -415,19 +415,16 @@ static void from_platen(void *ctx, size_t k0, size_t m, void *buf)
 }
 
 /* Dataset `name` of g from every rank's rows, in rank order (this rank's
- * `mine`, from fill): written on rank 0, whose group g is (negative on the
- * others). Collective. */
+ * `mine`, from fill), each rank writing its own. Collective. */
 static int put_rows(engine *e, hid_t g, const char *name, hid_t type, size_t cols, size_t mine,
                     ranks_fill fill, void *ctx)
 {
-	size_t total = ranks_total(mine);
-	hid_t d = g >= 0 ? open_put(g, name, type, total, cols) : -1;
+	hid_t d = open_put(g, name, type, ranks_total(mine), cols);
+	if (d < 0)
+		return -1;
 	int rc = ranks_rows_put(e, d, type, cols, mine, fill, ctx);
-	if (d >= 0)
-		H5Dclose(d);
-	if (rc && d >= 0)
-		return h5_write_dataset_error(g, name);
-	return rc ? -1 : 0; /* open_put set the message */
+	H5Dclose(d);
+	return rc ? h5_write_dataset_error(g, name) : 0;
 }
 
 static int put_field_rows(engine *e, hid_t g, const field *f, const pairlist *l)
@@ -459,15 +456,16 @@ static void own_part(const engine *e, pairs_view *v, pairlist *contacts)
 
 int checkpoint_write(engine *e, hid_t file)
 {
-	/* On several ranks every rank takes part, each writing its own rows
-	 * through rank 0, which alone has the file. A write that fails on
-	 * rank 0 does not stop the others' part. */
+	/* On several ranks every rank writes its own rows into the file they
+	 * share (parallel HDF5), and rank 0's scalars. A failure on any rank
+	 * ends the run (fatal), so the others need not be told. */
 	int head = par_rank() == 0, rc = 0;
-	hid_t g = -1;
-	if (head) {
-		g = h5_exists(file, "checkpoint") ? h5_open_group(file, "checkpoint")
-		                                  : h5_group(file, "checkpoint");
-		rc = g < 0 || h5_attr_i64(g, "complete", 0);
+	hid_t g = h5_exists(file, "checkpoint") ? h5_open_group(file, "checkpoint")
+	                                        : h5_group(file, "checkpoint");
+	if (g < 0 || h5_attr_i64(g, "complete", 0)) {
+		if (g >= 0)
+			H5Gclose(g);
+		return -1;
 	}
 	pairs_view v;
 	pairlist contacts;
@@ -476,60 +474,54 @@ int checkpoint_write(engine *e, hid_t file)
 	                   ranks_total(v.ncand[1])};
 	scalar s[64];
 	int ns = scalars(e, count, s);
-	for (int k = 0; head && !rc && k < ns; k++)
+	for (int k = 0; !rc && k < ns; k++)
 		rc = s[k].d   ? h5_attr_f64(g, s[k].name, *s[k].d)
 		     : s[k].i ? h5_attr_i64(g, s[k].name, *s[k].i)
 		     : s[k].n ? h5_attr_i64(g, s[k].name, *s[k].n)
 		              : h5_attr_i64(g, s[k].name, (int64_t)*s[k].z);
-	if (rc && g >= 0) { /* the rest is not written, but received */
-		H5Gclose(g);
-		g = -1;
-	}
 	const particles *P = &e->p;
 	size_t p0, p1;
 	ranks_own(e, &p0, &p1);
-	rc |= put_array(e, g, "orig", H5T_NATIVE_INT32, 0, P->orig + p0, p1 - p0);
+	rc = rc || put_array(e, g, "orig", H5T_NATIVE_INT32, 0, P->orig + p0, p1 - p0);
 	const char *vn[] = {"x", "v", "w", "x_ref"};
 	const double *vec[] = {P->x + 3 * p0, P->v + 3 * p0, P->w + 3 * p0,
 	                       P->x_ref + 3 * (p0 - P->own0)};
 	for (int k = 0; k < 4; k++)
-		rc |= put_array(e, g, vn[k], H5T_NATIVE_DOUBLE, 3, vec[k], p1 - p0);
-	rc |= put_array(e, g, "flag", H5T_NATIVE_UINT8, 0, P->flag + p0, p1 - p0);
-	if (head && g >= 0) /* every rank holds the whole surface list */
-		rc |=
-		    put(g, "surface_particle", H5T_NATIVE_INT32, e->bc.surf.idx, e->bc.surf.n, 0) ||
-		    put(g, "surface_area", H5T_NATIVE_DOUBLE, e->bc.surf.area, e->bc.surf.n, 0);
+		rc = rc || put_array(e, g, vn[k], H5T_NATIVE_DOUBLE, 3, vec[k], p1 - p0);
+	/* Every rank holds the whole surface list. */
+	rc = rc || put_array(e, g, "flag", H5T_NATIVE_UINT8, 0, P->flag + p0, p1 - p0) ||
+	     put(g, "surface_particle", H5T_NATIVE_INT32, e->bc.surf.idx, e->bc.surf.n, 0) ||
+	     put(g, "surface_area", H5T_NATIVE_DOUBLE, e->bc.surf.area, e->bc.surf.n, 0);
 	for (int k = 0; k < 3; k++)
-		rc |= put_field_rows(e, g, &bond_fields[k], v.bonds);
-	rc |= put_array(e, g, "bond_force", H5T_NATIVE_DOUBLE, 3, v.bonds->f, v.bonds->n);
+		rc = rc || put_field_rows(e, g, &bond_fields[k], v.bonds);
+	rc = rc || put_array(e, g, "bond_force", H5T_NATIVE_DOUBLE, 3, v.bonds->f, v.bonds->n);
 	for (int k = 0; k < 4; k++)
-		rc |= put_field_rows(e, g, &contact_fields[k], v.contacts);
+		rc = rc || put_field_rows(e, g, &contact_fields[k], v.contacts);
 	if (yade_contacts(e))
-		rc |= put_field_rows(e, g, &contact_start, v.contacts);
+		rc = rc || put_field_rows(e, g, &contact_start, v.contacts);
 	for (int k = 0; k < 2; k++) {
 		char name[32];
 		snprintf(name, sizeof name, "platen%d_particle", k);
-		rc |= put_array(e, g, name, H5T_NATIVE_INT32, 0, v.who[k], v.ncand[k]);
+		rc = rc || put_array(e, g, name, H5T_NATIVE_INT32, 0, v.who[k], v.ncand[k]);
 		platen_rows r = {v.pc[k], 0};
 		snprintf(name, sizeof name, "platen%d_contact", k);
-		rc |= put_rows(e, g, name, H5T_NATIVE_DOUBLE, 6, v.ncand[k], from_platen, &r);
+		rc = rc || put_rows(e, g, name, H5T_NATIVE_DOUBLE, 6, v.ncand[k], from_platen, &r);
 		r.start = 1;
 		snprintf(name, sizeof name, "platen%d_start", k);
 		if (yade_contacts(e))
-			rc |=
-			    put_rows(e, g, name, H5T_NATIVE_DOUBLE, 0, v.ncand[k], from_platen, &r);
+			rc = rc || put_rows(e, g, name, H5T_NATIVE_DOUBLE, 0, v.ncand[k],
+			                    from_platen, &r);
 	}
-	/* The checksum: each rank's parts, combined on rank 0. */
+	/* The checksum: each rank's parts, combined on rank 0 (whose value
+	 * the attribute takes). */
 	crc_parts mine, *all = head ? xmalloc((size_t)par_size() * sizeof *all) : NULL;
 	crc_of(e, &v, p0, p1, count, head, NULL, &mine);
 	gather_parts(&mine, all);
-	if (head && g >= 0) {
-		rc = rc || h5_attr_i64(g, "checksum", crc_combine(all, par_size())) ||
-		     h5_attr_i64(g, "complete", 1);
-		H5Gclose(g);
-		if (!rc && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
-			rc = h5_write_error(h5_name(file), "the checkpoint");
-	}
+	rc = rc || h5_attr_i64(g, "checksum", head ? crc_combine(all, par_size()) : 0) ||
+	     h5_attr_i64(g, "complete", 1);
+	H5Gclose(g);
+	if (!rc && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
+		rc = h5_write_error(h5_name(file), "the checkpoint");
 	free(all);
 	return rc ? -1 : 0;
 }

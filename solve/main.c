@@ -8,6 +8,7 @@
 #include "lib/err.h"
 #include "lib/progress.h"
 #include "solve/case.h"
+#include "solve/h5mpi.h"
 #include "solve/par.h"
 #include "solve/report.h"
 #include "solve/run.h"
@@ -123,6 +124,9 @@ int main(int argc, char **argv)
 	err_program(argv[0]);
 	if (par_init(&argc, &argv))
 		fatal(NULL);
+#ifdef DEM_MPI
+	h5mpi_install(); /* the run file written by every rank */
+#endif
 	int code = solve_main(argc, argv);
 	par_finalize();
 	return code;

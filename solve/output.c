@@ -98,8 +98,7 @@ static void snapshot_rows(void *ctx, int f, size_t at, size_t m, void *buf)
 	}
 }
 
-/* On several ranks: each field from every rank's own rows; r is rank 0's
- * dataset, NULL on the others (run_put). */
+/* On several ranks: each field from every rank's own rows (run_put). */
 static void own_bond_rows(void *ctx, size_t k0, size_t m, void *buf)
 {
 	bond_rows(ctx, ((rows_ctx *)ctx)->f, k0, m, buf);
@@ -129,25 +128,12 @@ static int put_own(rows_ctx *c, int snapshot, int f, h5_rows *r)
 static int put_bonds(void *ctx, int f, h5_rows *r) { return put_own(ctx, 0, f, r); }
 static int put_snapshot(void *ctx, int f, h5_rows *r) { return put_own(ctx, 1, f, r); }
 
-/* The ranks other than 0, which hold no run file, take part in each
- * field's writing as rank 0 does. */
-static int put_all(int nf, run_put put, void *ctx)
-{
-	for (int f = 0; f < nf; f++)
-		if (put(ctx, f, NULL))
-			return -1;
-	return 0;
-}
-
 int output_bonds(engine *e, run_writer *w)
 {
-	if (e->ranks.size > 1) {
-		rows_ctx c = {e, &e->pairs.bonds, NULL, 0, 0};
-		return w ? run_write_bonds_put(w, e->pairs.nbonds, put_bonds, &c)
-		         : put_all(BTAB_NFIELDS, put_bonds, &c);
-	}
-	return w && run_write_bonds_fill(w, e->pairs.nbonds, bond_rows,
-	                                 &(rows_ctx){e, &e->pairs.bonds, NULL, 0, 0});
+	rows_ctx c = {e, &e->pairs.bonds, NULL, 0, 0};
+	if (e->ranks.size > 1)
+		return run_write_bonds_put(w, e->pairs.nbonds, put_bonds, &c);
+	return run_write_bonds_fill(w, e->pairs.nbonds, bond_rows, &c);
 }
 
 int output_snapshot(engine *e, run_writer *w)
@@ -161,11 +147,8 @@ int output_snapshot(engine *e, run_writer *w)
 	                  .nbonds = e->pairs.nbonds};
 	if (e->ranks.size > 1) {
 		rows_ctx c = {e, &e->pairs.bonds, NULL, e->ranks.p0, 0};
-		return w ? run_snapshot_put(w, &s, put_snapshot, &c)
-		         : put_all(SNAP_NFIELDS, put_snapshot, &c);
+		return run_snapshot_put(w, &s, put_snapshot, &c);
 	}
-	if (!w)
-		return 0;
 	int32_t *internal = xmalloc((P->n + 1) * sizeof *internal);
 	for (size_t i = 0; i < P->n; i++)
 		internal[P->orig[i]] = (int32_t)i;
@@ -177,9 +160,13 @@ int output_snapshot(engine *e, run_writer *w)
 
 int output_cracks(engine *e, run_writer *w)
 {
-	if (run_cracks(w, e->out.cracks.c, e->out.cracks.n))
+	/* On several ranks each writes its own rows. */
+	crack_buf *cb = &e->out.cracks;
+	if (e->ranks.size > 1
+	        ? run_cracks_runs(w, cb->c, cb->n, cb->all, cb->run_at, cb->run_n, cb->nruns)
+	        : run_cracks(w, cb->c, cb->n))
 		return -1;
-	e->out.crack_rows += e->out.cracks.n;
-	e->out.cracks.n = 0;
+	e->out.crack_rows += cb->all;
+	cb->n = cb->all = cb->nruns = 0;
 	return 0;
 }

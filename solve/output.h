@@ -7,9 +7,8 @@
 #include "lib/runfile.h"
 #include "solve/engine.h"
 
-/* On several ranks every rank calls these, and w is rank 0's (NULL on the
- * others): each rank's own rows go into the file (ranks_rows_write). One
- * process without a run file (w NULL) writes nothing. */
+/* On several ranks every rank calls these with the run file they share
+ * (parallel HDF5): each rank's own rows go into it (ranks_rows_write). */
 int output_bonds(engine *e, run_writer *w);
 /* Particles and bonds now; bond forces are those of the last step. */
 int output_snapshot(engine *e, run_writer *w);

@@ -716,28 +716,31 @@ void ranks_share_cracks(engine *e, size_t first)
 {
 #ifdef DEM_MPI
 	rank_split *R = &e->ranks;
-	if (R->size == 1)
-		return;
 	crack_buf *cb = &e->out.cracks;
+	if (R->size == 1) {
+		cb->all = cb->n;
+		return;
+	}
 	size_t mine = cb->n - first;
 	double t0 = timer_now();
-	/* Rank 0's rows first, then the others' in rank order, which is bond
-	 * order (ranks own increasing particles, bonds go by i). */
-	size_t *at = rank_rows(first, mine, R->size), total = at[R->size];
-	if (total > first) {
-		if (R->rank == 0 && total > cb->cap) {
-			cb->cap = total + total / 2;
-			cb->c = xrealloc(cb->c, cb->cap * sizeof *cb->c);
-			cb->bond = xrealloc(cb->bond, cb->cap * sizeof *cb->bond);
+	/* This step's rows follow those not yet written, in rank order, which
+	 * is bond order (ranks own increasing particles, bonds go by i). */
+	size_t *at = rank_rows(cb->all, mine, R->size);
+	if (mine) {
+		if (cb->nruns == cb->runcap) {
+			cb->runcap = cb->runcap ? 2 * cb->runcap : 64;
+			cb->run_at = xrealloc(cb->run_at, cb->runcap * sizeof *cb->run_at);
+			cb->run_n = xrealloc(cb->run_n, cb->runcap * sizeof *cb->run_n);
 		}
-		gather_rows_from(cb->c + first, cb->c, at, sizeof *cb->c, R->size, 0);
-		gather_rows_from(cb->bond + first, cb->bond, at, sizeof *cb->bond, R->size, 0);
-		cb->n = R->rank == 0 ? total : first;
+		cb->run_at[cb->nruns] = at[R->rank];
+		cb->run_n[cb->nruns++] = mine;
 	}
+	cb->all = at[R->size];
 	free(at);
 	R->sec[RANKS_GATHERS] += timer_now() - t0;
 #else
-	(void)e, (void)first;
+	(void)first;
+	e->out.cracks.all = e->out.cracks.n;
 #endif
 }
 

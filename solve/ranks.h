@@ -160,10 +160,11 @@ void ranks_share_contact_values(engine *e, double *v);
 /* The same for each crossing bond's slot (bonds.h): the value the rank of
  * its i holds sent to the rank of its j. Collective. */
 void ranks_share_bond_values(engine *e, double *v);
-/* After the step: the failures every rank found in it (each since `first`,
- * the length of its e->out.cracks before the step) on rank 0, which
- * writes the crack log, in bond order; the other ranks keep none.
- * Collective. */
+/* After the step: where the failures every rank found in it (each since
+ * `first`, the length of its e->out.cracks before the step) go in the
+ * crack log, in bond order, which is rank order: each rank keeps its own
+ * and notes their run of rows, and counts those of all ranks
+ * (e->out.cracks.all; crack_buf). Collective. */
 void ranks_share_cracks(engine *e, size_t first);
 /* Before the diagnosis of a non-finite state, which ends the run, on rank
  * 0: every particle (its window becomes the whole specimen, window.h),
@@ -193,25 +194,22 @@ void ranks_particle(const engine *e, size_t g, double row[PARTICLE_ROW]);
  * order, in *list (of room for *cap, grown to hold them all): their
  * number. Collective. */
 size_t ranks_gather_list(int32_t **list, size_t *cap, size_t mine);
-/* A dataset of the run file (rows x cols values of `size` bytes) whose
- * rows the ranks hold: this rank's `mine` items, item k at row first + k,
- * or dest[k] when dest is not NULL, their rows [k0, k0 + m) written into
- * buf by fill(ctx, k0, m, buf). Where h5_rows_fill would compress the
- * chunks itself (h5_chunk_rows), the rows go to the ranks that compress
- * them (an even share of the chunks each, on the step's threads), and
- * only the compressed chunks go to rank 0, which writes them into r in
- * order: the same file as one process writes. Else every row goes to rank
- * 0, which puts it into r. r is open on rank 0 (NULL elsewhere).
- * Collective. */
+/* A dataset of the run file (rows x cols values of `size` bytes, open in
+ * r on every rank) whose rows the ranks hold: this rank's `mine` items,
+ * item k at row first + k, or dest[k] when dest is not NULL, their rows
+ * [k0, k0 + m) written into buf by fill(ctx, k0, m, buf). Where the
+ * dataset has several chunks (h5_chunk_rows), the rows go to the ranks
+ * that write them, an even share of whole chunks each (HDF5 compresses a
+ * chunk where it is written), in rounds of a few chunks a rank; else every
+ * row goes to rank 0, which writes them. The chunks are those one process
+ * writes. Collective. */
 typedef void (*ranks_fill)(void *ctx, size_t k0, size_t m, void *buf);
 int ranks_rows_write(engine *e, h5_rows *r, size_t rows, size_t cols, size_t size, size_t mine,
                      size_t first, const int32_t *dest, ranks_fill fill, void *ctx);
 /* Rows the ranks hold in rank order (this rank's `mine` rows, from fill),
- * written on rank 0 into rows [0, their total) of the open dataset d (of
- * type `type` and cols columns; rank 0's, ignored elsewhere; negative: a
- * failure, the rows still received), a piece at a time: rank 0 writes its
- * own, then receives each rank's pieces in turn. -1 on rank 0 if a write
- * failed (no message set). Collective. */
+ * written into rows [0, their total) of the open dataset d (of type `type`
+ * and cols columns, without filters), each rank its own a piece at a
+ * time. -1 if a write of this rank failed (no message set). Collective. */
 int ranks_rows_put(engine *e, hid_t d, hid_t type, size_t cols, size_t mine, ranks_fill fill,
                    void *ctx);
 /* Every rank's n rows of `row` bytes (mine), in rank order, into all

@@ -1,7 +1,6 @@
 /* A run file's dataset written from the rows every rank holds (ranks.h,
- * ranks_rows_write): the chunks are compressed where their rows are
- * gathered, an even share of them on each rank, and only the compressed
- * chunks reach rank 0, which writes them in order. */
+ * ranks_rows_write): the rows of each chunk are gathered on one rank, an
+ * even share of the chunks on each, which writes them (parallel HDF5). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -16,8 +15,6 @@
 #include "solve/engine.h"
 #include "solve/par.h"
 #include "solve/ranks.h"
-
-enum { TAG_CHUNK = 7, TAG_ROWS = 8 };
 
 #ifdef DEM_MPI
 /* The chunks a rank compresses in a round: 16, or DEM_ROWS_ROUND from the
@@ -127,83 +124,16 @@ static unsigned char *exchange(size_t row, const size_t *lo, size_t piece, const
 	return out;
 }
 
-/* This rank's chunks (rows of raw, room for whole chunks of piece rows)
- * compressed on the step's threads, a chunk each at a time, their bytes
- * appended in chunk order to the returned buffer; chunk c's size and
- * filter mask in meta[2 c], meta[2 c + 1]. */
-static unsigned char *compress_chunks(const engine *e, unsigned char *raw, size_t rows,
-                                      size_t piece, size_t width, size_t size, uint64_t *meta)
+/* One round of chunks: rank q gathers the rows [lo[q], lo[q + 1]) and
+ * writes them, every rank together (HDF5 compresses each chunk where it
+ * is written). */
+static int write_round(engine *e, h5_rows *r, const size_t *lo, size_t piece, size_t row,
+                       const items *it)
 {
-	size_t bytes = piece * width * size, zcap = h5_chunk_zcap(bytes);
-	size_t n = (rows + piece - 1) / piece, team = e->team > 1 ? (size_t)e->team : 1;
-	unsigned char *z = xmalloc(team * zcap), *shuf = xmalloc(team * bytes);
-	const unsigned char **data = xmalloc(team * sizeof *data);
-	size_t cap = n * bytes / 2 + 1, len = 0;
-	unsigned char *packed = xmalloc(cap);
-	for (size_t c0 = 0; c0 < n; c0 += team) {
-		int nb = (int)(n - c0 < team ? n - c0 : team);
-#pragma omp parallel for num_threads(nb) schedule(static, 1)
-		for (int k = 0; k < nb; k++) {
-			size_t c = c0 + (size_t)k,
-			       m = rows - c * piece < piece ? rows - c * piece : piece;
-			unsigned mask;
-			meta[2 * c] = h5_chunk_compress(raw + c * bytes, shuf + (size_t)k * bytes,
-			                                z + (size_t)k * zcap, piece, m, width, size,
-			                                &mask, &data[k]);
-			meta[2 * c + 1] = mask;
-		}
-		for (int k = 0; k < nb; k++) {
-			size_t zn = (size_t)meta[2 * (c0 + (size_t)k)];
-			if (len + zn > cap) {
-				cap = 2 * cap + zn;
-				packed = xrealloc(packed, cap);
-			}
-			memcpy(packed + len, data[k], zn);
-			len += zn;
-		}
-	}
-	free(z), free(shuf), free(data);
-	return packed;
-}
-
-/* One round of chunks: rank q compresses the chunks of rows [lo[q],
- * lo[q + 1]) and rank 0 writes them all in order. */
-static int write_round(engine *e, h5_rows *r, const size_t *lo, size_t piece, size_t width,
-                       size_t size, const items *it)
-{
-	int nr = par_size(), rank = par_rank(), rc = 0;
-	size_t row = width * size, have = lo[rank + 1] - lo[rank];
+	int rank = par_rank();
 	unsigned char *raw = exchange(row, lo, piece, it, &e->ranks.recv_all);
-	size_t n = (have + piece - 1) / piece, zcap = h5_chunk_zcap(piece * row);
-	uint64_t *meta = xmalloc((2 * n + 1) * sizeof *meta);
-	unsigned char *z = compress_chunks(e, raw, have, piece, width, size, meta);
+	int rc = h5_rows_write_at(r, lo[rank], lo[rank + 1] - lo[rank], raw);
 	free(raw);
-	if (rank > 0) {
-		MPI_Send(meta, (int)(2 * n), MPI_UINT64_T, 0, TAG_CHUNK, MPI_COMM_WORLD);
-		for (size_t c = 0, at = 0; c < n; at += meta[2 * c++])
-			MPI_Send(z + at, (int)meta[2 * c], MPI_BYTE, 0, TAG_CHUNK, MPI_COMM_WORLD);
-	} else {
-		/* Rank 0's chunks, then each rank's in turn; after a failed write
-		 * the rest are still received. */
-		for (size_t c = 0, at = 0; c < n; at += meta[2 * c++])
-			rc = rc || h5_rows_put_chunk(r, (unsigned)meta[2 * c + 1],
-			                             (size_t)meta[2 * c], z + at);
-		z = xrealloc(z, zcap);
-		for (int q = 1; q < nr; q++) {
-			size_t nq = (lo[q + 1] - lo[q] + piece - 1) / piece;
-			meta = xrealloc(meta, (2 * nq + 1) * sizeof *meta);
-			MPI_Recv(meta, (int)(2 * nq), MPI_UINT64_T, q, TAG_CHUNK, MPI_COMM_WORLD,
-			         MPI_STATUS_IGNORE);
-			for (size_t c = 0; c < nq; c++) {
-				MPI_Recv(z, (int)meta[2 * c], MPI_BYTE, q, TAG_CHUNK,
-				         MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-				e->ranks.recv_all += (double)meta[2 * c];
-				rc = rc || h5_rows_put_chunk(r, (unsigned)meta[2 * c + 1],
-				                             (size_t)meta[2 * c], z);
-			}
-		}
-	}
-	free(z), free(meta);
 	return rc;
 }
 
@@ -219,19 +149,16 @@ int ranks_rows_write(engine *e, h5_rows *r, size_t rows, size_t cols, size_t siz
                      size_t first, const int32_t *dest, ranks_fill fill, void *ctx)
 {
 #ifdef DEM_MPI
-	int nr = par_size(), rank = par_rank(), rc = 0;
+	int nr = par_size(), rc = 0;
 	double t0 = timer_now();
 	size_t width = cols ? cols : 1, row = width * size, piece = h5_chunk_rows(rows, cols);
 	items it = {0, mine, first, NULL, dest, fill, ctx};
 	size_t *lo = xmalloc(((size_t)nr + 1) * sizeof *lo);
 	if (!piece) {
-		/* Every row to rank 0, and through HDF5's filters. */
+		/* Every row to rank 0, which writes them. */
 		for (int q = 0; q <= nr; q++)
 			lo[q] = q ? rows : 0;
-		unsigned char *raw = exchange(row, lo, 0, &it, &e->ranks.recv_all);
-		for (size_t at = 0, m; rank == 0 && (m = h5_rows_piece(r)) > 0 && !rc; at += m)
-			rc = h5_rows_put(r, raw + at * row, m);
-		free(raw);
+		rc = write_round(e, r, lo, 0, row, &it);
 	} else {
 		/* Rounds of a few chunks a rank, so that no rank holds more than
 		 * those and what it sends: its items in row order, each round
@@ -257,7 +184,7 @@ int ranks_rows_write(engine *e, h5_rows *r, size_t rows, size_t cols, size_t siz
 			for (it.s1 = it.s0;
 			     it.s1 < mine && row_of(&it, item_of(&it, it.s1)) < lo[nr];)
 				it.s1++;
-			rc = write_round(e, r, lo, piece, width, size, &it) || rc;
+			rc = write_round(e, r, lo, piece, row, &it) || rc;
 			it.s0 = it.s1;
 		}
 		free(order);
@@ -300,40 +227,24 @@ int ranks_rows_put(engine *e, hid_t d, hid_t type, size_t cols, size_t mine, ran
 {
 	size_t width = cols ? cols : 1, row = width * H5Tget_size(type);
 	size_t piece = H5_PIECE_ELEMENTS / width;
-	unsigned char *buf = xmalloc(piece * row);
-	int rank = par_rank(), rc = rank == 0 && d < 0;
 	double t0 = timer_now();
-	size_t at = 0;
-	for (size_t k0 = 0, m; rank == 0 && k0 < mine; k0 += m) {
-		m = mine - k0 < piece ? mine - k0 : piece;
-		fill(ctx, k0, m, buf);
-		rc = rc || h5_slab(d, type, at, m, cols, buf, 1);
-		at += m;
-	}
+	/* This rank's rows follow those of the ranks before it. */
+	uint64_t at = 0;
 #ifdef DEM_MPI
-	int size = par_size();
-	if (size > 1) {
-		/* Rank 0 receives the others' rows in rank order, a piece at a
-		 * time; after a failed write the rest are still received. */
-		uint64_t own = mine, *cnt = xmalloc((size_t)size * sizeof *cnt);
-		ranks_gather_u64(&own, 1, cnt);
-		for (int q = 1; rank == 0 && q < size; q++)
-			for (size_t k0 = 0, m; k0 < cnt[q]; k0 += m) {
-				m = cnt[q] - k0 < piece ? cnt[q] - k0 : piece;
-				MPI_Recv(buf, (int)(m * row), MPI_BYTE, q, TAG_ROWS, MPI_COMM_WORLD,
-				         MPI_STATUS_IGNORE);
-				e->ranks.recv_all += (double)(m * row);
-				rc = rc || h5_slab(d, type, at, m, cols, buf, 1);
-				at += m;
-			}
-		for (size_t k0 = 0, m; rank > 0 && k0 < mine; k0 += m) {
-			m = mine - k0 < piece ? mine - k0 : piece;
-			fill(ctx, k0, m, buf);
-			MPI_Send(buf, (int)(m * row), MPI_BYTE, 0, TAG_ROWS, MPI_COMM_WORLD);
-		}
-		free(cnt);
+	if (par_size() > 1) {
+		uint64_t own = mine;
+		MPI_Exscan(&own, &at, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+		if (par_rank() == 0)
+			at = 0;
 	}
 #endif
+	unsigned char *buf = xmalloc(piece * row);
+	int rc = 0;
+	for (size_t k0 = 0, m; !rc && k0 < mine; k0 += m) {
+		m = mine - k0 < piece ? mine - k0 : piece;
+		fill(ctx, k0, m, buf);
+		rc = h5_slab(d, type, at + k0, m, cols, buf, 1);
+	}
 	free(buf);
 	e->ranks.sec[RANKS_GATHERS] += timer_now() - t0;
 	return rc ? -1 : 0;

@@ -58,28 +58,23 @@ typedef struct {
 
 /* Flush the run file at most every few seconds, so that a full disk is
  * noticed soon after, not at the end of the run; a flush costs tens of ms,
- * too much after every snapshot of a short run. */
+ * too much after every snapshot of a short run. On rank 0's clock (every
+ * rank flushes together). */
 static int flush_now_and_then(loop_state *L)
 {
 	enum { FLUSH_EVERY = 5 /* s */ };
 	double now = timer_now();
-	if (now - L->last_flush < FLUSH_EVERY)
+	int due = par_rank() == 0 && now - L->last_flush >= FLUSH_EVERY;
+	if (par_size() > 1)
+		par_max_int(&due, 1);
+	if (!due)
 		return 0;
 	L->last_flush = now;
-	return L->w ? run_flush(L->w) : 0;
+	return run_flush(L->w);
 }
 
-/* The crack log's rows so far, written by rank 0 (which alone holds them,
- * ranks_share_cracks). */
-static int write_cracks(loop_state *L)
-{
-	engine *e = L->e;
-	if (L->w)
-		return output_cracks(e, L->w);
-	e->out.crack_rows += e->out.cracks.n;
-	e->out.cracks.n = 0;
-	return 0;
-}
+/* The crack log's rows so far. */
+static int write_cracks(loop_state *L) { return output_cracks(L->e, L->w); }
 
 static int snapshot(loop_state *L)
 {
@@ -116,10 +111,7 @@ static int checkpoint(loop_state *L)
 {
 	engine *e = L->e;
 	L->last_checkpoint = timer_now();
-	int rc = write_cracks(L) || (L->w && run_flush(L->w));
-	/* Every rank writes its part, through rank 0's file. */
-	rc = checkpoint_write(e, L->w ? run_hid(L->w) : -1) || rc;
-	return rc ? -1 : 0;
+	return write_cracks(L) || run_flush(L->w) || checkpoint_write(e, run_hid(L->w)) ? -1 : 0;
 }
 
 /* Whether a checkpoint is due by the step count (agreed) or by rank 0's
@@ -152,7 +144,7 @@ static int history(loop_state *L)
 	if (e->sums.meas.step == 0)
 		e->energy.initial = e->energy.kinetic + elastic;
 	boundary_arm_drop(e, elastic);
-	return L->w ? run_history(L->w, row) : 0;
+	return run_history(L->w, row);
 }
 
 /* The steps one rule leaves before it ends the run (its clock counted from
@@ -229,11 +221,10 @@ static void finish(loop_state *L)
 	rc = rc || write_cracks(L);
 	progress_end(&L->pg);
 	if (rc) {
-		if (L->w)
-			run_abort(L->w);
+		run_abort(L->w);
 		fatal(NULL);
 	}
-	if (L->w && run_finish(L->w, L->status))
+	if (run_finish(L->w, L->status))
 		fatal(NULL);
 	phase_stop(&e->tm, TM_OUTPUT);
 }
@@ -294,10 +285,9 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 	const double *agreed = e->sums.agree;
 	if (snapshot_due(L) && snapshot(L))
 		fatal(NULL);
-	if ((checkpoint_due_by_step(L) || agreed[2]) &&
-	    (checkpoint(L) || (L->w && run_save_recovery(L->w))))
+	if ((checkpoint_due_by_step(L) || agreed[2]) && (checkpoint(L) || run_save_recovery(L->w)))
 		fatal(NULL);
-	if (e->out.cracks.n >= 4096 && (write_cracks(L) || flush_now_and_then(L)))
+	if (e->out.cracks.all >= 4096 && (write_cracks(L) || flush_now_and_then(L)))
 		fatal(NULL);
 	int budget = (o->max_steps && e->clock.step - L->step0 >= o->max_steps) || agreed[1];
 	if (agreed[0] || budget) {
@@ -373,11 +363,10 @@ static int run_loop(engine *e, run_writer *w, const run_opts *o)
 	return L.code;
 }
 
-/* The run file, with the assembly embedded. */
+/* The run file, with the assembly embedded, made by every rank (parallel
+ * HDF5): rank 0's provenance. */
 static run_writer *create(engine *e, const dem_assembly *a, const run_opts *o)
 {
-	if (par_rank() > 0)
-		return NULL;
 	phase_start(&e->tm, TM_SETUP);
 	dem_provenance prov;
 	prov_init(&prov, "solve", e->cs->config, 0);
@@ -535,12 +524,10 @@ static int run_continue(const run_opts *o, const char *from, dem_run *r)
 	phase_start(&e.tm, TM_SETUP);
 	if (checkpoint_read(&e, from))
 		fatal(NULL);
-	run_writer *w = NULL;
-	if (par_rank() == 0) {
-		w = run_reopen(from, o->restart, e.out.history_rows, e.out.crack_rows);
-		if (!w || drop_later_snapshots(w, e.clock.step))
-			fatal(NULL);
-	}
+	/* Every rank writes the run file (parallel HDF5). */
+	run_writer *w = run_reopen(from, o->restart, e.out.history_rows, e.out.crack_rows);
+	if (!w || drop_later_snapshots(w, e.clock.step))
+		fatal(NULL);
 	if (!o->quiet)
 		fprintf(stderr, "%s: %s: continuing from step %" PRId64 " (t = %g s, stage %d)\n",
 		        err_program_name(), from, e.clock.step, e.clock.t, e.prog.stage + 1);

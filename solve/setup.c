@@ -347,6 +347,7 @@ void engine_free(engine *e)
 		free(e->out.thread_cracks[t].c), free(e->out.thread_cracks[t].bond);
 	free(e->out.thread_cracks);
 	free(e->out.cracks.c), free(e->out.cracks.bond);
+	free(e->out.cracks.run_at), free(e->out.cracks.run_n);
 	if (e->lp)
 		e->law->free(e->lp);
 	memset(e, 0, sizeof *e);
