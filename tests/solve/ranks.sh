@@ -3,7 +3,7 @@
 # the threads inside each rank, and a run interrupted on K ranks continues
 # on K' (share/doc/solve.md, "Several machines"): a UCS of the paper's
 # cement to its stress drop (end layers, cracks, snapshots, checkpoints)
-# on 1, 2 x 2 threads, and 3 ranks continued on 2; a confined triaxial
+# on 1 rank, 2 ranks x 2 threads, and 3 ranks continued on 2; a confined triaxial
 # with an unload-reload cycle on 4 continued on 3; a Brazilian test on 7;
 # a larger cylinder whose output datasets have several chunks on 3 and 4,
 # where each rank holds only the particles it reads.
@@ -33,6 +33,10 @@ ok = f["cracks/i"].shape[0] > 100 and b"stress fell" in f.attrs["status"]
 sys.exit(0 if ok else "ucs1.h5: expected cracks and the stress-drop stop")'
 ranks 2 --threads 2 --output ucs2.h5 ucs.json
 same ucs1.h5 ucs2.h5
+# One rank under mpirun: MPI started, the run file written as by one
+# process.
+ranks 1 --threads 2 --output ucs1m.h5 ucs.json
+/usr/bin/python3 "$here/same_run.py" --chunks ucs1.h5 ucs1m.h5
 ranks 3 --threads 1 --max-steps 800 --output ucs3.h5 ucs.json
 ranks 2 --threads 1 --restart ucs3.h5
 same ucs1.h5 ucs3.h5
