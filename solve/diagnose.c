@@ -2,12 +2,14 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "lib/err.h"
 #include "solve/diagnose.h"
 #include "solve/par.h"
 #include "solve/ranks.h"
 #include "solve/timestep.h"
+#include "solve/window.h"
 
 /* Whether the force of pair b of L is finite. */
 static int finite_pair(const pairlist *L, size_t b)
@@ -18,68 +20,103 @@ static int finite_pair(const pairlist *L, size_t b)
 	return isfinite(s);
 }
 
-/* Count, for each particle, the pairs of L with a non-finite force; the
- * particle in most of them is where the trouble started. Returns the first
- * such pair of that particle, or -1. */
-static int64_t worst_pair(const engine *e, const pairlist *L, size_t *who, int *count)
+/* The pairs of every rank's list L (the bonds, or the contacts of its own
+ * particles i) whose force is not finite, in the order of one process's
+ * list (rank order), their ends the indices of the whole specimen: their
+ * number, and in *bad their ends, on every rank. Few: the state is checked
+ * every step. Collective. */
+static size_t bad_pairs(const engine *e, const pairlist *L, int32_t **bad)
 {
-	int32_t *n = e->p.n ? xcalloc(e->p.n, sizeof *n) : NULL;
-	for (size_t b = 0; b < L->n; b++)
+	size_t b0 = 0, b1 = L->n;
+	if (L == &e->pairs.contacts && e->ranks.size > 1) {
+		b0 = e->scratch.cfirst[e->ranks.blk0];
+		b1 = e->scratch.cfirst[e->ranks.blk1];
+	}
+	int32_t *mine = xmalloc((2 * (b1 - b0) + 1) * sizeof *mine);
+	size_t n = 0;
+	for (size_t b = b0; b < b1; b++)
 		if (!finite_pair(L, b)) {
-			n[L->rec[b].i]++;
-			n[L->rec[b].j]++;
+			mine[2 * n] = (int32_t)particle_global(&e->p, (size_t)L->rec[b].i);
+			mine[2 * n++ + 1] = (int32_t)particle_global(&e->p, (size_t)L->rec[b].j);
 		}
-	size_t best = 0;
-	for (size_t i = 1; i < e->p.n; i++)
-		if (n[i] > n[best])
-			best = i;
+	size_t all = ranks_total(n);
+	*bad = xmalloc((2 * all + 1) * sizeof **bad);
+	ranks_allgather_rows(mine, n, 2 * sizeof *mine, *bad);
+	free(mine);
+	return all;
+}
+
+static int by_index(const void *a, const void *b)
+{
+	int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+	return (x > y) - (x < y);
+}
+
+/* Of the n pairs (ends) with a non-finite force, the particle in most of
+ * them (the lowest index of equals), where the trouble started: its index
+ * (*who), how many (*count), and the first of them (its index in bad). */
+static size_t worst_pair(const int32_t *bad, size_t n, size_t *who, int *count)
+{
+	int32_t *ends = xmalloc((2 * n + 1) * sizeof *ends);
+	memcpy(ends, bad, 2 * n * sizeof *ends);
+	qsort(ends, 2 * n, sizeof *ends, by_index);
+	size_t best = 0, most = 0;
+	for (size_t k = 0, m; k < 2 * n; k += m) {
+		for (m = 1; k + m < 2 * n && ends[k + m] == ends[k]; m++)
+			;
+		if (m > most) {
+			most = m;
+			best = (size_t)ends[k];
+		}
+	}
+	free(ends);
 	*who = best;
-	*count = n ? n[best] : 0;
-	free(n);
-	if (!*count)
-		return -1;
-	for (size_t b = 0; b < L->n; b++)
-		if (((size_t)L->rec[b].i == best || (size_t)L->rec[b].j == best) &&
-		    !finite_pair(L, b))
-			return (int64_t)b;
-	return -1;
+	*count = (int)most;
+	size_t b = 0;
+	while ((size_t)bad[2 * b] != best && (size_t)bad[2 * b + 1] != best)
+		b++;
+	return b;
 }
 
 void diagnose_nan(const engine *e, size_t i, char *msg, size_t n)
 {
-	const particles *P = &e->p;
-	if (e->ranks.rank > 0) { /* rank 0 tells */
-		snprintf(msg, n, "stopped: non-finite state");
-		return;
-	}
-	pairs_view v; /* the whole specimen's on rank 0 (ranks_gather_all) */
-	ranks_pairs(e, &v);
-	const pairlist *L = v.bonds;
+	/* Every rank finds the same particle from the pairs the ranks share,
+	 * and asks its rank for it; rank 0's message is the run's. */
 	const char *what = "bond", *law = e->law->name;
-	size_t who;
-	int count;
-	int64_t b = worst_pair(e, L, &who, &count);
-	if (b < 0) {
-		L = v.contacts;
+	int32_t *bad;
+	size_t nbad = bad_pairs(e, &e->pairs.bonds, &bad);
+	if (!nbad) {
+		free(bad);
 		what = "contact";
 		law = "contact";
-		b = worst_pair(e, L, &who, &count);
+		nbad = bad_pairs(e, &e->pairs.contacts, &bad);
 	}
-	if (b < 0) {
+	double row[PARTICLE_ROW];
+	if (!nbad) {
+		free(bad);
+		ranks_particle(e, i, row);
 		snprintf(
 		    msg, n,
 		    "stopped: non-finite state at step %" PRId64 " (t = %g s): particle %d (radius "
 		    "%g m): its forces are finite, so its motion diverged (time step too large?)",
-		    e->clock.step - 1, e->clock.t - e->clock.dt, P->orig[i], P->r[i]);
+		    e->clock.step - 1, e->clock.t - e->clock.dt, (int)row[PARTICLE_ORIG],
+		    row[PARTICLE_R]);
 		return;
 	}
-	int32_t p = P->orig[who],
-	        q = P->orig[L->rec[b].i == (int32_t)who ? L->rec[b].j : L->rec[b].i];
+	size_t who;
+	int count;
+	size_t b = worst_pair(bad, nbad, &who, &count);
+	size_t other = (size_t)bad[2 * b + ((size_t)bad[2 * b] == who)];
+	free(bad);
+	double orow[PARTICLE_ROW];
+	ranks_particle(e, who, row);
+	ranks_particle(e, other, orow);
+	int32_t p = (int32_t)row[PARTICLE_ORIG], q = (int32_t)orow[PARTICLE_ORIG];
 	snprintf(msg, n,
 	         "stopped: non-finite state at step %" PRId64
 	         " (t = %g s): particle %d (radius %g m): "
 	         "%d of its %ss have non-finite forces, first %s %d-%d (law %s)",
-	         e->clock.step - 1, e->clock.t - e->clock.dt, p, P->r[who], count, what, what,
+	         e->clock.step - 1, e->clock.t - e->clock.dt, p, row[PARTICLE_R], count, what, what,
 	         p < q ? p : q, p < q ? q : p, law);
 }
 

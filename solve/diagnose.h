@@ -9,7 +9,8 @@
 
 #include "solve/engine.h"
 
-/* Particle i's state is not finite after this step. */
+/* Particle i's state is not finite after this step (i: the first such of
+ * the whole specimen). Collective. */
 void diagnose_nan(const engine *e, size_t i, char *msg, size_t n);
 /* 1 (and a message) if the kinetic energy exceeds twice the energy the run
  * has received (initial plus external work): the integration is unstable. */

@@ -381,53 +381,6 @@ static void share_halo(engine *e)
 	R->sec[RANKS_HALO] += timer_now() - t0;
 }
 
-/* Every rank's particles on rank 0, whose window (window.h) then holds the
- * whole specimen: their state, radius, mass, index in the assembly and
- * flags. The other ranks keep theirs. */
-static void gather_particles(engine *e)
-{
-	rank_split *R = &e->ranks;
-	particles *P = &e->p;
-	double t0 = timer_now();
-	int whole = R->rank == 0;
-	if (whole) {
-		int32_t *want = xmalloc((P->n - (R->p1 - R->p0) + 1) * sizeof *want);
-		size_t m = 0;
-		for (size_t i = 0; i < P->n; i++)
-			if (i < R->p0 || i >= R->p1)
-				want[m++] = (int32_t)i;
-		window_set(e, want, m);
-		free(want);
-	}
-	enum { COLS = PARTICLE_ROW };
-	double *rows = xmalloc((COLS * (whole ? P->n : R->p1 - R->p0) + 1) * sizeof *rows);
-	double *mine = rows + (whole ? COLS * R->p0 : 0);
-	for (size_t i = R->p0; i < R->p1; i++)
-		particle_row(P, i, mine + COLS * (i - R->p0));
-	gather_rows_from(mine, rows, R->pfirst, COLS * sizeof *rows, R->size, 0);
-	if (whole) {
-		for (size_t i = 0; i < P->n; i++)
-			if (i < R->p0 || i >= R->p1)
-				particle_set_row(P, i, rows + COLS * i);
-		R->recv_all += (double)(COLS * sizeof *rows * (P->n - (R->p1 - R->p0)));
-	}
-	free(rows);
-	gather_rows(P->flag, R->pfirst, sizeof *P->flag, R->size, 0);
-	R->sec[RANKS_GATHERS] += timer_now() - t0;
-}
-
-/* n pair records from rec, their ends' indices those of the whole
- * specimen (a copy, to free). */
-static bond *global_ends(const particles *P, const bond *rec, size_t n)
-{
-	bond *g = xmalloc((n + 1) * sizeof *g);
-	for (size_t b = 0; b < n; b++) {
-		g[b] = rec[b];
-		g[b].i = (int32_t)particle_global(P, (size_t)rec[b].i);
-		g[b].j = (int32_t)particle_global(P, (size_t)rec[b].j);
-	}
-	return g;
-}
 #endif
 
 void ranks_share_state(engine *e)
@@ -744,96 +697,6 @@ void ranks_share_cracks(engine *e, size_t first)
 #endif
 }
 
-#ifdef DEM_MPI
-/* Every rank's rows (at: rank_rows) of `row` bytes, this rank's at src,
- * gathered in rank order into dst on rank 0 (the other ranks' dst is not
- * read). */
-static void gather_list(const void *src, const size_t *at, size_t row, void *dst)
-{
-	gather_rows_from(src, dst, at, row, par_size(), 0);
-}
-
-/* Room on rank 0 for the n rows gathered there in *cap. */
-static int grow(size_t n, size_t *cap)
-{
-	if (par_rank() > 0)
-		n = 0;
-	if (n <= *cap && *cap)
-		return 0;
-	*cap = n + n / 4 + 16;
-	return 1;
-}
-#endif
-
-void ranks_gather_all(engine *e)
-{
-#ifdef DEM_MPI
-	rank_split *R = &e->ranks;
-	if (R->size == 1)
-		return;
-	gather_particles(e);
-	double t0 = timer_now();
-	/* A rank's bonds are those of its particles i, in bond order: rank
-	 * 0's come first, and its list grows to hold the others after them
-	 * (the run then ends). Rank 0's window is now the whole specimen, the
-	 * others send the indices of the whole specimen. */
-	pairlist *B = &e->pairs.bonds;
-	size_t *at = rank_rows(0, B->n, R->size);
-	bond *sent = NULL;
-	if (R->rank == 0) {
-		B->cap = at[R->size];
-		B->rec = xrealloc(B->rec, (B->cap + 1) * sizeof *B->rec);
-		B->f = xrealloc(B->f, (3 * B->cap + 1) * sizeof *B->f);
-	} else {
-		sent = global_ends(&e->p, B->rec, B->n);
-	}
-	gather_rows_from(sent ? sent : B->rec, B->rec, at, sizeof *B->rec, R->size, 0);
-	free(sent);
-	gather_rows_from(B->f, B->f, at, 3 * sizeof *B->f, R->size, 0);
-	R->all_bonds = (pairlist){.n = R->rank == 0 ? at[R->size] : 0,
-	                          .cap = 0, /* not its own */
-	                          .rec = B->rec,
-	                          .f = B->f,
-	                          .fcols = 3};
-	free(at);
-	/* A rank's contacts are those of its particles i (the ones of its
-	 * particles j from earlier ranks come first in its list). */
-	const pairlist *C = &e->pairs.contacts;
-	pairlist *A = &R->all_contacts;
-	size_t c0 = e->scratch.cfirst[R->blk0];
-	at = rank_rows(0, e->scratch.cfirst[R->blk1] - c0, R->size);
-	if (grow(at[R->size], &A->cap)) {
-		A->rec = xrealloc(A->rec, A->cap * sizeof *A->rec);
-		A->f = xrealloc(A->f, 6 * A->cap * sizeof *A->f);
-	}
-	bond *crec = global_ends(&e->p, C->rec + c0, at[R->rank + 1] - at[R->rank]);
-	gather_list(crec, at, sizeof *C->rec, A->rec);
-	free(crec);
-	gather_list(C->f + 6 * c0, at, 6 * sizeof *C->f, A->f);
-	A->n = at[R->size];
-	A->fcols = 6;
-	free(at);
-	const platens *pl = &e->bc.pl;
-	for (int k = 0; k < 2; k++) {
-		at = rank_rows(0, pl->ncand[k], R->size);
-		if (grow(at[R->size], &R->all_cap[k])) {
-			R->all_pc[k] = xrealloc(R->all_pc[k], R->all_cap[k] * sizeof *R->all_pc[k]);
-			R->all_who[k] =
-			    xrealloc(R->all_who[k], R->all_cap[k] * sizeof *R->all_who[k]);
-		}
-		gather_list(pl->pc[k], at, sizeof *pl->pc[k], R->all_pc[k]);
-		gather_list(pl->who[k], at, sizeof *pl->who[k], R->all_who[k]);
-		R->all_ncand[k] = R->rank == 0 ? at[R->size] : 0;
-		free(at);
-	}
-	if (R->rank > 0)
-		A->n = 0; /* rank 0's view (ranks.h) */
-	R->sec[RANKS_GATHERS] += timer_now() - t0;
-#else
-	(void)e;
-#endif
-}
-
 void ranks_own_pairs(const engine *e, pairs_view *v)
 {
 	v->bonds = &e->pairs.bonds;
@@ -842,22 +705,6 @@ void ranks_own_pairs(const engine *e, pairs_view *v)
 		v->ncand[k] = e->bc.pl.ncand[k];
 		v->pc[k] = e->bc.pl.pc[k];
 		v->who[k] = e->bc.pl.who[k];
-	}
-}
-
-void ranks_pairs(const engine *e, pairs_view *v)
-{
-	const rank_split *R = &e->ranks;
-	if (R->size == 1) {
-		ranks_own_pairs(e, v);
-		return;
-	}
-	v->bonds = &R->all_bonds;
-	v->contacts = &R->all_contacts;
-	for (int k = 0; k < 2; k++) {
-		v->ncand[k] = R->all_ncand[k];
-		v->pc[k] = R->all_pc[k];
-		v->who[k] = R->all_who[k];
 	}
 }
 
@@ -994,9 +841,6 @@ void ranks_traffic(engine *e, double steps, const double memory[2])
 void ranks_free(rank_split *r)
 {
 	free(r->pfirst);
-	pairlist_free(&r->all_contacts);
-	for (int k = 0; k < 2; k++)
-		free(r->all_pc[k]), free(r->all_who[k]);
 	links_free(&r->hsend);
 	links_free(&r->hrecv);
 	links_free(&r->bsend);

@@ -24,11 +24,11 @@
  * The other ranks' particles are stale between such exchanges: what reads
  * beyond the halo reads each rank's own particles and combines the ranks'
  * parts (the end layers, the lateral surface and the gauge, surface.c;
- * the diagnoses of a failing run, diagnose.c). Output takes each rank's
- * own rows of every dataset and writes them through rank 0, which has the
- * run file (ranks_rows_write, ranks_rows_put): no rank gathers the whole
- * specimen for it. Only the diagnosis of a non-finite state gathers every
- * particle and pair on rank 0 (ranks_gather_all). With
+ * the diagnoses of a failing run, diagnose.c). Every rank writes its own
+ * rows of every dataset into the run file they share (parallel HDF5;
+ * ranks_rows_write, ranks_rows_put): no rank ever gathers the whole
+ * specimen, the diagnosis of a non-finite state included (which shares
+ * only the pairs with non-finite forces). With
  * DEM_RANKS_POISON=1 in the environment the stale particles' x, v and ω
  * are NaN instead, so that a read that misses an exchange shows.
  *
@@ -104,13 +104,6 @@ typedef struct {
 	 * held at once (setup included), the largest and the mean over the
 	 * ranks. */
 	double held[2], held_peak[2];
-	/* Every rank's bonds (a view of rank 0's own list, grown to hold
-	 * them), contacts and platen contacts, gathered on rank 0
-	 * (ranks_gather_all, ranks_pairs). */
-	pairlist all_bonds, all_contacts;
-	size_t all_ncand[2], all_cap[2];
-	platen_contact *all_pc[2];
-	int32_t *all_who[2];
 } rank_split;
 
 /* The bonds, contacts and platen contacts of the whole specimen, in the
@@ -166,16 +159,6 @@ void ranks_share_bond_values(engine *e, double *v);
  * and notes their run of rows, and counts those of all ranks
  * (e->out.cracks.all; crack_buf). Collective. */
 void ranks_share_cracks(engine *e, size_t first);
-/* Before the diagnosis of a non-finite state, which ends the run, on rank
- * 0: every particle (its window becomes the whole specimen, window.h),
- * and the whole specimen's bonds (rank 0's list grows to hold them after
- * its own), contacts and platen contacts in the lists ranks_pairs shows.
- * The other ranks send theirs and keep their own. Collective. */
-void ranks_gather_all(engine *e);
-/* The whole specimen's bonds, contacts and platen contacts: this rank's
- * own lists with one rank, else those of the last ranks_gather_all
- * (empty but on rank 0). */
-void ranks_pairs(const engine *e, pairs_view *v);
 /* This rank's own bond, contact and platen lists as a view (after a
  * checkpoint is read, before contacts_restore, the whole specimen's
  * contacts). */

@@ -1,8 +1,9 @@
 #!/bin/sh
 # Failures of a run on several ranks (share/doc/solve.md, "Several
 # machines"): a restart file of another format version gives one message
-# and a non-zero exit on 2 ranks, and leaves the file as it was; a run
-# stopped by a diagnosis on 3 ranks is the run on one, message and all; a
+# and a non-zero exit on 2 ranks, and leaves the file as it was; runs
+# stopped by a diagnosis (a runaway, a non-finite state) on 3 ranks are
+# the runs on one, message and all; a
 # rank killed with SIGKILL ends the run (the other rank does not wait forever)
 # without a finished-looking run file, and the run then continues from its
 # recovery copy, on 3 ranks by the same command and on 2 by --restart, to
@@ -49,6 +50,21 @@ if "$mpiexec" -np 3 --oversubscribe "$bin/solve" --quiet --threads 1 --output th
 	fail "a skin of 1e-12 m on 3 ranks: expected the run to stop"
 fi
 same thin1.h5 thin3.h5
+
+# The diagnosis of a non-finite state shares only the pairs whose forces
+# are not finite: a velocity made NaN (DEM_TEST_NAN, solve/run.c) stops
+# the run on 3 ranks as on one, its message naming the same particle and
+# bond.
+if DEM_TEST_NAN=700 "$bin/solve" --quiet --threads 1 --output nan1.h5 ucs.json 2> nan.err; then
+	fail "a NaN velocity: expected the run to stop"
+fi
+grep -q "non-finite state at step .*: particle 700 .* bonds have non-finite forces" nan.err ||
+	{ cat nan.err >&2; fail "expected the non-finite diagnosis"; }
+if DEM_TEST_NAN=700 "$mpiexec" -np 3 --oversubscribe "$bin/solve" --quiet --threads 1 \
+	--output nan3.h5 ucs.json 2> nan3.err; then
+	fail "a NaN velocity on 3 ranks: expected the run to stop"
+fi
+same nan1.h5 nan3.h5
 
 # A rank killed with SIGKILL after the first checkpoint.
 "$mpiexec" -np 2 --oversubscribe "$bin/solve" --quiet --output k.h5 ucs.json 2> kill.err &
