@@ -3,10 +3,11 @@
 # the threads inside each rank, and a run interrupted on K ranks continues
 # on K' (share/doc/solve.md, "Several machines"): a UCS of the paper's
 # cement to its stress drop (end layers, cracks, snapshots, checkpoints)
-# on 1 rank, 2 ranks x 2 threads, and 3 ranks continued on 2; a confined triaxial
-# with an unload-reload cycle on 4 continued on 3; a Brazilian test on 7;
-# a larger cylinder whose output datasets have several chunks on 3 and 4,
-# where each rank holds only the particles it reads.
+# on 1 rank, 2 ranks x 2 threads, and 3 ranks continued on 2 and on one
+# process; a confined triaxial with an unload-reload cycle on 4 continued
+# on 3; a Brazilian test on 7; a larger cylinder whose output datasets
+# have several chunks on 3 and 4, where each rank holds only the particles
+# it reads.
 # same_run.py compares every dataset and attribute but the creation time
 # and the wall-clock rate. The runs on several ranks poison the particles
 # they do not receive each step (DEM_RANKS_POISON, solve/ranks.h), so a
@@ -38,8 +39,12 @@ same ucs1.h5 ucs2.h5
 ranks 1 --threads 2 --output ucs1m.h5 ucs.json
 /usr/bin/python3 "$here/same_run.py" --chunks ucs1.h5 ucs1m.h5
 ranks 3 --threads 1 --max-steps 800 --output ucs3.h5 ucs.json
+cp ucs3.h5 ucs3p.h5
 ranks 2 --threads 1 --restart ucs3.h5
 same ucs1.h5 ucs3.h5
+# And continued by one process, without mpirun.
+"$bin/solve" --quiet --threads 2 --restart ucs3p.h5
+same ucs1.h5 ucs3p.h5
 # A confined triaxial with an unload-reload cycle (hydrostatic ramp on the
 # platens, confinement on tributary areas, then the end layers) on 4 ranks;
 # its stages change between the surface updates (every 100 steps), where
