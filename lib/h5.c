@@ -492,10 +492,10 @@ int h5_slab(hid_t d, hid_t type, size_t at, size_t m, size_t cols, void *buf, in
 	return rc < 0 ? -1 : 0;
 }
 
-/* Runs of rows of d from consecutive rows of buf, where mine: run k is
- * rows [base + at[k], base + at[k] + n[k]). In a shared file a write every
- * process makes together (collective, as filtered datasets need),
- * selecting nothing where not mine. */
+/* Runs of rows of d from consecutive rows of buf: run k is rows [base +
+ * at[k], base + at[k] + n[k]). In a shared file a write every process
+ * makes together (collective, as filtered datasets need), selecting
+ * nothing where not mine; in another, the process's own. */
 static int write_runs(hid_t d, hid_t type, size_t base, const size_t *at, const size_t *n,
                       size_t nruns, size_t cols, const void *buf, int mine)
 {
@@ -504,7 +504,7 @@ static int write_runs(hid_t d, hid_t type, size_t base, const size_t *at, const 
 		m += n[k];
 	if (!h5_shared(d)) {
 		int rc = 0;
-		for (size_t k = 0, done = 0; mine && !rc && k < nruns; done += n[k++])
+		for (size_t k = 0, done = 0; !rc && k < nruns; done += n[k++])
 			rc = n[k] ? h5_slab(d, type, base + at[k], n[k], cols,
 			                    (unsigned char *)buf + done * row, 1)
 			          : 0;
@@ -674,47 +674,37 @@ size_t h5_chunk_rows(size_t rows, size_t cols)
 	return rows * (cols ? cols : 1) >= 4096 && rows > piece ? piece : 0;
 }
 
-size_t h5_chunk_zcap(size_t bytes) { return (size_t)ceil((double)bytes * 1.001) + 12; }
+static size_t chunk_zcap(size_t bytes) { return (size_t)ceil((double)bytes * 1.001) + 12; }
 
-/* The deflate filter (H5Zdeflate.c) compresses into ceil(1.001 bytes) + 12
- * bytes; if that fails, the filter, being optional, is skipped for the
- * chunk and flagged in its filter mask. */
-size_t h5_chunk_compress(unsigned char *raw, unsigned char *shuf, unsigned char *z, size_t piece,
-                         size_t m, size_t width, size_t size, unsigned *mask,
-                         const unsigned char **data)
+/* A chunk of piece rows of width values of size bytes, the first m of them
+ * in raw (room for piece), shuffled and deflated into z (chunk_zcap bytes)
+ * with shuf (room for the chunk) as scratch, as the dataset's filters
+ * would: the bytes to write are returned, *data points at them and *mask
+ * is the chunk's filter mask. The deflate filter (H5Zdeflate.c) compresses
+ * into ceil(1.001 bytes) + 12 bytes; if that fails, the filter, being
+ * optional, is skipped for the chunk and flagged in its filter mask. */
+static size_t chunk_compress(unsigned char *raw, unsigned char *shuf, unsigned char *z,
+                             size_t piece, size_t m, size_t width, size_t size, unsigned *mask,
+                             const unsigned char **data)
 {
 	size_t bytes = piece * width * size;
 	memset(raw + m * width * size, 0, bytes - m * width * size);
 	shuffle(shuf, raw, piece * width, size);
-	uLongf zn = (uLongf)h5_chunk_zcap(bytes);
+	uLongf zn = (uLongf)chunk_zcap(bytes);
 	int ok = compress2(z, &zn, shuf, (uLong)bytes, DEFLATE_LEVEL) == Z_OK;
 	*mask = ok ? 0 : 1u << 1;
 	*data = ok ? z : shuf;
 	return ok ? (size_t)zn : bytes;
 }
 
-int h5_rows_put_chunk(h5_rows *r, unsigned mask, size_t n, const void *data)
-{
-	if (r->failed)
-		return -1;
-	hsize_t offset[2] = {r->at, 0};
-	size_t piece = chunk_rows(r->cols);
-	if (H5Dwrite_chunk(r->d, H5P_DEFAULT, mask, offset, n, data) < 0) {
-		r->failed = 1;
-		return h5_write_dataset_error(r->loc, r->name);
-	}
-	r->at += r->rows - r->at < piece ? r->rows - r->at : piece;
-	return 0;
-}
-
 /* Rows [at, at + m) of r from fill, one chunk of piece rows per step, the
  * steps shared by the threads; each chunk shuffled and deflated as the
- * filters of chunked_plist would (h5_chunk_compress), then written as it
+ * filters of chunked_plist would (chunk_compress), then written as it
  * stands, in chunk order. */
 static int fill_chunks(h5_rows *r, h5_fill fill, void *ctx, size_t piece)
 {
 	size_t size = H5Tget_size(r->type), width = r->cols ? r->cols : 1;
-	size_t bytes = piece * width * size, zcap = h5_chunk_zcap(bytes);
+	size_t bytes = piece * width * size, zcap = chunk_zcap(bytes);
 	size_t at0 = r->at, n = (r->rows - at0 + piece - 1) / piece;
 	int failed = 0, werrno = 0, team = threads_ < (int)n ? threads_ : (int)n;
 #pragma omp parallel num_threads(team)
@@ -732,8 +722,8 @@ static int fill_chunks(h5_rows *r, h5_fill fill, void *ctx, size_t piece)
 			size_t zn = 0;
 			if (!stop) {
 				fill(ctx, at, m, raw);
-				zn = h5_chunk_compress(raw, shuf, z, piece, m, width, size, &mask,
-				                       &data);
+				zn = chunk_compress(raw, shuf, z, piece, m, width, size, &mask,
+				                    &data);
 			}
 #pragma omp ordered
 			if (!stop) {

@@ -130,22 +130,11 @@ int h5_rows_close(h5_rows *r);
  * `#pragma omp critical(dem_hdf5)`, as the chunks' writes are. */
 typedef void (*h5_fill)(void *ctx, size_t at, size_t m, void *buf);
 int h5_rows_fill(h5_rows *r, h5_fill fill, void *ctx);
-/* The same by hand, where the rows are not all in one place (solve's
- * ranks): h5_chunk_rows gives the rows of each chunk that h5_rows_fill
- * compresses itself for a dataset of rows x cols, 0 if it passes them
- * through HDF5's filters (one chunk, or too small to be chunked). A chunk
- * of piece such rows, the first m of them in raw (room for piece), is
- * shuffled and deflated into z (h5_chunk_zcap bytes of room for the chunk's
- * bytes) with shuf (room for the chunk) as scratch, as the dataset's
- * filters would: the bytes to write are returned, *data points at them and
- * *mask is the chunk's filter mask. h5_rows_put_chunk writes such a chunk
- * at the next rows of r; chunks go in order. */
+/* The rows of each chunk of a dataset of rows x cols that has several (0
+ * for one chunk, or a dataset too small to be chunked): where the rows are
+ * not all in one place (solve's ranks), each chunk's rows are gathered
+ * where it is written. */
 size_t h5_chunk_rows(size_t rows, size_t cols);
-size_t h5_chunk_zcap(size_t bytes);
-size_t h5_chunk_compress(unsigned char *raw, unsigned char *shuf, unsigned char *z, size_t piece,
-                         size_t m, size_t width, size_t size, unsigned *mask,
-                         const unsigned char **data);
-int h5_rows_put_chunk(h5_rows *r, unsigned mask, size_t n, const void *data);
 /* The threads that compress the chunks of h5_rows_fill, h5_write and
  * h5_index (1 until set; n < 1 sets 1). */
 void h5_set_threads(int n);

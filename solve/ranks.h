@@ -64,8 +64,8 @@ typedef struct {
 /* What a rank spends its exchanges on: the crossing pairs' forces and the
  * halo's state (point to point, every step), the ghosts (point to point,
  * at a neighbour rebuild, with the gather of the ranks' boxes), the
- * gathers (the output's rows and compressed chunks, the crack log, the
- * diagnosis's gather of everything) and the reductions (par.h). */
+ * gathers (the output: the rows each rank writes and its writes; the
+ * crack log's counts) and the reductions (par.h). */
 enum { RANKS_FORCES, RANKS_HALO, RANKS_GHOSTS, RANKS_GATHERS, RANKS_REDUCTIONS, RANKS_NX };
 
 typedef struct {

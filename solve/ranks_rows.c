@@ -17,7 +17,7 @@
 #include "solve/ranks.h"
 
 #ifdef DEM_MPI
-/* The chunks a rank compresses in a round: 16, or DEM_ROWS_ROUND from the
+/* The chunks a rank writes in a round: 16, or DEM_ROWS_ROUND from the
  * environment (the same on every rank; a check of the rounds' bookkeeping
  * with small datasets). */
 static size_t round_chunks(void)
