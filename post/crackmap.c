@@ -42,5 +42,5 @@ void crackmap_count_data(FILE *f, const dem_run *r)
 	const double *e = run_column_data(r, "strain_axial");
 	if (e && r->nrows)
 		fprintf(f, "%.10g %ld %ld %ld\n", 100 * e[r->nrows - 1], nt, ns, nt + ns);
-	fputs("EOD\n", f);
+	fprintf(f, "EOD\ncracks = %zu\n", r->ncracks);
 }

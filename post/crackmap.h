@@ -36,7 +36,8 @@ void crack_place_of(const specimen *sp, const dem_crack *c, crack_place *p);
 
 /* Datablock $count: axial strain (%) and the cumulative numbers of cracks
  * in tension, in shear and in all: a row at zero, one per crack in the
- * log's order, and one at the last history row's strain. */
+ * log's order, and one at the last history row's strain; then the
+ * variable cracks, their number. */
 void crackmap_count_data(FILE *f, const dem_run *r);
 
 #endif

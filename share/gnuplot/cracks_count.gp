@@ -2,11 +2,17 @@
 # axial stress on the right axis when `with_stress` is 1.
 # Drawn by `post cracks` and `post curve`, which define:
 #   $count    rows: axial strain(%) tension shear total (cumulative)
+#   cracks    the number of cracks (broken bonds)
 #   $stress   rows: axial strain(%) axial stress(MPa)   (with_stress = 1)
 set title 'Broken bonds by failure mode'
 set xlabel 'axial strain ε_a (%)'
 set ylabel 'broken bonds (cumulative)'
-set yrange [0:*]
+# No crack yet: a range of 0 to 1 (gnuplot would warn of an empty one).
+if (cracks > 0) {
+	set yrange [0:*]
+} else {
+	set yrange [0:1]
+}
 set key top left
 if (with_stress) {
 	set y2label 'axial stress σ_a (MPa)'
