@@ -266,11 +266,25 @@ hid_t h5_open_image(const void *buf, size_t n, const char *format)
 	return check_format(f, H5_IMAGE_NAME, format);
 }
 
+/* After an HDF5 call that failed with errno cleared before it: whether a
+ * write of the file failed (a full disk, a quota, a file size limit, an
+ * I/O error), which HDF5 may find while making an object, when it writes
+ * what its cache held. The message then says so (h5_write_error). */
+static int write_failed(void)
+{
+	return errno == ENOSPC || errno == EDQUOT || errno == EFBIG || errno == EIO;
+}
+
 hid_t h5_group(hid_t loc, const char *name)
 {
+	errno = 0;
 	hid_t g = H5Gcreate2(loc, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-	if (g < 0)
-		return err_set("%s: cannot create group '%s'", h5_name(loc), name);
+	if (g < 0) {
+		char what[300];
+		snprintf(what, sizeof what, "group '%s'", name);
+		return write_failed() ? h5_write_error(h5_name(loc), what)
+		                      : err_set("%s: cannot create group '%s'", h5_name(loc), name);
+	}
 	return g;
 }
 
@@ -308,12 +322,18 @@ static int write_attr(hid_t obj, const char *name, hid_t type, hid_t space, cons
 	}
 	if (H5Aexists(obj, name) > 0)
 		H5Adelete(obj, name);
+	errno = 0;
 	hid_t a = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
 	herr_t rc = a < 0 ? -1 : H5Awrite(a, type, data);
 	if (a >= 0)
 		H5Aclose(a);
 	H5Sclose(space);
 	free(own);
+	if (rc < 0 && write_failed()) {
+		char what[300];
+		snprintf(what, sizeof what, "attribute '%s'", name);
+		return h5_write_error(h5_name(obj), what);
+	}
 	if (rc < 0)
 		return err_set("%s: cannot write attribute '%s' on '%s'", h5_name(obj), name,
 		               obj_path(obj));
@@ -919,6 +939,7 @@ int h5_create_ext(hid_t loc, const char *name, hid_t type, size_t cols, const ch
 	hsize_t dims[2] = {0, cols}, maxdims[2] = {H5S_UNLIMITED, cols};
 	hid_t space = H5Screate_simple(cols ? 2 : 1, dims, maxdims);
 	hid_t dcpl = chunked_plist(0, cols, 1);
+	errno = 0;
 	hid_t d = H5Dcreate2(loc, name, type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
 	int rc = d < 0 ? -1 : 0;
 	if (rc == 0 && unit && unit[0])
@@ -927,6 +948,8 @@ int h5_create_ext(hid_t loc, const char *name, hid_t type, size_t cols, const ch
 		H5Dclose(d);
 	H5Pclose(dcpl);
 	H5Sclose(space);
+	if (rc < 0 && d < 0 && write_failed())
+		return h5_write_dataset_error(loc, name);
 	if (rc < 0)
 		return err_set("%s: cannot create dataset '%s'", h5_name(loc), name);
 	return 0;
