@@ -533,12 +533,14 @@ static int run_continue(const run_opts *o, const char *from, dem_run *r)
 	if (case_parse_text(r->prov.config, from, &cs))
 		fatal("%s: stored configuration: %s", from, err_msg());
 	engine e;
-	if (engine_setup(&e, &cs, &r->assembly, &(engine_opts){.threads = o->threads, .quiet = 1}))
+	if (engine_setup(&e, &cs, &r->assembly,
+	                 &(engine_opts){.threads = o->threads, .quiet = 1, .restart = 1}))
 		fatal(NULL);
 	h5_set_threads(e.team);
 	phase_start(&e.tm, TM_SETUP);
 	if (checkpoint_read(&e, from))
 		fatal(NULL);
+	engine_restored(&e);
 	/* Every rank writes the run file (parallel HDF5). */
 	run_writer *w = run_reopen(from, o->restart, e.out.history_rows, e.out.crack_rows);
 	if (!w || drop_later_snapshots(w, e.clock.step))

@@ -234,6 +234,19 @@ static void scratch_alloc(engine *e, int threads)
 	e->out.thread_cracks = xcalloc((size_t)e->nthreads, sizeof *e->out.thread_cracks);
 }
 
+void engine_restored(engine *e) { e->energy.noise = own_sum(e, noise); }
+
+static int setup_done(engine *e)
+{
+	phase_stop(&e->tm, TM_SETUP);
+#ifdef __GLIBC__
+	/* Setup's buffers, freed, back to the system rather than kept in the
+	 * heap for the rest of the run (tens of MB at 10^6 particles). */
+	malloc_trim(0);
+#endif
+	return 0;
+}
+
 int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const engine_opts *o)
 {
 	memset(e, 0, sizeof *e);
@@ -280,6 +293,8 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 	bonds_init_history(e);
 	e->prog.peak = e->prog.stage_peak = -INFINITY;
 	boundary_begin_stage(e);
+	if (o->restart)
+		return setup_done(e);
 	contacts_rebuild(e);
 	size_t worst;
 	e->clock.dt_crit = timestep_critical(e, 1, &worst);
@@ -309,13 +324,8 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 	e->clock.dt = cs->dt > 0 ? cs->dt : cs->safety * e->clock.dt_crit;
 	if (plan_check(e, o->quiet))
 		return -1;
-	e->energy.noise = own_sum(e, noise);
-	phase_stop(&e->tm, TM_SETUP);
-#ifdef __GLIBC__
-	/* Setup's buffers, freed, back to the system rather than kept in the
-	 * heap for the rest of the run (tens of MB at 10^6 particles). */
-	malloc_trim(0);
-#endif
+	engine_restored(e);
+	setup_done(e);
 	if (!o->quiet)
 		fprintf(
 		    stderr,
