@@ -225,7 +225,7 @@ typedef struct {
 	int whole;   /* with several ranks, every rank keeps every particle (no
 	                window_start: for tests that change them all) */
 	int restart; /* the state comes from a checkpoint (checkpoint_read, then
-	                engine_restored), which holds the contacts and the time
+	                engine_timestep_set), which holds the contacts and the time
 	                step: no contact search or time step here */
 } engine_opts;
 
@@ -234,9 +234,9 @@ typedef struct {
  * (window.h) once they are split among the ranks, unless o->whole. Prints a summary with the time
  * step on stderr unless quiet. */
 int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const engine_opts *o);
-/* After a setup with o->restart, once the checkpoint is read: what follows
- * from its time step. */
-void engine_restored(engine *e);
+/* What follows from the time step (the noise energy): called by setup,
+ * and after a setup with o->restart once the checkpoint is read. */
+void engine_timestep_set(engine *e);
 void engine_free(engine *e);
 
 #endif

@@ -540,7 +540,7 @@ static int run_continue(const run_opts *o, const char *from, dem_run *r)
 	phase_start(&e.tm, TM_SETUP);
 	if (checkpoint_read(&e, from))
 		fatal(NULL);
-	engine_restored(&e);
+	engine_timestep_set(&e);
 	/* Every rank writes the run file (parallel HDF5). */
 	run_writer *w = run_reopen(from, o->restart, e.out.history_rows, e.out.crack_rows);
 	if (!w || drop_later_snapshots(w, e.clock.step))

@@ -234,7 +234,7 @@ static void scratch_alloc(engine *e, int threads)
 	e->out.thread_cracks = xcalloc((size_t)e->nthreads, sizeof *e->out.thread_cracks);
 }
 
-void engine_restored(engine *e) { e->energy.noise = own_sum(e, noise); }
+void engine_timestep_set(engine *e) { e->energy.noise = own_sum(e, noise); }
 
 static int setup_done(engine *e)
 {
@@ -324,7 +324,7 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 	e->clock.dt = cs->dt > 0 ? cs->dt : cs->safety * e->clock.dt_crit;
 	if (plan_check(e, o->quiet))
 		return -1;
-	engine_restored(e);
+	engine_timestep_set(e);
 	setup_done(e);
 	if (!o->quiet)
 		fprintf(
