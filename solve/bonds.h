@@ -107,9 +107,9 @@ void bonds_cross(engine *e, int k, int measure);
 void bonds_share(engine *e, int k, int measure);
 /* Move this step's failures to e->out.cracks, in bond order. */
 void bonds_collect_cracks(engine *e);
-/* Bond b of L (this rank's bonds or the whole specimen's, ranks_pairs): its
- * ends in the assembly's numbering (ends[0] < ends[1]) and, when c is not
- * NULL, its elastic constants. */
+/* Bond b of L (this rank's bonds, whose ends it holds): its ends in the
+ * assembly's numbering (ends[0] < ends[1]) and, when c is not NULL, its
+ * elastic constants. */
 void engine_bond_entry(const engine *e, const pairlist *L, size_t b, int32_t ends[2], law_const *c);
 
 #endif
