@@ -616,7 +616,7 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 			               h5_name(g));
 	}
 	L->n = 0;
-	if (c1 - c0 > L->cap) {
+	if (c1 - c0 > L->cap || !L->rec) { /* none yet at a restart (engine_opts) */
 		L->cap = c1 - c0;
 		L->rec = xrealloc(L->rec, (L->cap + 1) * sizeof *L->rec);
 	}

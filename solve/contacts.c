@@ -239,10 +239,8 @@ void contacts_restore(engine *e)
 	}
 	size_t p0, p1;
 	ranks_own(e, &p0, &p1);
-	/* The gather index's room, for as many contacts as the list holds
-	 * (the checkpoint may have more than a search listed before it). */
-	L->ref = xrealloc(L->ref, (2 * L->cap + 1) * sizeof *L->ref);
-	L->fcols = 6;
+	/* The gather index's offsets, which no search has made at a restart
+	 * (its pairs' room is read_pairs', checkpoint.c). */
 	if (!L->off) {
 		L->off = window_array(p0, p1 + 1, sizeof *L->off);
 		L->off0 = p0;
