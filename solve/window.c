@@ -45,8 +45,9 @@ static void alloc_arrays(particles *P, size_t lo, size_t hi, int zero)
 	P->held_peak = hi - lo > P->held_peak ? hi - lo : P->held_peak;
 }
 
-/* The particles' arrays as bytes, each with its item size. */
-enum { NARR = 10 };
+/* The particles' arrays as bytes, each with its item size: x, v, w, r, m,
+ * orig, then flag (ARR_FLAG), surf and the platen slots. */
+enum { NARR = 10, ARR_FLAG = 6 };
 static void arrays(const particles *P, char *a[NARR], size_t item[NARR])
 {
 	char *p[NARR] = {(char *)P->x,        (char *)P->v,       (char *)P->w,    (char *)P->r,
@@ -58,6 +59,15 @@ static void arrays(const particles *P, char *a[NARR], size_t item[NARR])
 	                  sizeof *P->pslot[1]};
 	memcpy(a, p, sizeof p);
 	memcpy(item, s, sizeof s);
+}
+
+/* The arrays of P from a (arrays' order). */
+static void set_arrays(particles *P, char *const a[NARR])
+{
+	P->x = (double *)a[0], P->v = (double *)a[1], P->w = (double *)a[2];
+	P->r = (double *)a[3], P->m = (double *)a[4], P->orig = (int32_t *)a[5];
+	P->flag = (uint8_t *)a[6], P->surf = (int32_t *)a[7];
+	P->pslot[0] = (int32_t *)a[8], P->pslot[1] = (int32_t *)a[9];
 }
 
 void particles_alloc(particles *P, size_t n, size_t lo, size_t hi)
@@ -171,37 +181,39 @@ size_t window_set(engine *e, const int32_t *want, size_t nw)
 	size_t k = merge(want, nw, P->fixed, P->nfixed, g), before = 0;
 	while (before < k && (size_t)g[before] < p0)
 		before++;
-	particles Q = *P;
-	alloc_arrays(&Q, p0 - before, p1 + (k - before), 0); /* each entry set below */
+	size_t lo = p0 - before, hi = p1 + (k - before);
+	int32_t *glob = window_array(lo, hi, sizeof *glob);
+	for (size_t i = lo; i < hi; i++)
+		glob[i] = i < p0 ? g[i - lo] : i >= p1 ? g[before + (i - p1)] : (int32_t)i;
+	free(g);
+	/* Each old index's new one (or -1), by merging the two windows. */
+	int32_t *map = window_array(P->lo, P->hi, sizeof *map);
+	for (size_t i = P->lo, j = lo; i < P->hi; i++) {
+		size_t gi = particle_global(P, i);
+		while (j < hi && (size_t)glob[j] < gi)
+			j++;
+		map[i] = j < hi && (size_t)glob[j] == gi ? (int32_t)j : -1;
+	}
+	/* The new arrays one at a time, each old one freed once copied (a
+	 * window change holds one array twice, not all of them). The
+	 * particles new to the window have no place on a platen or the
+	 * surface (their state is the caller's to fill); the others are kept. */
 	char *a[NARR], *b[NARR];
 	size_t item[NARR];
 	arrays(P, a, item);
-	arrays(&Q, b, item);
-	Q.glob = window_array(Q.lo, Q.hi, sizeof *Q.glob);
-	for (size_t i = Q.lo; i < Q.hi; i++)
-		Q.glob[i] = i < p0 ? g[i - Q.lo] : i >= p1 ? g[before + (i - p1)] : (int32_t)i;
-	free(g);
-	/* The particles new to the window have no place on a platen or the
-	 * surface (their state is the caller's to fill); the others are kept.
-	 * Each old index's new one (or -1), by merging the two windows. */
-	for (size_t i = Q.lo; i < Q.hi; i++)
-		if (i < p0 || i >= p1) {
-			Q.flag[i] = 0;
-			Q.surf[i] = Q.pslot[0][i] = Q.pslot[1][i] = -1;
-		}
-	int32_t *map = window_array(P->lo, P->hi, sizeof *map);
-	for (size_t i = P->lo, j = Q.lo; i < P->hi; i++) {
-		size_t gi = particle_global(P, i);
-		while (j < Q.hi && (size_t)Q.glob[j] < gi)
-			j++;
-		map[i] = j < Q.hi && (size_t)Q.glob[j] == gi ? (int32_t)j : -1;
-		if (map[i] >= 0 && (i < p0 || i >= p1))
-			for (int q = 0; q < NARR; q++)
+	for (int q = 0; q < NARR; q++) {
+		b[q] = raw_array(lo, hi, item[q]);
+		for (size_t i = lo; q >= ARR_FLAG && i < hi; i++) /* flag 0; surf, slots -1 */
+			if (i < p0 || i >= p1)
+				memset(b[q] + i * item[q], q == ARR_FLAG ? 0 : 0xff, item[q]);
+		for (size_t i = P->lo; i < P->hi; i++)
+			if (map[i] >= 0 && (i < p0 || i >= p1))
 				memcpy(b[q] + (size_t)map[i] * item[q], a[q] + i * item[q],
 				       item[q]);
-	}
-	for (int q = 0; q < NARR; q++) /* the own ones in one piece */
+		/* the own ones in one piece */
 		memcpy(b[q] + p0 * item[q], a[q] + p0 * item[q], (p1 - p0) * item[q]);
+		window_array_free(a[q], P->lo, item[q]);
+	}
 	/* The lists' particles: the bonds' other ends and the crossing slots'
 	 * are held (above); a contact is dropped with an end. */
 	pairlist *B = &e->pairs.bonds;
@@ -213,8 +225,12 @@ size_t window_set(engine *e, const int32_t *want, size_t nw)
 	}
 	size_t dropped = renumber_pairs(&e->pairs.contacts, map);
 	window_array_free(map, P->lo, sizeof *map);
-	particles_free(P); /* x_ref, the own particles', stays */
-	*P = Q;
+	window_array_free(P->glob, P->lo, sizeof *P->glob); /* x_ref, the own particles', stays */
+	set_arrays(P, b);
+	P->glob = glob;
+	P->lo = lo;
+	P->hi = hi;
+	P->held_peak = hi - lo > P->held_peak ? hi - lo : P->held_peak;
 	return dropped;
 }
 
