@@ -26,20 +26,19 @@ static void *raw_array(size_t lo, size_t hi, size_t item)
 	return (char *)xmalloc((hi - lo + 1) * item) - lo * item;
 }
 
-/* The particles' arrays for [lo, hi), zeroed or not. */
-static void alloc_arrays(particles *P, size_t lo, size_t hi, int zero)
+/* The particles' arrays for [lo, hi), zeroed. */
+static void alloc_arrays(particles *P, size_t lo, size_t hi)
 {
-	void *(*get)(size_t, size_t, size_t) = zero ? window_array : raw_array;
-	P->x = get(lo, hi, 3 * sizeof *P->x);
-	P->v = get(lo, hi, 3 * sizeof *P->v);
-	P->w = get(lo, hi, 3 * sizeof *P->w);
-	P->r = get(lo, hi, sizeof *P->r);
-	P->m = get(lo, hi, sizeof *P->m);
-	P->orig = get(lo, hi, sizeof *P->orig);
-	P->flag = get(lo, hi, sizeof *P->flag);
-	P->surf = get(lo, hi, sizeof *P->surf);
+	P->x = window_array(lo, hi, 3 * sizeof *P->x);
+	P->v = window_array(lo, hi, 3 * sizeof *P->v);
+	P->w = window_array(lo, hi, 3 * sizeof *P->w);
+	P->r = window_array(lo, hi, sizeof *P->r);
+	P->m = window_array(lo, hi, sizeof *P->m);
+	P->orig = window_array(lo, hi, sizeof *P->orig);
+	P->flag = window_array(lo, hi, sizeof *P->flag);
+	P->surf = window_array(lo, hi, sizeof *P->surf);
 	for (int k = 0; k < 2; k++)
-		P->pslot[k] = get(lo, hi, sizeof *P->pslot[k]);
+		P->pslot[k] = window_array(lo, hi, sizeof *P->pslot[k]);
 	P->lo = lo;
 	P->hi = hi;
 	P->held_peak = hi - lo > P->held_peak ? hi - lo : P->held_peak;
@@ -72,7 +71,7 @@ static void set_arrays(particles *P, char *const a[NARR])
 
 void particles_alloc(particles *P, size_t n, size_t lo, size_t hi)
 {
-	alloc_arrays(P, lo, hi, 1);
+	alloc_arrays(P, lo, hi);
 	for (size_t i = lo; i < hi; i++)
 		P->surf[i] = P->pslot[0][i] = P->pslot[1][i] = -1;
 	P->n = n;
