@@ -163,6 +163,10 @@ int h5_close_shared(hid_t file)
 	return h5_agree(rc);
 }
 
+/* Whether errno e is that of a failed write: a full disk, a quota, a file
+ * size limit, an I/O error. */
+static int write_errno(int e) { return e == ENOSPC || e == EDQUOT || e == EFBIG || e == EIO; }
+
 int h5_write_error(const char *path, const char *what)
 {
 	/* HDF5 keeps no errno; the last failed write usually left it. */
@@ -172,7 +176,7 @@ int h5_write_error(const char *path, const char *what)
 	if (statvfs(path, &st) == 0 && (double)st.f_bavail * (double)st.f_frsize < 1 << 20)
 		snprintf(why, sizeof why, "the file system is full (%.0f bytes free)",
 		         (double)st.f_bavail * (double)st.f_frsize);
-	else if (e == ENOSPC || e == EDQUOT || e == EFBIG || e == EIO)
+	else if (write_errno(e))
 		snprintf(why, sizeof why, "%s", strerror(e));
 	else
 		snprintf(why, sizeof why, "the disk is full or failing");
@@ -267,13 +271,10 @@ hid_t h5_open_image(const void *buf, size_t n, const char *format)
 }
 
 /* After an HDF5 call that failed with errno cleared before it: whether a
- * write of the file failed (a full disk, a quota, a file size limit, an
- * I/O error), which HDF5 may find while making an object, when it writes
- * what its cache held. The message then says so (h5_write_error). */
-static int write_failed(void)
-{
-	return errno == ENOSPC || errno == EDQUOT || errno == EFBIG || errno == EIO;
-}
+ * write of the file failed, which HDF5 may find while making an object,
+ * when it writes what its cache held. The message then says so
+ * (h5_write_error). */
+static int write_failed(void) { return write_errno(errno); }
 
 hid_t h5_group(hid_t loc, const char *name)
 {

@@ -32,18 +32,15 @@ static size_t bad_pairs(const engine *e, const pairlist *L, int32_t **bad)
 		b0 = e->scratch.cfirst[e->ranks.blk0];
 		b1 = e->scratch.cfirst[e->ranks.blk1];
 	}
-	int32_t *mine = xmalloc((2 * (b1 - b0) + 1) * sizeof *mine);
-	size_t n = 0;
+	size_t cap = 2 * (b1 - b0), n = 0;
+	int32_t *ends = xmalloc((cap + 1) * sizeof *ends);
 	for (size_t b = b0; b < b1; b++)
 		if (!finite_pair(L, b)) {
-			mine[2 * n] = (int32_t)particle_global(&e->p, (size_t)L->rec[b].i);
-			mine[2 * n++ + 1] = (int32_t)particle_global(&e->p, (size_t)L->rec[b].j);
+			ends[n++] = (int32_t)particle_global(&e->p, (size_t)L->rec[b].i);
+			ends[n++] = (int32_t)particle_global(&e->p, (size_t)L->rec[b].j);
 		}
-	size_t all = ranks_total(n);
-	*bad = xmalloc((2 * all + 1) * sizeof **bad);
-	ranks_allgather_rows(mine, n, 2 * sizeof *mine, *bad);
-	free(mine);
-	return all;
+	*bad = ends;
+	return ranks_gather_list(bad, &cap, n) / 2;
 }
 
 static int by_index(const void *a, const void *b)

@@ -65,8 +65,7 @@ static int flush_now_and_then(loop_state *L)
 	enum { FLUSH_EVERY = 5 /* s */ };
 	double now = timer_now();
 	int due = par_rank() == 0 && now - L->last_flush >= FLUSH_EVERY;
-	if (par_size() > 1)
-		par_max_int(&due, 1);
+	par_max_int(&due, 1);
 	if (!due)
 		return 0;
 	L->last_flush = now;
