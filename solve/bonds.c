@@ -284,9 +284,10 @@ DEM_VECTOR_CLONES static void bonds_staged(engine *e, const int32_t *idx, int nq
 /* The nq bonds idx[0..nq) through the law's force_pairs (kinematics.h):
  * the lanes on its elastic branch (o->elastic[q]) from its one loop, their
  * records updated; the others as bonds_staged computes them, into
- * part[q]. Returns the count of elastic lanes. */
-static int bonds_fused(engine *e, const int32_t *idx, int nq, crack_buf *cb, law_fused *o,
-                       bond_part *part)
+ * part[q]. Returns the count of elastic lanes. Inlined, so the vector
+ * versions of its callers (clones.h) run their own copy of it. */
+static inline __attribute__((always_inline)) int
+bonds_fused(engine *e, const int32_t *idx, int nq, crack_buf *cb, law_fused *o, bond_part *part)
 {
 	const particles *P = &e->p;
 	bond *rec = e->pairs.bonds.rec;
@@ -420,7 +421,7 @@ static inline void bond_add_fused(engine *e, size_t b, const law_fused *o, int q
 	bond_add_force(e, b, f, 1);
 }
 
-void bonds_cross(engine *e, int k, int measure)
+DEM_VECTOR_CLONES void bonds_cross(engine *e, int k, int measure)
 {
 	bond_split *S = &e->pairs.split;
 	crack_buf *cb = &e->out.thread_cracks[omp_get_thread_num()];

@@ -87,12 +87,14 @@ static inline pair_motion pair_motion_of(const double dx[3], const double dv[3],
  * tangential histories rotated into B->t.
  * Staged: the records are read into arrays, one loop does all the
  * arithmetic on them (so the square roots and divisions of independent
- * pairs overlap, and the compiler can use the vector units). */
-static inline void batch_kinematics(const double *restrict x, const double *restrict v,
-                                    const double *restrict w, const double *restrict r,
-                                    const double *restrict m, const bond *restrict rec,
-                                    const int32_t *restrict idx, int nq, double dt,
-                                    law_batch *restrict B, batch_geom *restrict g)
+ * pairs overlap, and the compiler can use the vector units). Always
+ * inlined: a copy out of line would be compiled for any x86-64, not for
+ * the vector units of its callers' versions (clones.h). */
+static inline __attribute__((always_inline)) void
+batch_kinematics(const double *restrict x, const double *restrict v, const double *restrict w,
+                 const double *restrict r, const double *restrict m, const bond *restrict rec,
+                 const int32_t *restrict idx, int nq, double dt, law_batch *restrict B,
+                 batch_geom *restrict g)
 {
 	double dx[3][BATCH], dv[3][BATCH], wi[3][BATCH], wj[3][BATCH];
 	B->n = nq;
