@@ -11,7 +11,10 @@
  * every CPU: C17 does not let the compiler fuse a multiply and an add, and
  * no sum is reordered. Builds for this machine only (-march=native,
  * DEM_NATIVE) need one version; GCC makes the versions (clang, for the fuzz
- * targets, does not combine them with flatten). */
+ * targets, does not combine them with flatten). The versions are tuned as
+ * -march=native tunes for recent Intel cores: 256-bit vectors and gather
+ * instructions (CMakeLists.txt). A helper they call is compiled for any
+ * x86-64 unless it is inlined: the hot ones are always_inline. */
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
     !defined(DEM_NATIVE_BUILD) && !defined(__SANITIZE_ADDRESS__)
 #define DEM_VECTOR_CLONES \
