@@ -25,6 +25,7 @@
  * (a tenth of it, at least a diameter): radial strain = -mean(ρ - ρ0) / R0,
  * compression positive. */
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -141,11 +142,58 @@ void surface_room(surface *S, size_t cap)
 	S->area = xrealloc(S->area, (cap + 1) * sizeof *S->area);
 }
 
+/* The outermost sphere of each bin among the particles [a, b) into best
+ * and rho (nbins each, started at -1 and -inf): the first in index order
+ * among equals. */
+static void bin_outermost(const engine *e, size_t a, size_t b, double lo, double dz, double dth,
+                          int32_t *best, double *rho)
+{
+	const surface *S = &e->bc.surf;
+	for (size_t i = a; i < b; i++) {
+		bin_range br = sphere_bins(e, i, lo, dz, dth);
+		for (int iz = br.z0; iz <= br.z1; iz++)
+			for (int t = br.t0; t <= br.t1; t++) {
+				size_t k = bin_index(S, iz, t);
+				if (br.out > rho[k]) {
+					rho[k] = br.out;
+					best[k] = (int32_t)i;
+				}
+			}
+	}
+}
+
+/* The particles of [a, b) in the surface layer: reaching within their own
+ * radius of the outermost point of a bin they overlap. Into list (grown as
+ * needed, room *cap); returns their count. */
+static size_t layer_of(const engine *e, size_t a, size_t b, double lo, double dz, double dth,
+                       int32_t **list, size_t *cap)
+{
+	const surface *S = &e->bc.surf;
+	size_t n = 0;
+	for (size_t i = a; i < b; i++) {
+		bin_range br = sphere_bins(e, i, lo, dz, dth);
+		int in = 0;
+		for (int iz = br.z0; iz <= br.z1 && !in; iz++)
+			for (int t = br.t0; t <= br.t1 && !in; t++)
+				in = br.out >= S->best_rho[bin_index(S, iz, t)] - e->p.r[i];
+		if (in) {
+			if (n == *cap) {
+				*cap = 2 * *cap + 1024;
+				*list = xrealloc(*list, *cap * sizeof **list);
+			}
+			(*list)[n++] = (int32_t)i;
+		}
+	}
+	return n;
+}
+
 /* Each rank bins its own particles, whose state is current (ranks.h); the
  * bins' outermost spheres are then a maximum over the ranks (the lowest
  * index among equals, as on one rank), and the surface layer each rank's
  * list in rank order, which is index order: the same bins and list on
- * every rank, for any number of ranks. */
+ * every rank, for any number of ranks. Within a rank the step's threads
+ * share the particles in runs, combined in run order the same way: the
+ * same bins and list for any number of threads. */
 void surface_update(engine *e)
 {
 	particles *P = &e->p;
@@ -155,40 +203,54 @@ void surface_update(engine *e)
 	double lo, hi;
 	extent(e, p0, p1, split, &lo, &hi);
 	double dz = (hi - lo) / S->nz, dth = 2 * DEM_PI / S->ntheta;
-	for (size_t b = 0; b < nbins; b++) {
-		S->best[b] = -1;
-		S->best_rho[b] = -INFINITY;
+	int team = e->team > 1 && p1 - p0 >= 4096 ? e->team : 1;
+	int32_t *best = xmalloc((size_t)team * nbins * sizeof *best);
+	double *rho = xmalloc((size_t)team * nbins * sizeof *rho);
+	int32_t **lists = xcalloc((size_t)team, sizeof *lists);
+	size_t *count = xcalloc((size_t)team, sizeof *count);
+	for (size_t b = 0; b < (size_t)team * nbins; b++) {
+		best[b] = -1;
+		rho[b] = -INFINITY;
 	}
-	for (size_t i = p0; i < p1; i++) {
-		bin_range br = sphere_bins(e, i, lo, dz, dth);
-		for (int iz = br.z0; iz <= br.z1; iz++)
-			for (int t = br.t0; t <= br.t1; t++) {
-				size_t b = bin_index(S, iz, t);
-				if (br.out > S->best_rho[b]) {
-					S->best_rho[b] = br.out;
-					S->best[b] = (int32_t)i;
-				}
+#pragma omp parallel num_threads(team)
+	{
+		int t = omp_get_thread_num(), nt = omp_get_num_threads();
+		size_t a = p0 + (p1 - p0) * (size_t)t / (size_t)nt,
+		       b = p0 + (p1 - p0) * (size_t)(t + 1) / (size_t)nt;
+		bin_outermost(e, a, b, lo, dz, dth, best + (size_t)t * nbins,
+		              rho + (size_t)t * nbins);
+#pragma omp barrier
+#pragma omp master
+		{
+			for (size_t k = 0; k < nbins; k++) {
+				S->best[k] = best[k];
+				S->best_rho[k] = rho[k];
+				for (int q = 1; q < nt; q++)
+					if (rho[(size_t)q * nbins + k] > S->best_rho[k]) {
+						S->best_rho[k] = rho[(size_t)q * nbins + k];
+						S->best[k] = best[(size_t)q * nbins + k];
+					}
 			}
+			if (split)
+				par_maxloc(S->best_rho, S->best, nbins);
+		}
+#pragma omp barrier
+		size_t room = 0;
+		count[t] = layer_of(e, a, b, lo, dz, dth, &lists[t], &room);
 	}
-	if (split)
-		par_maxloc(S->best_rho, S->best, nbins);
-	/* The surface layer: spheres reaching within their own radius of the
-	 * outermost point of a bin they overlap. */
+	free(best), free(rho);
 	for (size_t i = p0; i < p1; i++)
 		P->surf[i] = -1;
 	size_t mine = 0;
-	for (size_t i = p0; i < p1; i++) {
-		bin_range br = sphere_bins(e, i, lo, dz, dth);
-		int in = 0;
-		for (int iz = br.z0; iz <= br.z1 && !in; iz++)
-			for (int t = br.t0; t <= br.t1 && !in; t++)
-				in = br.out >= S->best_rho[bin_index(S, iz, t)] - P->r[i];
-		if (in) {
-			if (mine == S->cap)
-				surface_room(S, 2 * S->cap + 1024);
-			S->idx[mine++] = (int32_t)i;
-		}
+	for (int t = 0; t < team; t++) {
+		if (mine + count[t] > S->cap)
+			surface_room(S, 2 * (mine + count[t]) + 1024);
+		if (count[t])
+			memcpy(S->idx + mine, lists[t], count[t] * sizeof *S->idx);
+		mine += count[t];
+		free(lists[t]);
 	}
+	free(lists), free(count);
 	size_t cap = S->cap;
 	S->n = split ? ranks_gather_list(&S->idx, &cap, mine) : mine;
 	if (cap > S->cap) /* the other ranks' entries grew the list */
