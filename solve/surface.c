@@ -203,7 +203,7 @@ void surface_update(engine *e)
 	double lo, hi;
 	extent(e, p0, p1, split, &lo, &hi);
 	double dz = (hi - lo) / S->nz, dth = 2 * DEM_PI / S->ntheta;
-	int team = e->team > 1 && p1 - p0 >= 4096 ? e->team : 1;
+	int team = e->team;
 	int32_t *best = xmalloc((size_t)team * nbins * sizeof *best);
 	double *rho = xmalloc((size_t)team * nbins * sizeof *rho);
 	int32_t **lists = xcalloc((size_t)team, sizeof *lists);
