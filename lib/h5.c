@@ -183,11 +183,18 @@ int h5_write_error(const char *path, const char *what)
 	return err_set("%s: cannot write %s: %s", path, what, why);
 }
 
-int h5_write_dataset_error(hid_t loc, const char *name)
+/* h5_write_error for the object of a kind ("dataset", "group", ...) and
+ * name in loc. */
+static int object_write_error(hid_t loc, const char *kind, const char *name)
 {
 	char what[300];
-	snprintf(what, sizeof what, "dataset '%s'", name);
+	snprintf(what, sizeof what, "%s '%s'", kind, name);
 	return h5_write_error(h5_name(loc), what);
+}
+
+int h5_write_dataset_error(hid_t loc, const char *name)
+{
+	return object_write_error(loc, "dataset", name);
 }
 
 int h5_commit(hid_t file, const char *tmp, const char *final)
@@ -280,12 +287,9 @@ hid_t h5_group(hid_t loc, const char *name)
 {
 	errno = 0;
 	hid_t g = H5Gcreate2(loc, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-	if (g < 0) {
-		char what[300];
-		snprintf(what, sizeof what, "group '%s'", name);
-		return write_failed() ? h5_write_error(h5_name(loc), what)
+	if (g < 0)
+		return write_failed() ? object_write_error(loc, "group", name)
 		                      : err_set("%s: cannot create group '%s'", h5_name(loc), name);
-	}
 	return g;
 }
 
@@ -330,11 +334,8 @@ static int write_attr(hid_t obj, const char *name, hid_t type, hid_t space, cons
 		H5Aclose(a);
 	H5Sclose(space);
 	free(own);
-	if (rc < 0 && write_failed()) {
-		char what[300];
-		snprintf(what, sizeof what, "attribute '%s'", name);
-		return h5_write_error(h5_name(obj), what);
-	}
+	if (rc < 0 && write_failed())
+		return object_write_error(obj, "attribute", name);
 	if (rc < 0)
 		return err_set("%s: cannot write attribute '%s' on '%s'", h5_name(obj), name,
 		               obj_path(obj));

@@ -26,24 +26,6 @@ static void *raw_array(size_t lo, size_t hi, size_t item)
 	return (char *)xmalloc((hi - lo + 1) * item) - lo * item;
 }
 
-/* The particles' arrays for [lo, hi), zeroed. */
-static void alloc_arrays(particles *P, size_t lo, size_t hi)
-{
-	P->x = window_array(lo, hi, 3 * sizeof *P->x);
-	P->v = window_array(lo, hi, 3 * sizeof *P->v);
-	P->w = window_array(lo, hi, 3 * sizeof *P->w);
-	P->r = window_array(lo, hi, sizeof *P->r);
-	P->m = window_array(lo, hi, sizeof *P->m);
-	P->orig = window_array(lo, hi, sizeof *P->orig);
-	P->flag = window_array(lo, hi, sizeof *P->flag);
-	P->surf = window_array(lo, hi, sizeof *P->surf);
-	for (int k = 0; k < 2; k++)
-		P->pslot[k] = window_array(lo, hi, sizeof *P->pslot[k]);
-	P->lo = lo;
-	P->hi = hi;
-	P->held_peak = hi - lo > P->held_peak ? hi - lo : P->held_peak;
-}
-
 /* The particles' arrays as bytes, each with its item size: x, v, w, r, m,
  * orig, then flag (ARR_FLAG), surf and the platen slots. */
 enum { NARR = 10, ARR_FLAG = 6 };
@@ -67,6 +49,26 @@ static void set_arrays(particles *P, char *const a[NARR])
 	P->r = (double *)a[3], P->m = (double *)a[4], P->orig = (int32_t *)a[5];
 	P->flag = (uint8_t *)a[6], P->surf = (int32_t *)a[7];
 	P->pslot[0] = (int32_t *)a[8], P->pslot[1] = (int32_t *)a[9];
+}
+
+/* The window [lo, hi) of P, and the most particles it has held. */
+static void set_range(particles *P, size_t lo, size_t hi)
+{
+	P->lo = lo;
+	P->hi = hi;
+	P->held_peak = hi - lo > P->held_peak ? hi - lo : P->held_peak;
+}
+
+/* The particles' arrays for [lo, hi), zeroed. */
+static void alloc_arrays(particles *P, size_t lo, size_t hi)
+{
+	char *a[NARR];
+	size_t item[NARR];
+	arrays(&(particles){0}, a, item); /* the item sizes */
+	for (int q = 0; q < NARR; q++)
+		a[q] = window_array(lo, hi, item[q]);
+	set_arrays(P, a);
+	set_range(P, lo, hi);
 }
 
 void particles_alloc(particles *P, size_t n, size_t lo, size_t hi)
@@ -227,9 +229,7 @@ size_t window_set(engine *e, const int32_t *want, size_t nw)
 	window_array_free(P->glob, P->lo, sizeof *P->glob); /* x_ref, the own particles', stays */
 	set_arrays(P, b);
 	P->glob = glob;
-	P->lo = lo;
-	P->hi = hi;
-	P->held_peak = hi - lo > P->held_peak ? hi - lo : P->held_peak;
+	set_range(P, lo, hi);
 	return dropped;
 }
 
