@@ -32,8 +32,10 @@ static size_t bad_pairs(const engine *e, const pairlist *L, int32_t **bad)
 		b0 = e->scratch.cfirst[e->ranks.blk0];
 		b1 = e->scratch.cfirst[e->ranks.blk1];
 	}
-	size_t cap = 2 * (b1 - b0), n = 0;
-	int32_t *ends = xmalloc((cap + 1) * sizeof *ends);
+	size_t cap = 0, n = 0;
+	for (size_t b = b0; b < b1; b++)
+		cap += 2 * !finite_pair(L, b);
+	int32_t *ends = xmalloc((cap + 1) * sizeof *ends); /* room for the few, not every pair */
 	for (size_t b = b0; b < b1; b++)
 		if (!finite_pair(L, b)) {
 			ends[n++] = (int32_t)particle_global(&e->p, (size_t)L->rec[b].i);

@@ -106,9 +106,8 @@ typedef struct {
 	double held[2], held_peak[2];
 } rank_split;
 
-/* The bonds, contacts and platen contacts of the whole specimen, in the
- * order one process holds them: what the diagnosis of a non-finite state
- * reads. */
+/* Lists of bonds, contacts and platen contacts: a rank's own
+ * (ranks_own_pairs), as the checkpoint writes and checksums them. */
 typedef struct {
 	const pairlist *bonds, *contacts;
 	size_t ncand[2];
