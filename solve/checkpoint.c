@@ -119,41 +119,90 @@ static void add(crc_parts *p, const void *data, size_t bytes)
 	p->len[p->k] += bytes;
 }
 
+/* The bytes [off, off + bytes) of each of n records of `stride` bytes from
+ * base, in order, as add() of each would: in pieces of about CRC_PIECE
+ * bytes, each copied together and checksummed on its own by the threads,
+ * then combined in order (crc32_combine). */
+enum { CRC_PIECE = 1 << 15 };
+static void add_records(crc_parts *p, const void *base, size_t n, size_t stride, size_t off,
+                        size_t bytes, int team)
+{
+	size_t per = CRC_PIECE / bytes > 0 ? CRC_PIECE / bytes : 1;
+	size_t pieces = (n + per - 1) / per;
+	uLong *crc = xmalloc((pieces + 1) * sizeof *crc);
+#define PIECE_ITEMS(k) (n - (k)*per < per ? n - (k)*per : per)
+#pragma omp parallel num_threads(team)
+	{
+		unsigned char *buf = stride == bytes ? NULL : xmalloc(per * bytes);
+#pragma omp for schedule(static)
+		for (size_t k = 0; k < pieces; k++) {
+			const unsigned char *r =
+			    (const unsigned char *)base + k * per * stride + off;
+			size_t m = PIECE_ITEMS(k);
+			if (buf)
+				for (size_t q = 0; q < m; q++)
+					memcpy(buf + q * bytes, r + q * stride, bytes);
+			crc[k] = crc32_z(0, buf ? buf : r, m * bytes);
+		}
+		free(buf);
+	}
+	for (size_t k = 0; k < pieces; k++) {
+		z_off_t len = (z_off_t)(PIECE_ITEMS(k) * bytes);
+		p->crc[p->k] = crc32_combine(p->crc[p->k], crc[k], len);
+		p->len[p->k] += (uint64_t)len;
+	}
+#undef PIECE_ITEMS
+	free(crc);
+}
+
+/* add() of n contiguous items of `bytes` bytes (add_records). */
+static void add_array(crc_parts *p, const void *data, size_t n, size_t bytes, int team)
+{
+	add_records(p, data, n, bytes, 0, bytes, team);
+}
+
 /* Bonds (contacts 0) or contacts: the records' histories and states (ends,
  * their indices in the whole specimen, and histories), then the forces
  * (the constants, and with Yade's conventions the starts); three
  * segments. old: when not NULL, the bonds' h and f as an old checkpoint
  * held them. */
+_Static_assert(offsetof(bond, h) == offsetof(bond, t) + 3 * sizeof(double) &&
+                   offsetof(bond, state) == offsetof(bond, h) + LAW_NHIST * sizeof(double),
+               "bond: t, h and state follow each other, as a bond's checksum takes them");
 static void pairs_crc(crc_parts *p, const particles *P, const pairlist *l, int contacts, int yade,
-                      const old_bonds *old)
+                      const old_bonds *old, int team)
 {
-	for (size_t b = 0; b < l->n; b++) {
-		const bond *r = &l->rec[b];
-		if (contacts) {
+	if (contacts) {
+		for (size_t b = 0; b < l->n; b++) {
+			const bond *r = &l->rec[b];
 			int32_t ends[2] = {(int32_t)particle_global(P, (size_t)r->i),
 			                   (int32_t)particle_global(P, (size_t)r->j)};
 			add(p, ends, sizeof ends);
+			add(p, r->t, sizeof r->t);
 		}
-		add(p, r->t, sizeof r->t);
-		if (!contacts) {
-			if (old)
-				add(p, old->h + OLD_NHIST * b, OLD_NHIST * sizeof *old->h);
-			else
-				add(p, r->h, sizeof r->h);
+	} else if (old) {
+		for (size_t b = 0; b < l->n; b++) {
+			const bond *r = &l->rec[b];
+			add(p, r->t, sizeof r->t);
+			add(p, old->h + OLD_NHIST * b, OLD_NHIST * sizeof *old->h);
 			add(p, &r->state, sizeof r->state);
 		}
+	} else {
+		add_records(p, l->rec, l->n, sizeof *l->rec, offsetof(bond, t),
+		            offsetof(bond, state) + sizeof l->rec->state - offsetof(bond, t), team);
 	}
 	p->k++;
 	if (contacts) { /* their constants, as the contiguous rows of contact_k */
-		for (size_t b = 0; b < l->n; b++)
-			add(p, l->rec[b].h, 3 * sizeof *l->rec[b].h);
+		add_records(p, l->rec, l->n, sizeof *l->rec, offsetof(bond, h), 3 * sizeof(double),
+		            team);
 		p->k++;
-		for (size_t b = 0; yade && b < l->n; b++)
-			add(p, &l->rec[b].d0, sizeof(double));
+		if (yade)
+			add_records(p, l->rec, l->n, sizeof *l->rec, offsetof(bond, d0),
+			            sizeof(double), team);
 	} else if (old) {
 		add(p, old->f, OLD_FCOLS * l->n * sizeof *old->f);
 	} else {
-		add(p, l->f, (size_t)l->fcols * l->n * sizeof *l->f);
+		add_array(p, l->f, (size_t)l->fcols * l->n, sizeof *l->f, team);
 	}
 	p->k++;
 }
@@ -176,12 +225,12 @@ static void crc_of(engine *e, const pairs_view *v, size_t p0, size_t p1, size_t 
 	p->k++;
 	const particles *P = &e->p;
 	size_t n = p1 - p0;
-	add(p, P->orig + p0, n * sizeof *P->orig);
+	add_array(p, P->orig + p0, n, sizeof *P->orig, e->team);
 	p->k++;
 	const double *vec[] = {P->x + 3 * p0, P->v + 3 * p0, P->w + 3 * p0,
 	                       P->x_ref + 3 * (p0 - P->own0)};
 	for (int k = 0; k < 4; k++, p->k++)
-		add(p, vec[k], 3 * n * sizeof *vec[k]);
+		add_array(p, vec[k], 3 * n, sizeof *vec[k], e->team);
 	add(p, P->flag + p0, n * sizeof *P->flag);
 	p->k++;
 	if (head) {
@@ -189,8 +238,8 @@ static void crc_of(engine *e, const pairs_view *v, size_t p0, size_t p1, size_t 
 		add(p, e->bc.surf.area, e->bc.surf.n * sizeof *e->bc.surf.area);
 	}
 	p->k++;
-	pairs_crc(p, P, v->bonds, 0, 0, old);
-	pairs_crc(p, P, v->contacts, 1, yade_contacts(e), NULL);
+	pairs_crc(p, P, v->bonds, 0, 0, old, e->team);
+	pairs_crc(p, P, v->contacts, 1, yade_contacts(e), NULL, e->team);
 	for (int k = 0; k < 2; k++) {
 		add(p, v->who[k], v->ncand[k] * sizeof *v->who[k]);
 		p->k++;
