@@ -185,8 +185,10 @@ typedef struct {
 	pair_sums *bblock, *cblock; /* bonds and contacts by the block of their i */
 	size_t *cfirst;             /* [particle blocks + 1] first contact of each */
 	particle_sums *pblock;
-	double *acc; /* [own][6] sum of the bond forces and torques per unit
-	                radius, particle i's at 6 (i - p.own0) (engine_acc) */
+	step_part *parts; /* [threads] each thread's part of the step's sums */
+	int nparts;       /* the threads of the last step */
+	double *acc;      /* [own][6] sum of the bond forces and torques per unit
+	                     radius, particle i's at 6 (i - p.own0) (engine_acc) */
 } engine_scratch;
 
 typedef struct engine engine;

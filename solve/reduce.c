@@ -5,18 +5,41 @@
 
 void reduce_clear(reduction *r) { r->nsum = r->nmax = 0; }
 
-int reduce_add_blocks(reduction *r, const double *blk, size_t nb, size_t stride, int nf)
+/* nf new sums, cleared: the first of them. */
+static xsum *new_sums(reduction *r, int nf)
 {
-	int k0 = r->nsum;
-	if (nf > REDUCE_SUMS - k0)
-		fatal("reduce_add_blocks: %d sums, at most %d", k0 + nf, REDUCE_SUMS);
-	xsum *acc = r->sum + k0;
+	if (nf > REDUCE_SUMS - r->nsum)
+		fatal("reduce: %d sums, at most %d", r->nsum + nf, REDUCE_SUMS);
+	xsum *acc = r->sum + r->nsum;
 	for (int f = 0; f < nf; f++)
 		xsum_clear(&acc[f]);
+	r->nsum += nf;
+	return acc;
+}
+
+void reduce_part_add(xsum *acc, const double *blk, size_t nb, size_t stride, int nf)
+{
 	for (size_t k = 0; k < nb; k++)
 		for (int f = 0; f < nf; f++)
 			xsum_add(&acc[f], blk[k * stride + (size_t)f]);
-	r->nsum += nf;
+}
+
+int reduce_add_blocks(reduction *r, const double *blk, size_t nb, size_t stride, int nf)
+{
+	int k0 = r->nsum;
+	reduce_part_add(new_sums(r, nf), blk, nb, stride, nf);
+	return k0;
+}
+
+int reduce_add_parts(reduction *r, const xsum *first, int nparts, size_t bytes, int nf)
+{
+	int k0 = r->nsum;
+	xsum *acc = new_sums(r, nf);
+	for (int q = 0; q < nparts; q++) {
+		const xsum *part = (const xsum *)(const void *)((const char *)first + q * bytes);
+		for (int f = 0; f < nf; f++)
+			xsum_merge(&acc[f], &part[f]);
+	}
 	return k0;
 }
 

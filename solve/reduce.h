@@ -24,6 +24,13 @@ void reduce_clear(reduction *r);
 /* nf new sums: the first nf doubles of each of the nb blocks at blk, stride
  * doubles apart. Returns the index of the first. */
 int reduce_add_blocks(reduction *r, const double *blk, size_t nb, size_t stride, int nf);
+/* The same blocks added to the accumulators acc[0..nf) (a worker's part of
+ * the sums: exact, so the parts may be split any way). */
+void reduce_part_add(xsum *acc, const double *blk, size_t nb, size_t stride, int nf);
+/* nf new sums, each the merge of nparts parts: those of part q start
+ * `bytes` bytes after part q - 1's, the first at first. Returns the index
+ * of the first. */
+int reduce_add_parts(reduction *r, const xsum *first, int nparts, size_t bytes, int nf);
 /* v as a new maximum: its index. */
 int reduce_add_max(reduction *r, double v);
 /* Every sum and every maximum over the ranks (par_sum_max): one collective. */

@@ -231,6 +231,7 @@ static void scratch_alloc(engine *e, int threads)
 	e->scratch.bblock = xcalloc(nblocks(n) + 1, sizeof *e->scratch.bblock);
 	e->scratch.cblock = xcalloc(nblocks(n) + 1, sizeof *e->scratch.cblock);
 	e->scratch.cfirst = xcalloc(nblocks(n) + 1, sizeof *e->scratch.cfirst);
+	e->scratch.parts = xcalloc((size_t)e->nthreads, sizeof *e->scratch.parts);
 	e->out.thread_cracks = xcalloc((size_t)e->nthreads, sizeof *e->out.thread_cracks);
 }
 
@@ -350,7 +351,7 @@ void engine_free(engine *e)
 	surface_free(&e->bc.surf);
 	gauge_free(&e->bc.gauge);
 	free(e->scratch.pblock), free(e->scratch.bblock), free(e->scratch.cblock),
-	    free(e->scratch.cfirst), free(e->scratch.acc);
+	    free(e->scratch.cfirst), free(e->scratch.parts), free(e->scratch.acc);
 	bonds_split_free(&e->pairs.split);
 	ranks_free(&e->ranks);
 	for (int t = 0; t < e->nthreads; t++)

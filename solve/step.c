@@ -399,36 +399,64 @@ static void particles_integrate(engine *e, int k, int measure)
 		integrate_block(e, blk, measure);
 }
 
-/* The step's sums over this rank's blocks of bonds, contacts and particles,
- * the largest displacement and speed, the first bad particle, the count of
- * new failures and the flags of e->sums.agree, all over the ranks in one
- * reduction (reduce.h): the sums exact, the rest the largest of the ranks'.
- * Returns whether some rank found failures in this step. */
+/* The sums are arrays of doubles; of a particle_sums, those before disp2
+ * (step_part). */
+enum { PAIR = STEP_PAIR_SUMS, STRIDE = sizeof(particle_sums) / sizeof(double) };
+_Static_assert(sizeof(pair_sums) == PAIR * sizeof(double), "pair_sums: doubles only");
+_Static_assert(sizeof(particle_sums) == STRIDE * sizeof(double), "particle_sums: doubles only");
+
+/* Thread tid's part of the step's sums (step_part): the blocks of the
+ * shares it took, s0 + tid, s0 + tid + nth, ... (their bonds' and
+ * particles' blocks its own, the contacts' complete since the barrier). */
+static void step_part_sums(engine *e, int tid, int nth)
+{
+	const bond_split *S = &e->pairs.split;
+	step_part *part = &e->scratch.parts[tid];
+	for (int f = 0; f < STEP_SUMS; f++)
+		xsum_clear(&part->sum[f]);
+	double *top = part->top; /* disp2, v2max, -bad */
+	top[0] = top[1] = 0;
+	top[2] = -(double)e->p.n;
+	for (int k = e->ranks.s0 + tid; k < e->ranks.s1; k += nth) {
+		size_t b0 = S->pfirst[k] / BLOCK,
+		       nb = S->pfirst[k + 1] > S->pfirst[k] ? nblocks(S->pfirst[k + 1]) - b0 : 0;
+		const particle_sums *blk = e->scratch.pblock + b0;
+		reduce_part_add(part->sum, (const double *)(e->scratch.bblock + b0), nb, PAIR,
+		                PAIR);
+		reduce_part_add(part->sum + PAIR, (const double *)(e->scratch.cblock + b0), nb,
+		                PAIR, PAIR);
+		reduce_part_add(part->sum + 2 * PAIR, (const double *)blk, nb, STRIDE,
+		                STEP_PARTICLE_SUMS);
+		for (size_t q = 0; q < nb; q++) {
+			top[0] = blk[q].disp2 > top[0] ? blk[q].disp2 : top[0];
+			top[1] = blk[q].v2max > top[1] ? blk[q].v2max : top[1];
+			top[2] = -blk[q].bad > top[2] ? -blk[q].bad : top[2];
+		}
+	}
+}
+
+/* The step's sums over this rank's blocks of bonds, contacts and particles
+ * (the threads' parts), the largest displacement and speed, the first bad
+ * particle, the count of new failures and the flags of e->sums.agree, all
+ * over the ranks in one reduction (reduce.h): the sums exact, the rest the
+ * largest of the ranks'. Returns whether some rank found failures in this
+ * step. */
 static int step_sums(engine *e, size_t ncracks)
 {
-	size_t n = e->p.n, blk0 = e->ranks.blk0, nb = e->ranks.blk1 - blk0;
 	particle_sums *t = &e->sums.particles;
-	const particle_sums *blk = e->scratch.pblock + blk0;
-	/* The sums are arrays of doubles; of a particle_sums, those before disp2. */
-	enum {
-		PAIR = sizeof(pair_sums) / sizeof(double),
-		STRIDE = sizeof(particle_sums) / sizeof(double),
-		NF = offsetof(particle_sums, disp2) / sizeof(double)
-	};
-	_Static_assert(sizeof(pair_sums) == PAIR * sizeof(double), "pair_sums: doubles only");
-	_Static_assert(sizeof(particle_sums) == STRIDE * sizeof(double),
-	               "particle_sums: doubles only");
-	double top[3] = {0, 0, -(double)n}; /* disp2, v2max, -bad */
-	for (size_t k = 0; k < nb; k++) {
-		top[0] = blk[k].disp2 > top[0] ? blk[k].disp2 : top[0];
-		top[1] = blk[k].v2max > top[1] ? blk[k].v2max : top[1];
-		top[2] = -blk[k].bad > top[2] ? -blk[k].bad : top[2];
+	const step_part *parts = e->scratch.parts;
+	int np = e->scratch.nparts;
+	double top[3];
+	for (int c = 0; c < 3; c++) {
+		top[c] = parts[0].top[c];
+		for (int q = 1; q < np; q++)
+			top[c] = parts[q].top[c] > top[c] ? parts[q].top[c] : top[c];
 	}
 	static reduction r; /* some 35 kB; steps run one at a time */
 	reduce_clear(&r);
-	int kb = reduce_add_blocks(&r, (const double *)(e->scratch.bblock + blk0), nb, PAIR, PAIR);
-	int kc = reduce_add_blocks(&r, (const double *)(e->scratch.cblock + blk0), nb, PAIR, PAIR);
-	int kp = reduce_add_blocks(&r, (const double *)blk, nb, STRIDE, NF);
+	int kb = reduce_add_parts(&r, parts->sum, np, sizeof *parts, PAIR);
+	int kc = reduce_add_parts(&r, parts->sum + PAIR, np, sizeof *parts, PAIR);
+	int kp = reduce_add_parts(&r, parts->sum + 2 * PAIR, np, sizeof *parts, STEP_PARTICLE_SUMS);
 	int km = reduce_add_max(&r, top[0]);
 	reduce_add_max(&r, top[1]);
 	reduce_add_max(&r, top[2]);
@@ -439,7 +467,7 @@ static int step_sums(engine *e, size_t ncracks)
 	reduce_finish(&r);
 	reduce_sums(&r, kb, PAIR, (double *)&e->sums.bonds);
 	reduce_sums(&r, kc, PAIR, (double *)&e->sums.contacts);
-	reduce_sums(&r, kp, NF, (double *)t);
+	reduce_sums(&r, kp, STEP_PARTICLE_SUMS, (double *)t);
 	t->disp2 = r.max[km];
 	t->v2max = r.max[km + 1];
 	t->bad = -r.max[km + 2];
@@ -508,6 +536,9 @@ void engine_step(engine *e, int measure)
 		}
 		for (int k = s0 + tid; k < s1; k += nth)
 			particles_integrate(e, k, measure);
+		step_part_sums(e, tid, nth);
+#pragma omp master
+		e->scratch.nparts = nth;
 	}
 	bonds_collect_cracks(e);
 	int failures = step_sums(e, ncracks);
