@@ -8,6 +8,7 @@
  * sorted by (i, j). */
 #include <math.h>
 #include <omp.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -74,25 +75,39 @@ static void reserve(const engine *e, pairlist *l, size_t n)
 	l->cap = cap;
 }
 
-static void add_contact(engine *e, pairlist *L, const pairlist *old, size_t *o, int32_t i,
+/* The first of the old list's pairs that does not come before (i, j). */
+static size_t old_at(const pairlist *old, int32_t i, int32_t j)
+{
+	size_t o = 0;
+	for (size_t hi = old->n; o < hi;) {
+		size_t mid = o + (hi - o) / 2;
+		if (before(old->rec[mid].i, old->rec[mid].j, i, j))
+			o = mid + 1;
+		else
+			hi = mid;
+	}
+	return o;
+}
+
+/* The contact (i, j) into c, with the shear history and start of the same
+ * pair in the old list, which *o walks along (it is the first old pair
+ * not before the previous one). */
+static void new_contact(const engine *e, bond *c, const pairlist *old, size_t *o, int32_t i,
                         int32_t j)
 {
 	const particles *P = &e->p;
-	reserve(e, L, L->n + 1);
-	bond *c = &L->rec[L->n];
 	memset(c, 0, sizeof *c);
 	c->i = i;
 	c->j = j;
 	c->d0 = P->r[i] + P->r[j];
 	c->state = BOND_BROKEN_TENSION;
-	while (*o < old->n && (old->rec[*o].i < i || (old->rec[*o].i == i && old->rec[*o].j < j)))
+	while (*o < old->n && before(old->rec[*o].i, old->rec[*o].j, i, j))
 		(*o)++;
 	if (*o < old->n && old->rec[*o].i == i && old->rec[*o].j == j) {
 		memcpy(c->t, old->rec[*o].t, sizeof c->t);
 		c->d0 = old->rec[*o].d0;
 	}
 	contact_constants(&e->cs->mat, e->lp, P->r[i], P->r[j], P->m[i], P->m[j], c->d0, c->h);
-	L->n++;
 }
 
 void contacts_index_blocks(engine *e)
@@ -172,6 +187,98 @@ static void search_set_make(engine *e, search_set *s)
 
 static void search_set_free(search_set *s) { free(s->idx), free(s->xb), free(s->rb); }
 
+/* A thread's run of the search: the pairs (i, j) it found, in order, as
+ * ij[2 q], ij[2 q + 1]; where they go in the list; and the set's entry a
+ * with too many neighbours (SIZE_MAX: none). */
+enum { CONTACTS_CAP = 4096 };
+typedef struct {
+	int32_t *ij;
+	size_t n, cap, first, a;
+} found_pairs;
+
+static void found_add(found_pairs *f, int32_t i, int32_t j)
+{
+	if (f->n == f->cap) {
+		f->cap = f->cap ? 2 * f->cap : 1024;
+		f->ij = xrealloc(f->ij, 2 * f->cap * sizeof *f->ij);
+	}
+	f->ij[2 * f->n] = i;
+	f->ij[2 * f->n++ + 1] = j;
+}
+
+/* The pairs within reach of the set s (grid g) that a rank with the
+ * particles [p0, p1) lists, unbonded, those of its particles i and of
+ * earlier ranks' i with its own j: a run of the set's particles i for each
+ * of the step's threads (e->team runs, in order), each listing its pairs
+ * in pair order, so the runs one after the other are the pairs in pair
+ * order whatever the number of threads. */
+static found_pairs *search_pairs(const engine *e, const search_set *s, const cells *g, size_t p0,
+                                 size_t p1)
+{
+	size_t na = 0; /* the set's particles i: those before p1 */
+	while (na < s->n && (size_t)(s->idx ? s->idx[na] : (int32_t)na) < p1)
+		na++;
+	int team = e->team;
+	found_pairs *runs = xcalloc((size_t)team, sizeof *runs);
+	for (int t = 0; t < team; t++)
+		runs[t].a = SIZE_MAX;
+#pragma omp parallel num_threads(team)
+	{
+		int t = omp_get_thread_num(), nt = omp_get_num_threads();
+		found_pairs *run = &runs[t];
+		int32_t js[CONTACTS_CAP];
+		size_t a1 = na * (size_t)(t + 1) / (size_t)nt;
+		for (size_t a = na * (size_t)t / (size_t)nt; a < a1; a++) {
+			size_t i = s->idx ? (size_t)s->idx[a] : a;
+			int nj =
+			    cells_partners(g, s->x, s->r, a, 1, e->pairs.skin, js, CONTACTS_CAP);
+			if (nj < 0) { /* reported after the search */
+				run->a = a;
+				break;
+			}
+			for (int q = 0; q < nj; q++) {
+				int32_t j = s->idx ? s->idx[js[q]] : js[q];
+				if ((i >= p0 || ((size_t)j >= p0 && (size_t)j < p1)) &&
+				    !bonded(e, (int32_t)i, j))
+					found_add(run, (int32_t)i, j);
+			}
+		}
+	}
+	for (int t = 0; t < team; t++)
+		if (runs[t].a != SIZE_MAX) {
+			size_t a = runs[t].a, i = s->idx ? (size_t)s->idx[a] : a;
+			fatal("particle %d has more than %d neighbours within its reach: "
+			      "overlapping spheres?",
+			      e->p.orig[i], CONTACTS_CAP);
+		}
+	return runs;
+}
+
+/* The list L of the pairs of the runs (search_pairs, released), each run's
+ * records made on a thread of its own. */
+static void contacts_from(engine *e, pairlist *L, const pairlist *old, found_pairs *runs)
+{
+	int team = e->team;
+	size_t total = 0;
+	for (int t = 0; t < team; t++) {
+		runs[t].first = total;
+		total += runs[t].n;
+	}
+	reserve(e, L, total);
+	L->n = total;
+#pragma omp parallel for num_threads(team) schedule(static, 1)
+	for (int t = 0; t < team; t++) {
+		const found_pairs *run = &runs[t];
+		size_t o = run->n ? old_at(old, run->ij[0], run->ij[1]) : 0;
+		for (size_t q = 0; q < run->n; q++)
+			new_contact(e, &L->rec[run->first + q], old, &o, run->ij[2 * q],
+			            run->ij[2 * q + 1]);
+	}
+	for (int t = 0; t < team; t++)
+		free(runs[t].ij);
+	free(runs);
+}
+
 void contacts_rebuild(engine *e)
 {
 	particles *P = &e->p;
@@ -192,26 +299,7 @@ void contacts_rebuild(engine *e)
 	ranks_own(e, &p0, &p1);
 	cells *g = &e->pairs.grid;
 	cells_build(g, s.x, s.n, 2 * e->frame.r_max + e->pairs.skin);
-	enum { CAP = 4096 };
-	int32_t js[CAP];
-	size_t o = 0;
-	for (size_t a = 0; a < s.n; a++) {
-		size_t i = s.idx ? (size_t)s.idx[a] : a;
-		if (i >= p1)
-			break;
-		int nj = cells_partners(g, s.x, s.r, a, 1, e->pairs.skin, js, CAP);
-		if (nj < 0)
-			fatal(
-			    "particle %d has more than %d neighbours within its reach: overlapping "
-			    "spheres?",
-			    P->orig[i], CAP);
-		for (int q = 0; q < nj; q++) {
-			int32_t j = s.idx ? s.idx[js[q]] : js[q];
-			if ((i >= p0 || ((size_t)j >= p0 && (size_t)j < p1)) &&
-			    !bonded(e, (int32_t)i, j))
-				add_contact(e, L, old, &o, (int32_t)i, j);
-		}
-	}
+	contacts_from(e, L, old, search_pairs(e, &s, g, p0, p1));
 	search_set_free(&s);
 	pairlist_csr(L, p0, p1); /* the forces gathered by this rank's particles */
 	contacts_index_blocks(e);
