@@ -27,6 +27,21 @@
 /* Whether the pair (a, b) comes before (i, j) in pair order. */
 static int before(int32_t a, int32_t b, int32_t i, int32_t j) { return a < i || (a == i && b < j); }
 
+/* The first of the n records rec, sorted by (i, j), that does not come
+ * before (i, j). */
+static size_t first_not_before(const bond *rec, size_t n, int32_t i, int32_t j)
+{
+	size_t lo = 0;
+	for (size_t hi = n; lo < hi;) {
+		size_t mid = lo + (hi - lo) / 2;
+		if (before(rec[mid].i, rec[mid].j, i, j))
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	return lo;
+}
+
 /* Whether i < j are bonded: a binary search of this rank's bonds (those of
  * its particles i) or, for an earlier rank's i, of the incoming crossing
  * bonds (bonds.h), both sorted by (i, j). */
@@ -37,13 +52,7 @@ static int bonded(const engine *e, int32_t i, int32_t j)
 	size_t p0, p1, lo, hi;
 	ranks_own(e, &p0, &p1);
 	if ((size_t)i >= p0) {
-		for (lo = 0, hi = B->n; lo < hi;) {
-			size_t mid = lo + (hi - lo) / 2;
-			if (before(B->rec[mid].i, B->rec[mid].j, i, j))
-				lo = mid + 1;
-			else
-				hi = mid;
-		}
+		lo = first_not_before(B->rec, B->n, i, j);
 		return lo < B->n && B->rec[lo].i == i && B->rec[lo].j == j;
 	}
 	for (lo = S->cfirst[S->n], hi = S->ncross; lo < hi;) {
@@ -73,20 +82,6 @@ static void reserve(const engine *e, pairlist *l, size_t n)
 		l->off0 = p0;
 	}
 	l->cap = cap;
-}
-
-/* The first of the old list's pairs that does not come before (i, j). */
-static size_t old_at(const pairlist *old, int32_t i, int32_t j)
-{
-	size_t o = 0;
-	for (size_t hi = old->n; o < hi;) {
-		size_t mid = o + (hi - o) / 2;
-		if (before(old->rec[mid].i, old->rec[mid].j, i, j))
-			o = mid + 1;
-		else
-			hi = mid;
-	}
-	return o;
 }
 
 /* The contact (i, j) into c, with the shear history and start of the same
@@ -269,7 +264,7 @@ static void contacts_from(engine *e, pairlist *L, const pairlist *old, found_pai
 #pragma omp parallel for num_threads(team) schedule(static, 1)
 	for (int t = 0; t < team; t++) {
 		const found_pairs *run = &runs[t];
-		size_t o = run->n ? old_at(old, run->ij[0], run->ij[1]) : 0;
+		size_t o = run->n ? first_not_before(old->rec, old->n, run->ij[0], run->ij[1]) : 0;
 		for (size_t q = 0; q < run->n; q++)
 			new_contact(e, &L->rec[run->first + q], old, &o, run->ij[2 * q],
 			            run->ij[2 * q + 1]);
