@@ -216,6 +216,17 @@ void bonds_init_history(engine *e)
 	e->clock.xi_max = xi;
 }
 
+void bonds_restore(engine *e)
+{
+	if (!e->law->restore)
+		return;
+	for (size_t b = 0; b < e->pairs.bonds.n; b++) {
+		bond *bd = &e->pairs.bonds.rec[b];
+		law_pair q = pair_of(&e->p, bd);
+		e->law->restore(e->lp, &q, bd);
+	}
+}
+
 /* A failure as a crack record, with the force the bond carried before it. */
 static void record_crack(engine *e, crack_buf *cb, size_t b, int mode, const batch_geom *g, int q)
 {

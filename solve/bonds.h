@@ -91,6 +91,9 @@ void bonds_search_free(bond_search *f);
  * of critical damping of any bond (Eq. 13) into e->clock.xi_max.
  * Collective. */
 void bonds_init_history(engine *e);
+/* What this rank's bonds keep of their pair's constants (law.restore),
+ * after a checkpoint gave their histories. */
+void bonds_restore(engine *e);
 /* Split the particles into shares for the step's threads (after the bonds
  * have formed; again later only with one rank). */
 void bonds_split(engine *e, int shares);

@@ -955,6 +955,7 @@ int checkpoint_read_file(engine *e, hid_t f)
 		             path);
 	free(all);
 	if (!rc) { /* what this rank keeps of the whole specimen's lists */
+		bonds_restore(e);
 		contacts_restore(e);
 		platens_restore(e);
 	}

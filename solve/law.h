@@ -126,6 +126,11 @@ typedef struct law {
 	void (*constants)(const law_params *p, const law_pair *pair, law_const *out);
 	/* Initialise the history of a new bond. */
 	void (*init)(const law_params *p, const law_pair *pair, bond *b);
+	/* Optional (NULL when the law has none): set again what init keeps in
+	 * the history that depends on the pair alone (a constant kept so that
+	 * a step need not compute it), after a checkpoint gave the rest: a
+	 * checkpoint of an earlier version may not hold it. */
+	void (*restore)(const law_params *p, const law_pair *pair, bond *b);
 	/* Forces for this step's kinematics; updates b->t, b->h and b->state. */
 	void (*force)(const law_params *p, const law_pair *pair, bond *b, const law_kin *k,
 	              law_out *out);

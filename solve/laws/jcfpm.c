@@ -32,10 +32,10 @@
  * No contact damping (Yade uses its global damping only): C_n = 0.
  *
  * History: h[0] the shift of the reference distance from d (m), h[1] 1
- * while a broken pair has ended (Yade's conventions), h[2] unused; t the
- * elastic shear
- * displacement, F_s = k_s t. A JCFPM bond is intact or broken, never
- * damaged.
+ * while a broken pair has ended (Yade's conventions), h[2] k_n (Eq. 4.4),
+ * the bond's constant, kept so that a step need not divide for it (init,
+ * and restore after a checkpoint); t the elastic shear displacement,
+ * F_s = k_s t. A JCFPM bond is intact or broken, never damaged.
  */
 #include <stdlib.h>
 
@@ -90,15 +90,11 @@ static double jcfpm_range(const law_params *lp) { return ((const jcfpm_params *)
 
 static void jcfpm_setup(law_params *p, const law_packing *pk) { (void)p, (void)pk; }
 
-static inline double stiffness_of_radii(const jcfpm_params *p, double ri, double rj)
-{
-	double a = p->E * ri, b = p->E * rj;
-	return 2 * a * b / (a + b);
-}
-
+/* k_n (Eq. 4.4). */
 static double stiffness(const jcfpm_params *p, const law_pair *pair)
 {
-	return stiffness_of_radii(p, pair->ri, pair->rj);
+	double a = p->E * pair->ri, b = p->E * pair->rj;
+	return 2 * a * b / (a + b);
 }
 
 static void jcfpm_constants(const law_params *lp, const law_pair *pair, law_const *out)
@@ -109,6 +105,19 @@ static void jcfpm_constants(const law_params *lp, const law_pair *pair, law_cons
 	out->cn = 0;
 	out->area = area_of(1, pair);
 	out->rc = area_rc(pair);
+}
+
+/* The bond's k_n kept in h[2]. */
+static void jcfpm_restore(const law_params *lp, const law_pair *pair, bond *b)
+{
+	b->h[2] = stiffness((const jcfpm_params *)lp, pair);
+}
+
+/* A new bond: intact, at rest, its k_n kept. */
+static void jcfpm_init(const law_params *lp, const law_pair *pair, bond *b)
+{
+	shear_new_bond(lp, pair, b);
+	jcfpm_restore(lp, pair, b);
 }
 
 static void no_force(bond *b, law_out *out)
@@ -133,7 +142,7 @@ static inline void jcfpm_force(const law_params *lp, const law_pair *pair, bond 
                                const law_kin *k, law_out *out)
 {
 	const jcfpm_params *p = (const jcfpm_params *)lp;
-	double kn = stiffness(p, pair), ks = p->ks_over_kn * kn, A = area_of(1, pair);
+	double kn = b->h[2], ks = p->ks_over_kn * kn, A = area_of(1, pair);
 	double u = k->un - b->h[0];
 	int intact = b->state == BOND_INTACT;
 	out->failed = 0;
@@ -181,7 +190,7 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void jcfpm_batch(const law_par
 	int32_t elastic[LAW_LANES];
 	int n = B->n;
 	for (int q = 0; q < n; q++) {
-		double kn = stiffness_of_radii(p, B->ri[q], B->rj[q]), ks = p->ks_over_kn * kn,
+		double kn = B->h[2][q], ks = p->ks_over_kn * kn,
 		       A = area_of_radii(1, B->ri[q], B->rj[q]);
 		double u = B->un[q] - B->h[0][q];
 		double t0 = B->t[0][q] + B->dus[0][q], t1 = B->t[1][q] + B->dus[1][q],
@@ -219,8 +228,7 @@ jcfpm_pairs_loop(const jcfpm_params *restrict p, LAW_PAIRS_PARAMS, law_fused *re
 		pair_motion k = law_pairs_motion(x, v, w, r, b, dt);
 		double h[LAW_NHIST] = {b->h[0], b->h[1], b->h[2]};
 		double ri = r[b->i], rj = r[b->j];
-		double kn = stiffness_of_radii(p, ri, rj), ks = p->ks_over_kn * kn,
-		       A = area_of_radii(1, ri, rj);
+		double kn = h[2], ks = p->ks_over_kn * kn, A = area_of_radii(1, ri, rj);
 		double u = k.un - h[0];
 		double t[3] = {k.t[0] + k.dus[0], k.t[1] + k.dus[1], k.t[2] + k.dus[2]};
 		double fn = kn * u;
@@ -265,7 +273,8 @@ const law law_jcfpm = {
     .bond_range = jcfpm_range,
     .setup = jcfpm_setup,
     .constants = jcfpm_constants,
-    .init = shear_new_bond,
+    .init = jcfpm_init,
+    .restore = jcfpm_restore,
     .force = jcfpm_force,
     .force_batch = jcfpm_batch,
     .force_pairs = jcfpm_pairs,
