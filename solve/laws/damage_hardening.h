@@ -39,7 +39,8 @@
  *
  * History layout shared by both laws (bond.h):
  *   h[0]  d_n, tension damage in [0, 1]
- *   h[1]  d_s, shear damage in [0, 1]
+ *   h[1]  d_s, shear damage in [0, 1] (exponential: C_n, its d_s being
+ *         the state's)
  *   h[2]  c_max, the largest compressive strain reached (>= 0)
  * c_p is recomputed from c_max, so the plastic state costs one slot.
  */
@@ -192,7 +193,7 @@ static inline double dh_normal_energy(const dh_params *q, dh_curve curve, const 
 	return 0.5 * area * d0 * s * s / e;
 }
 
-/* law.damage of both laws. */
+/* law.damage of onate. */
 static inline void dh_damage(const law_params *p, const bond *b, double *dn, double *ds)
 {
 	(void)p;

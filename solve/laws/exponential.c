@@ -27,8 +27,11 @@
  * c A + F_n tan(phi_i), F_n compressive positive, and ruptures beyond it;
  * broken bonds (in either mode) are purely frictional, F_n tan(phi_c).
  *
- * History as in damage_hardening.h: h[0] d_n, h[1] d_s (0, or 1 once broken in
- * shear), h[2] historical maximum compressive strain.
+ * History as in damage_hardening.h but for h[1]: h[0] d_n, h[1] C_n, the
+ * bond's constant, kept so that a step need not compute it (init, and
+ * restore after a checkpoint: those written before hold d_s there, 0 or 1,
+ * which the state also says), h[2] historical maximum compressive strain.
+ * d_s is 1 once broken in shear, else 0.
  */
 #include <stdlib.h>
 
@@ -93,6 +96,21 @@ static double exp_curve(const void *law, double c, double *cp)
 	return s;
 }
 
+/* The bond's C_n (Eq. 30), with k_n as exp_force computes it, kept in h[1]. */
+static void exp_restore(const law_params *lp, const law_pair *pair, bond *b)
+{
+	const exp_params *p = (const exp_params *)lp;
+	double A = area_of(1, pair), kn = A * p->q.E0 * (1 / pair->d0);
+	b->h[1] = dh_cn(&p->q, pair, A, kn);
+}
+
+/* A new bond: intact, at rest, its C_n kept. */
+static void exp_init(const law_params *lp, const law_pair *pair, bond *b)
+{
+	shear_new_bond(lp, pair, b);
+	exp_restore(lp, pair, b);
+}
+
 static void exp_constants(const law_params *lp, const law_pair *pair, law_const *out)
 {
 	const exp_params *p = (const exp_params *)lp;
@@ -120,7 +138,6 @@ static inline void exp_force(const law_params *lp, const law_pair *pair, bond *b
 		shear_break(b, out, BOND_BROKEN_TENSION, CRACK_TENSION);
 	} else if (shear_mohr_coulomb(b->t, k->dus, ks, -fn, p->cohesion * A, p->tan_i, p->tan_c,
 	                              intact, out)) {
-		b->h[1] = 1;
 		b->state = BOND_BROKEN_SHEAR;
 		out->failed = CRACK_SHEAR;
 		if (fn > 0) { /* the tension spring goes with the bond */
@@ -132,7 +149,7 @@ static inline void exp_force(const law_params *lp, const law_pair *pair, bond *b
 	v3_scale(out->fs, b->t, ks);
 	out->fn_viscous = 0;
 	if (b->state < BOND_BROKEN_TENSION || fn < 0)
-		out->fn_viscous = dh_cn(&p->q, pair, A, kn) * k->vn;
+		out->fn_viscous = b->h[1] * k->vn;
 	out->fn = fn + out->fn_viscous;
 }
 
@@ -148,6 +165,7 @@ LAW_BATCH(exp, exp_force)
 DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
 exp_pairs_loop(const exp_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
+	(void)m;
 	int32_t state[LAW_LANES];
 	law_pairs_states(rec, idx, n, state);
 	o->history = 1;
@@ -156,10 +174,8 @@ exp_pairs_loop(const exp_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restri
 		const bond *b = &rec[idx[q]];
 		pair_motion k = law_pairs_motion(x, v, w, r, b, dt);
 		double h[LAW_NHIST] = {b->h[0], b->h[1], b->h[2]};
-		law_pair pair = {
-		    .ri = r[b->i], .rj = r[b->j], .mi = m[b->i], .mj = m[b->j], .d0 = b->d0};
 		/* normal: dh_normal on the curve's first part */
-		double inv_d = 1 / pair.d0, A = area_of_radii(1, pair.ri, pair.rj),
+		double inv_d = 1 / b->d0, A = area_of_radii(1, r[b->i], r[b->j]),
 		       kn = A * p->q.E0 * inv_d;
 		double ks = kn * p->ks_over_kn;
 		double e;
@@ -172,7 +188,7 @@ exp_pairs_loop(const exp_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restri
 		       f = ks * sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
 		int32_t ok = elastic & (state[q] < BOND_BROKEN_TENSION) & (f <= limit);
 		double fs[3] = {t[0] * ks, t[1] * ks, t[2] * ks};
-		double fv = dh_cn(&p->q, &pair, A, kn) * k.vn;
+		double fv = h[1] * k.vn;
 		int32_t st = h[0] > 0 ? BOND_DAMAGED : BOND_INTACT;
 		law_fused_put(o, q, ok, &k, fn + fv, fv, fs, dt, t, h, st);
 		count += ok;
@@ -194,6 +210,13 @@ static double exp_energy(const law_params *lp, const law_pair *pair, const bond 
 	       0.5 * ks * v3_dot(b->t, b->t);
 }
 
+static void exp_damage(const law_params *p, const bond *b, double *dn, double *ds)
+{
+	(void)p;
+	*dn = b->h[0];
+	*ds = b->state == BOND_BROKEN_SHEAR;
+}
+
 const law law_exponential = {
     .name = "exponential",
     .summary = "Tran, Donzé & Marin 2011 high-confinement law: exponential compaction "
@@ -204,11 +227,12 @@ const law law_exponential = {
     .bond_range = exp_range,
     .setup = exp_setup,
     .constants = exp_constants,
-    .init = shear_new_bond,
+    .init = exp_init,
+    .restore = exp_restore,
     .force = exp_force,
     .force_batch = exp_batch,
     .force_pairs = exp_pairs,
     .energy = exp_energy,
-    .damage = dh_damage,
+    .damage = exp_damage,
     .h_dropped = 3,
 };

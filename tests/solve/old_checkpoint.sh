@@ -1,26 +1,43 @@
 #!/bin/sh
-# A checkpoint written before the jcfpm law kept each bond's k_n in its
-# history (h[2] then 0: data/jcfpm-before-kn.h5, the case below interrupted
-# at step 800) continues to the end as this build runs the whole case, bit
-# for bit: the law sets k_n again after reading it (law.restore).
-# Usage: old_checkpoint.sh BIN_DIR TMP_DIR
+# Checkpoints written before the laws kept a constant of each bond in a
+# history slot (jcfpm: k_n in h[2], 0 before; exponential: C_n in h[1],
+# which held d_s) continue to the end as this build runs the whole case,
+# bit for bit: the law sets the constant again after reading them
+# (law.restore). data/old-LAW.h5: the case below, made with the build before
+# and interrupted at step STOP.
+# Usage: old_checkpoint.sh BIN_DIR TMP_DIR [--make OLD_BIN_DIR]  (--make: write
+# the data files with that build instead)
 set -eu
-bin=$1 tmp=$2
-here=$(dirname "$0")
+bin=$1 tmp=$2 make=
+[ "${3:-}" = --make ] && make=$4
+here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$tmp"
 mkdir -p "$tmp"
 cd "$tmp"
 "$bin/lattice-assembly" --spheres 150 a.h5 > /dev/null
-cat > case.json <<'JSON'
+
+# continues LAW RATE STOP MATERIAL_KEYS
+continues() {
+	cat > "$1.json" <<JSON
 {"assembly": "a.h5",
- "material": {"name": "m", "law": "jcfpm", "density": 2500, "E": 17e9, "ks_ratio": 0.15,
-              "tensile_strength": 3e6, "cohesion": 9e6, "friction_angle_deg": 34.25,
-              "interaction_range": 1.4},
- "loading": [{"axial": {"mode": "strain_rate", "rate": 20}}],
- "output": {"history_every": 100},
+ "material": {"name": "m", "law": "$1", "density": 2500, $4},
+ "loading": [{"axial": {"mode": "strain_rate", "rate": $2}}],
+ "output": {"history_every": 100, "snapshot_every": 1000},
  "stop": {"steps": 3000}}
 JSON
-"$bin/solve" --quiet --threads 1 --output whole.h5 case.json
-cp "$here/data/jcfpm-before-kn.h5" old.h5
-"$bin/solve" --quiet --restart old.h5
-/usr/bin/python3 "$here/same_run.py" whole.h5 old.h5
+	if [ -n "$make" ]; then
+		"$make/solve" --quiet --threads 1 --max-steps "$3" --output "$here/data/old-$1.h5" \
+			"$1.json" || [ $? -eq 3 ]
+		return
+	fi
+	"$bin/solve" --quiet --threads 1 --output "whole-$1.h5" "$1.json"
+	cp "$here/data/old-$1.h5" "old-$1.h5"
+	"$bin/solve" --quiet --restart "old-$1.h5"
+	/usr/bin/python3 "$here/same_run.py" "whole-$1.h5" "old-$1.h5"
+}
+
+continues jcfpm 20 800 '"E": 17e9, "ks_ratio": 0.15, "tensile_strength": 3e6,
+ "cohesion": 9e6, "friction_angle_deg": 34.25, "interaction_range": 1.4'
+continues exponential 60 1200 '"E0": 28e9, "nu": 0.2, "tensile_strength": 10e6,
+ "delta_n": 0.2, "cohesion": 13e6, "friction_angle_deg": 30,
+ "contact_friction_angle_deg": 30, "interaction_range": 1.1, "xi": 0.9'
