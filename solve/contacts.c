@@ -70,7 +70,7 @@ static void reserve(const engine *e, pairlist *l, size_t n)
 {
 	if (n <= l->cap && l->off)
 		return;
-	size_t cap = l->cap > n ? l->cap : n + n / 4 + 64; /* a quarter to grow into */
+	size_t cap = l->cap > n ? l->cap : n + n / 8 + 64; /* an eighth to grow into */
 	l->rec = xrealloc(l->rec, cap * sizeof *l->rec);
 	l->fcols = 6;
 	l->f = xrealloc(l->f, 6 * cap * sizeof *l->f);
