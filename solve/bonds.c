@@ -174,8 +174,7 @@ static void bonds_keep(engine *e, size_t p0, size_t p1, size_t b0, size_t b1)
 	L->n = L->cap = b1 - b0;
 	L->rec = xcalloc(L->n + 1, sizeof *L->rec);
 	each_bond(e, p0, p1, keep_one, &(keep_ctx){&e->p, L->rec, b0});
-	L->fcols = 3;
-	L->f = xcalloc(3 * L->n + 1, sizeof *L->f);
+	L->fb = xcalloc(3 * L->n + 1, sizeof *L->fb);
 	e->pairs.bond0 = b0;
 	bonds_search_free(f);
 }
@@ -238,7 +237,7 @@ static void record_crack(engine *e, crack_buf *cb, size_t b, int mode, const bat
 	}
 	const bond *bd = &e->pairs.bonds.rec[b];
 	const particles *P = &e->p;
-	const double *f = e->pairs.bonds.f + 3 * b;
+	const float *f = e->pairs.bonds.fb + 3 * b;
 	b += e->pairs.bond0; /* its place in the whole specimen's bond order */
 	double fn = f[0] * n[0] + f[1] * n[1] + f[2] * n[2];
 	double fs[3] = {f[0] - fn * n[0], f[1] - fn * n[1], f[2] - fn * n[2]};
@@ -388,13 +387,14 @@ static inline void add_to_j(engine *e, int32_t j, const double f[6])
 	acc_add(engine_acc(e, (size_t)j), -f[0], -f[1], -f[2], rj * f[3], rj * f[4], rj * f[5]);
 }
 
-/* Bond b's force f on i kept (L->f), and its force and torque added to
+/* Bond b's force f on i kept (L->fb), and its force and torque added to
  * particle i and, when both, to j. */
 static inline void bond_add_force(engine *e, size_t b, const double f[6], int both)
 {
 	pairlist *L = &e->pairs.bonds;
 	const bond *bd = &L->rec[b];
-	memcpy(L->f + 3 * b, f, 3 * sizeof *f);
+	for (int c = 0; c < 3; c++)
+		L->fb[3 * b + c] = (float)f[c];
 	double ri = e->p.r[bd->i];
 	acc_add(engine_acc(e, (size_t)bd->i), f[0], f[1], f[2], ri * f[3], ri * f[4], ri * f[5]);
 	if (both)

@@ -87,13 +87,15 @@ static int scalars(engine *e, size_t count[3], scalar *s)
 	return n;
 }
 
-/* The bonds' histories and forces as checkpoints before this layout held
- * them (bond_h with a fourth column, the last u_n, and bond_force with the
- * torque per unit radius), read for their checksum. */
+/* The bonds' histories and forces as a checkpoint held them, read for its
+ * checksum: one of an older layout (bond_h with a fourth column, the last
+ * u_n, and bond_force with the torque per unit radius), or only the forces
+ * of this layout, in the double precision of the file, where the bonds
+ * keep them in single precision (pairlist.fb). */
 enum { OLD_NHIST = 4, OLD_FCOLS = 6 };
 typedef struct {
-	double *h; /* [B][OLD_NHIST] */
-	double *f; /* [B][OLD_FCOLS] */
+	double *h; /* [B][OLD_NHIST], or NULL: this layout */
+	double *f; /* [B][OLD_FCOLS], or with this layout [B][3] */
 } old_bonds;
 
 /* Whether contacts follow Yade's conventions (laws/material.h): they then
@@ -161,11 +163,26 @@ static void add_array(crc_parts *p, const void *data, size_t n, size_t bytes, in
 	add_records(p, data, n, bytes, 0, bytes, team);
 }
 
+/* add() of the n floats from f as doubles (the values a checkpoint holds),
+ * in pieces as add_records. */
+static void add_widened(crc_parts *p, const float *f, size_t n)
+{
+	double buf[CRC_PIECE / sizeof(double)];
+	for (size_t k0 = 0; k0 < n; k0 += CRC_PIECE / sizeof(double)) {
+		size_t m =
+		    n - k0 < CRC_PIECE / sizeof(double) ? n - k0 : CRC_PIECE / sizeof(double);
+		for (size_t k = 0; k < m; k++)
+			buf[k] = f[k0 + k];
+		add(p, buf, m * sizeof *buf);
+	}
+}
+
 /* Bonds (contacts 0) or contacts: the records' histories and states (ends,
  * their indices in the whole specimen, and histories), then the forces
  * (the constants, and with Yade's conventions the starts); three
- * segments. old: when not NULL, the bonds' h and f as an old checkpoint
- * held them. */
+ * segments. old: when not NULL, the bonds' h and f as a checkpoint held
+ * them (old_bonds); else the forces the bonds keep, as a checkpoint holds
+ * them. */
 _Static_assert(offsetof(bond, h) == offsetof(bond, t) + 3 * sizeof(double) &&
                    offsetof(bond, state) == offsetof(bond, h) + LAW_NHIST * sizeof(double),
                "bond: t, h and state follow each other, as a bond's checksum takes them");
@@ -180,7 +197,7 @@ static void pairs_crc(crc_parts *p, const particles *P, const pairlist *l, int c
 			add(p, ends, sizeof ends);
 			add(p, r->t, sizeof r->t);
 		}
-	} else if (old) {
+	} else if (old && old->h) {
 		for (size_t b = 0; b < l->n; b++) {
 			const bond *r = &l->rec[b];
 			add(p, r->t, sizeof r->t);
@@ -200,9 +217,9 @@ static void pairs_crc(crc_parts *p, const particles *P, const pairlist *l, int c
 			add_records(p, l->rec, l->n, sizeof *l->rec, offsetof(bond, d0),
 			            sizeof(double), team);
 	} else if (old) {
-		add(p, old->f, OLD_FCOLS * l->n * sizeof *old->f);
+		add(p, old->f, (old->h ? OLD_FCOLS : 3) * l->n * sizeof *old->f);
 	} else {
-		add_array(p, l->f, (size_t)l->fcols * l->n, sizeof *l->f, team);
+		add_widened(p, l->fb, 3 * l->n);
 	}
 	p->k++;
 }
@@ -417,6 +434,14 @@ static void from_array(void *ctx, size_t k0, size_t m, void *buf)
 	memcpy(buf, (const unsigned char *)a->base + k0 * a->row, m * a->row);
 }
 
+/* Rows of three floats (ctx) as doubles. */
+static void from_floats(void *ctx, size_t k0, size_t m, void *buf)
+{
+	const float *f = (const float *)ctx + 3 * k0;
+	for (size_t k = 0; k < 3 * m; k++)
+		((double *)buf)[k] = f[k];
+}
+
 typedef struct {
 	const field *f;
 	const bond *rec;
@@ -543,7 +568,8 @@ int checkpoint_write(engine *e, hid_t file)
 	     put(g, "surface_area", H5T_NATIVE_DOUBLE, e->bc.surf.area, e->bc.surf.n, 0);
 	for (int k = 0; k < 3; k++)
 		rc = rc || put_field_rows(e, g, &bond_fields[k], v.bonds);
-	rc = rc || put_array(e, g, "bond_force", H5T_NATIVE_DOUBLE, 3, v.bonds->f, v.bonds->n);
+	rc = rc || put_rows(e, g, "bond_force", H5T_NATIVE_DOUBLE, 3, v.bonds->n, from_floats,
+	                    v.bonds->fb);
 	for (int k = 0; k < 4; k++)
 		rc = rc || put_field_rows(e, g, &contact_fields[k], v.contacts);
 	if (yade_contacts(e))
@@ -602,28 +628,36 @@ static size_t columns(hid_t g, const char *name)
 	return nd == 2 ? (size_t)dims[1] : 0;
 }
 
-/* The bonds' histories (bond_h) and forces on i (bond_force). An older
- * checkpoint's (*is_old set; its arrays kept in *old for the checksum)
- * holds a fourth history column, the last u_n, in the slot the law names
+/* The bonds' histories (bond_h) and forces on i (bond_force), and in *old
+ * as the file held them, for the checksum: this rank's rows of the forces,
+ * or an older checkpoint's arrays whole (*is_old set). That holds a fourth
+ * history column, the last u_n, in the slot the law names
  * (law.h_dropped), and the torque per unit radius after each force. */
 static int read_bond_h_f(hid_t g, const engine *e, size_t first, size_t rows, size_t nb,
                          old_bonds *old, int *is_old)
 {
 	const pairlist *L = &e->pairs.bonds;
 	*is_old = columns(g, "bond_h") == OLD_NHIST;
-	if (!*is_old)
-		return get_field(g, &bond_fields[1], L->rec, first, rows, nb) ||
-		       get_rows(g, "bond_force", H5T_NATIVE_DOUBLE, L->f, first, rows, nb, 3);
-	if (h5_read_n(g, "bond_h", H5T_NATIVE_DOUBLE, (void **)&old->h, nb, OLD_NHIST) ||
-	    h5_read_n(g, "bond_force", H5T_NATIVE_DOUBLE, (void **)&old->f, nb, OLD_FCOLS))
-		return -1;
-	for (size_t r = 0; r < rows; r++) {
-		size_t b = first + r;
-		for (int c = 0, k = 0; c < OLD_NHIST; c++)
-			if (c != e->law->h_dropped)
-				L->rec[r].h[k++] = old->h[OLD_NHIST * b + (size_t)c];
-		memcpy(L->f + 3 * r, old->f + OLD_FCOLS * b, 3 * sizeof *L->f);
+	if (*is_old) {
+		if (h5_read_n(g, "bond_h", H5T_NATIVE_DOUBLE, (void **)&old->h, nb, OLD_NHIST) ||
+		    h5_read_n(g, "bond_force", H5T_NATIVE_DOUBLE, (void **)&old->f, nb, OLD_FCOLS))
+			return -1;
+		for (size_t r = 0; r < rows; r++)
+			for (int c = 0, k = 0; c < OLD_NHIST; c++)
+				if (c != e->law->h_dropped)
+					L->rec[r].h[k++] =
+					    old->h[OLD_NHIST * (first + r) + (size_t)c];
+	} else {
+		old->f = xmalloc((3 * rows + 1) * sizeof *old->f);
+		if (get_field(g, &bond_fields[1], L->rec, first, rows, nb) ||
+		    get_rows(g, "bond_force", H5T_NATIVE_DOUBLE, old->f, first, rows, nb, 3))
+			return -1;
 	}
+	size_t fcols = *is_old ? OLD_FCOLS : 3;
+	const double *f = *is_old ? old->f + OLD_FCOLS * first : old->f;
+	for (size_t r = 0; r < rows; r++)
+		for (size_t c = 0; c < 3; c++)
+			L->fb[3 * r + c] = (float)f[fcols * r + c];
 	return 0;
 }
 
@@ -939,12 +973,12 @@ int checkpoint_read_file(engine *e, hid_t f)
 	v.contacts = &contacts;
 	if (!head)
 		v.ncand[0] = v.ncand[1] = 0;
-	old_bonds own_old = {NULL, NULL};
+	old_bonds own_old = old;
 	if (is_old)
 		own_old = (old_bonds){old.h + OLD_NHIST * first, old.f + OLD_FCOLS * first};
 	crc_parts mine, *all = head ? xmalloc((size_t)par_size() * sizeof *all) : NULL;
 	if (!rc) {
-		crc_of(e, &v, p0, p1, count, head, is_old ? &own_old : NULL, &mine);
+		crc_of(e, &v, p0, p1, count, head, &own_old, &mine);
 		gather_parts(&mine, all);
 	}
 	int64_t sum = 0;

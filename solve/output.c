@@ -83,8 +83,8 @@ static void snapshot_rows(void *ctx, int f, size_t at, size_t m, void *buf)
 			c->e->law->damage(c->e->lp, bd, &dn, &ds);
 			dv[k] = f == SNAP_DAMAGE_N ? dn : ds;
 		} else {
-			const double *fo = B->f + 3 * (at + k), *xi = P->x + 3 * bd->i,
-			             *xj = P->x + 3 * bd->j;
+			const float *fo = B->fb + 3 * (at + k);
+			const double *xi = P->x + 3 * bd->i, *xj = P->x + 3 * bd->j;
 			double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
 			double l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 			double fn = (fo[0] * d[0] + fo[1] * d[1] + fo[2] * d[2]) / l;

@@ -7,7 +7,7 @@
 
 void pairlist_free(pairlist *l)
 {
-	free(l->rec), free(l->f), free(l->ref);
+	free(l->rec), free(l->f), free(l->fb), free(l->ref);
 	window_array_free(l->off, l->off0, sizeof *l->off);
 	memset(l, 0, sizeof *l);
 }

@@ -17,11 +17,14 @@
 typedef struct {
 	size_t n, cap;
 	bond *rec; /* a contact keeps its K_n, K_s, C_n in h[0..2] */
-	double *f; /* [n][fcols]: force on i (N); contacts (fcols 6) then the
-	              torque per unit radius (N): the torque on i is r_i times
-	              it, on j r_j times it. Bonds keep the force only (fcols
-	              3): their torques are added as they are computed. */
+	double *f; /* contacts: [n][fcols = 6] force on i (N) then the torque
+	              per unit radius (N): the torque on i is r_i times it, on
+	              j r_j times it. NULL for the bonds. */
 	int fcols;
+	float *fb;    /* bonds: [n][3] force on i (N) of the last step, for the
+	                 output only (snapshots, crack records, checkpoints, the
+	                 diagnosis), so single precision: each bond adds its force
+	                 and torque to its particles as it is computed (bonds.h). */
 	int32_t *off; /* [off0, own1 + 1]: this rank's particles' (contacts
 	                 only: bonds add their forces as they are computed,
 	                 bonds.h); its memory starts at off0 */

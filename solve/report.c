@@ -28,9 +28,9 @@ size_t engine_bytes(const engine *e)
 	               (p1 - p0) * 9 * sizeof(double);
 	const bond_split *S = &e->pairs.split;
 	bytes += S->cfirst ? S->cfirst[S->n] * (sizeof(int32_t) + sizeof(bond_part)) : 0;
-	/* bonds: record, force; contacts: record (with the constants), force,
-	 * gather index */
-	bytes += e->pairs.bonds.cap * (sizeof(bond) + 3 * sizeof(double));
+	/* bonds: record, force (single precision); contacts: record (with the
+	 * constants), force, gather index */
+	bytes += e->pairs.bonds.cap * (sizeof(bond) + 3 * sizeof(float));
 	bytes += e->pairs.contacts.cap * (sizeof(bond) + 6 * sizeof(double) + 2 * sizeof(int32_t)) +
 	         (p1 - p0 + 1) * sizeof(int32_t);
 	for (int k = 0; k < 2; k++)

@@ -57,8 +57,8 @@ int main(void)
 		CHECK(same(one.p.x, e->p.x, 3 * n * sizeof *one.p.x));
 		CHECK(same(one.p.v, e->p.v, 3 * n * sizeof *one.p.v));
 		CHECK(same(one.p.w, e->p.w, 3 * n * sizeof *one.p.w));
-		CHECK(
-		    same(one.pairs.bonds.f, e->pairs.bonds.f, 3 * nb * sizeof *one.pairs.bonds.f));
+		CHECK(same(one.pairs.bonds.fb, e->pairs.bonds.fb,
+		           3 * nb * sizeof *one.pairs.bonds.fb));
 		int records = 1;
 		for (size_t b = 0; b < nb; b++) {
 			const bond *p = &one.pairs.bonds.rec[b], *q = &e->pairs.bonds.rec[b];
