@@ -142,6 +142,7 @@ static inline void batch_history_load(const bond *restrict rec, const int32_t *r
 		const bond *b = &rec[idx[q]];
 		for (int c = 0; c < LAW_NHIST; c++)
 			B->h[c][q] = b->h[c];
+		B->k[q] = b->k;
 		B->state[q] = b->state;
 	}
 }

@@ -37,10 +37,14 @@
 
 enum { LAW_NHIST = 3 };
 
-/* One bond (or contact) as the engine stores it: 72 bytes. */
+/* One bond (or contact) as the engine stores it: 80 bytes. */
 typedef struct {
-	int32_t i, j;        /* particle indices */
-	double d0;           /* m, reference length: centre distance at bonding */
+	int32_t i, j; /* particle indices */
+	double d0;    /* m, reference length: centre distance at bonding */
+	/* A constant of the bond that the law keeps so that a step need not
+	 * compute it (law-defined, set by init and restore; 0 when the law
+	 * keeps none). Not history: checkpoints do not hold it. */
+	double k;
 	double t[3];         /* tangential history (law-defined), contact plane */
 	double h[LAW_NHIST]; /* law-defined history: damage, plastic state, ... */
 	uint8_t state;       /* BOND_INTACT, BOND_DAMAGED, BOND_BROKEN_* (lib/states.h) */
@@ -97,6 +101,7 @@ typedef struct {
 	double ri[LAW_LANES], rj[LAW_LANES], mi[LAW_LANES], mj[LAW_LANES], d0[LAW_LANES];
 	double un[LAW_LANES], vn[LAW_LANES], dus[3][LAW_LANES];
 	double t[3][LAW_LANES], h[LAW_NHIST][LAW_LANES];
+	double k[LAW_LANES];      /* bond.k, read only */
 	int32_t state[LAW_LANES]; /* lib/states.h */
 	double fn[LAW_LANES], fs[3][LAW_LANES], fn_viscous[LAW_LANES];
 	double e_damage[LAW_LANES], e_friction[LAW_LANES];
@@ -126,10 +131,10 @@ typedef struct law {
 	void (*constants)(const law_params *p, const law_pair *pair, law_const *out);
 	/* Initialise the history of a new bond. */
 	void (*init)(const law_params *p, const law_pair *pair, bond *b);
-	/* Optional (NULL when the law has none): set again what init keeps in
-	 * the history that depends on the pair alone (a constant kept so that
-	 * a step need not compute it), after a checkpoint gave the rest: a
-	 * checkpoint of an earlier version may not hold it. */
+	/* Optional (NULL when the law has none): set again what init keeps
+	 * that depends on the pair alone (bond.k, or a constant kept in the
+	 * history), after a checkpoint gave the rest: a checkpoint does not
+	 * hold bond.k, and one of an earlier version may not hold the other. */
 	void (*restore)(const law_params *p, const law_pair *pair, bond *b);
 	/* Forces for this step's kinematics; updates b->t, b->h and b->state. */
 	void (*force)(const law_params *p, const law_pair *pair, bond *b, const law_kin *k,
@@ -166,7 +171,7 @@ static inline law_kin law_lane_kin(const law_batch *B, int q)
 }
 static inline bond law_lane_bond(const law_batch *B, int q)
 {
-	bond b = {.d0 = B->d0[q], .state = B->state[q]};
+	bond b = {.d0 = B->d0[q], .k = B->k[q], .state = B->state[q]};
 	for (int c = 0; c < 3; c++)
 		b.t[c] = B->t[c][q];
 	for (int c = 0; c < LAW_NHIST; c++)

@@ -41,7 +41,8 @@
  * History: h[0] d_n, h[1] d_s, h[2] historical maximum compressive strain,
  * (damage_hardening.h); t the accumulated shear displacement u_s while
  * bonded, the elastic shear displacement of the frictional contact after.
- * A bond is BOND_DAMAGED once d_n or d_s > 0.
+ * A bond is BOND_DAMAGED once d_n or d_s > 0. The bond's constant k is its
+ * C_n (Eq. 30), so a step does not take its square root and divisions.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -162,6 +163,22 @@ static void onate_constants(const law_params *lp, const law_pair *pair, law_cons
 	out->rc = area_rc(pair);
 }
 
+/* law.init and law.restore: the bond's C_n (Eq. 30) into k, with the
+ * expressions onate_force used to compute it in every step (so the same
+ * bits). */
+static void onate_restore(const law_params *lp, const law_pair *pair, bond *b)
+{
+	const onate_params *p = (const onate_params *)lp;
+	double A = area_of(p->area.alpha, pair), kn = A * p->q.E0 * (1 / pair->d0);
+	b->k = dh_cn(&p->q, pair, A, kn);
+}
+
+static void onate_init(const law_params *lp, const law_pair *pair, bond *b)
+{
+	shear_new_bond(lp, pair, b);
+	onate_restore(lp, pair, b);
+}
+
 static inline void onate_force(const law_params *lp, const law_pair *pair, bond *b,
                                const law_kin *k, law_out *out)
 {
@@ -208,7 +225,7 @@ static inline void onate_force(const law_params *lp, const law_pair *pair, bond 
 	v3_scale(out->fs, b->t, ks * ss);
 	out->fn_viscous = 0;
 	if (b->state < BOND_BROKEN_TENSION || fnc > 0)
-		out->fn_viscous = dh_cn(&p->q, pair, A, kn) * k->vn;
+		out->fn_viscous = b->k * k->vn;
 	out->fn = fn + out->fn_viscous;
 }
 
@@ -237,8 +254,7 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void onate_batch(const law_par
 		B->h[2][q] = h2;
 	}
 	for (int q = 0; q < n; q++) { /* shear, viscous force */
-		law_pair pair = law_lane_pair(B, q);
-		double A = area[q], kn = A * p->q.E0 * (1 / pair.d0), ks = kn * p->ks_over_kn;
+		double A = area[q], kn = A * p->q.E0 * (1 / B->d0[q]), ks = kn * p->ks_over_kn;
 		double fn = fnq[q], fnc = fn < 0 ? -fn : 0, e = open[q];
 		double t0 = B->t[0][q] + B->dus[0][q], t1 = B->t[1][q] + B->dus[1][q],
 		       t2 = B->t[2][q] + B->dus[2][q];
@@ -254,7 +270,7 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void onate_batch(const law_par
 		B->fs[0][q] = t0 * ss;
 		B->fs[1][q] = t1 * ss;
 		B->fs[2][q] = t2 * ss;
-		double fv = dh_cn(&p->q, &pair, A, kn) * B->vn[q];
+		double fv = B->k[q] * B->vn[q];
 		B->fn_viscous[q] = fv;
 		B->fn[q] = fn + fv;
 		B->t[0][q] = ok ? t0 : B->t[0][q];
@@ -277,6 +293,7 @@ static inline __attribute__((always_inline)) int
 onate_pairs_body(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o, int curve)
 {
 	int32_t state[LAW_LANES];
+	(void)m;
 	law_pairs_states(rec, idx, n, state);
 	o->history = 1;
 	o->damage = curve;
@@ -284,11 +301,9 @@ onate_pairs_body(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *re
 	for (int q = 0; q < n; q++) {
 		const bond *b = &rec[idx[q]];
 		pair_motion k = law_pairs_motion(x, v, w, r, b, dt);
-		double h[LAW_NHIST] = {b->h[0], b->h[1], b->h[2]};
-		law_pair pair = {
-		    .ri = r[b->i], .rj = r[b->j], .mi = m[b->i], .mj = m[b->j], .d0 = b->d0};
+		double h[LAW_NHIST] = {b->h[0], b->h[1], b->h[2]}, d0 = b->d0;
 		/* normal: dh_normal */
-		double A = area_of_radii(p->area.alpha, pair.ri, pair.rj), inv_d = 1 / pair.d0;
+		double A = area_of_radii(p->area.alpha, r[b->i], r[b->j]), inv_d = 1 / d0;
 		double c = -(k.un * inv_d), e, fn;
 		int32_t elastic;
 		if (curve) {
@@ -296,12 +311,12 @@ onate_pairs_body(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *re
 			double s = onate_curve_sel(p, c, &cp), s0 = onate_curve_sel(p, h[2], &cp0);
 			fn = A * dh_normal_curve(&p->q, c, s, cp, s0, cp0, h[0], &h[2], &e, &w,
 			                         &elastic);
-			o->e_damage[q] = 0.0 + A * pair.d0 * w;
+			o->e_damage[q] = 0.0 + A * d0 * w;
 		} else {
 			fn = A * dh_normal_first(&p->q, p->eps[0], c, h[0], &h[2], &e, &elastic);
 		}
 		/* shear, viscous force */
-		double kn = A * p->q.E0 * (1 / pair.d0), ks = kn * p->ks_over_kn;
+		double kn = A * p->q.E0 * (1 / d0), ks = kn * p->ks_over_kn;
 		double fnc = fn < 0 ? -fn : 0;
 		double t[3] = {k.t[0] + k.dus[0], k.t[1] + k.dus[1], k.t[2] + k.dus[2]};
 		double strength = p->tau * A + p->mu1 * fnc;
@@ -312,7 +327,7 @@ onate_pairs_body(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *re
 		int32_t ok = elastic & (state[q] < BOND_BROKEN_TENSION) & !(ks * us > strength);
 		double ss = ks * dh_secant(h1, p->delta_s);
 		double fs[3] = {t[0] * ss, t[1] * ss, t[2] * ss};
-		double fv = dh_cn(&p->q, &pair, A, kn) * k.vn;
+		double fv = b->k * k.vn;
 		int32_t st = (h[0] > 0) | (h[1] > 0) ? BOND_DAMAGED : BOND_INTACT;
 		law_fused_put(o, q, ok, &k, fn + fv, fv, fs, dt, t, h, st);
 		count += ok;
@@ -366,7 +381,8 @@ const law law_onate = {
     .bond_range = onate_range,
     .setup = onate_setup,
     .constants = onate_constants,
-    .init = shear_new_bond,
+    .init = onate_init,
+    .restore = onate_restore,
     .force = onate_force,
     .force_batch = onate_batch,
     .force_pairs = onate_pairs,

@@ -50,6 +50,7 @@ int main(void)
 				l->t[c][k] = b[q].t[c];
 			for (int c = 0; c < LAW_NHIST; c++)
 				l->h[c][k] = b[q].h[c];
+			l->k[k] = b[q].k;
 			l->state[k] = b[q].state;
 		}
 		double t0 = timer_now(), work = 0;

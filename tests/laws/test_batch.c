@@ -50,8 +50,8 @@ static int same_out(const law_out *a, const law_out *b)
 static int same_bond(const bond *a, const bond *b)
 {
 	return a->i == b->i && a->j == b->j && memcmp(&a->d0, &b->d0, sizeof a->d0) == 0 &&
-	       memcmp(a->t, b->t, sizeof a->t) == 0 && memcmp(a->h, b->h, sizeof a->h) == 0 &&
-	       a->state == b->state;
+	       memcmp(&a->k, &b->k, sizeof a->k) == 0 && memcmp(a->t, b->t, sizeof a->t) == 0 &&
+	       memcmp(a->h, b->h, sizeof a->h) == 0 && a->state == b->state;
 }
 
 /* One bond into lane q of a batch, and back (every field of the lane). */
@@ -70,6 +70,7 @@ static void to_lane(law_batch *B, int q, const law_pair *pr, const bond *b, cons
 	}
 	for (int c = 0; c < LAW_NHIST; c++)
 		B->h[c][q] = b->h[c];
+	B->k[q] = b->k;
 	B->state[q] = b->state;
 }
 

@@ -63,7 +63,7 @@ int main(void)
 		for (size_t b = 0; b < nb; b++) {
 			const bond *p = &one.pairs.bonds.rec[b], *q = &e->pairs.bonds.rec[b];
 			records &= same(p->t, q->t, sizeof p->t) && same(p->h, q->h, sizeof p->h) &&
-			           p->state == q->state;
+			           same(&p->k, &q->k, sizeof p->k) && p->state == q->state;
 		}
 		CHECK(records);
 		CHECK(same(&one.sums.bonds, &e->sums.bonds, sizeof one.sums.bonds));
