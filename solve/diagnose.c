@@ -15,8 +15,12 @@
 static int finite_pair(const pairlist *L, size_t b)
 {
 	double s = 0;
-	for (int c = 0; c < (L->fb ? 3 : L->fcols); c++)
-		s += L->fb ? L->fb[3 * b + (size_t)c] : L->f[(size_t)L->fcols * b + (size_t)c];
+	if (L->fb) /* the bonds' (pairlist.h) */
+		for (size_t c = 0; c < 3; c++)
+			s += L->fb[3 * b + c];
+	else
+		for (int c = 0; c < L->fcols; c++)
+			s += L->f[(size_t)L->fcols * b + (size_t)c];
 	return isfinite(s);
 }
 
