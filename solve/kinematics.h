@@ -185,7 +185,7 @@ static inline void batch_force(const law_batch *B, const batch_geom *g, int q, d
  * them: the bonds rec[idx[0..n)], the particles' arrays (engine.h), the
  * time step. */
 struct law_pairs {
-	const double *x, *v, *w, *r, *m;
+	const double *x, *v, *w, *r;
 	const bond *rec;
 	const int32_t *idx;
 	int n;
@@ -212,12 +212,12 @@ struct law_fused {
 /* The parameters of a law's force_pairs loop (a function with restrict
  * pointers, so the compiler knows the outputs alias none of the inputs and
  * can vectorise it), and the law_pairs *in that fills them. */
-#define LAW_PAIRS_PARAMS                                                                  \
-	const double *restrict x, const double *restrict v, const double *restrict w,     \
-	    const double *restrict r, const double *restrict m, const bond *restrict rec, \
-	    const int32_t *restrict idx, int n, double dt
+#define LAW_PAIRS_PARAMS                                                                     \
+	const double *restrict x, const double *restrict v, const double *restrict w,        \
+	    const double *restrict r, const bond *restrict rec, const int32_t *restrict idx, \
+	    int n, double dt
 #define LAW_PAIRS_ARGS(in) \
-	(in)->x, (in)->v, (in)->w, (in)->r, (in)->m, (in)->rec, (in)->idx, (in)->n, (in)->dt
+	(in)->x, (in)->v, (in)->w, (in)->r, (in)->rec, (in)->idx, (in)->n, (in)->dt
 
 /* The motion of the pair of bond b (pair_motion_of). */
 static inline pair_motion law_pairs_motion(const double *restrict x, const double *restrict v,

@@ -165,7 +165,6 @@ LAW_BATCH(exp, exp_force)
 DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
 exp_pairs_loop(const exp_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
-	(void)m;
 	int32_t state[LAW_LANES];
 	law_pairs_states(rec, idx, n, state);
 	o->history = 1;

@@ -218,7 +218,6 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void jcfpm_batch(const law_par
 DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
 jcfpm_pairs_loop(const jcfpm_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
-	(void)m;
 	int32_t state[LAW_LANES];
 	law_pairs_states(rec, idx, n, state);
 	o->history = 0;

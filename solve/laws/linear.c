@@ -197,7 +197,6 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void linear_batch(const law_pa
 DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
 linear_pairs_loop(const law_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
-	(void)m;
 	double alpha = p->area.alpha, tau = p->tau, mu1 = p->mu1, sigma_t = p->sigma_t;
 	int32_t state[LAW_LANES];
 	law_pairs_states(rec, idx, n, state);

@@ -293,7 +293,6 @@ static inline __attribute__((always_inline)) int
 onate_pairs_body(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o, int curve)
 {
 	int32_t state[LAW_LANES];
-	(void)m;
 	law_pairs_states(rec, idx, n, state);
 	o->history = 1;
 	o->damage = curve;
@@ -338,13 +337,13 @@ onate_pairs_body(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *re
 DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
 onate_pairs_first(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
-	return onate_pairs_body(p, x, v, w, r, m, rec, idx, n, dt, o, 0);
+	return onate_pairs_body(p, x, v, w, r, rec, idx, n, dt, o, 0);
 }
 
 DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
 onate_pairs_curve(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
-	return onate_pairs_body(p, x, v, w, r, m, rec, idx, n, dt, o, 1);
+	return onate_pairs_body(p, x, v, w, r, rec, idx, n, dt, o, 1);
 }
 
 /* The whole curve where a bond of the batch has been compressed past its

@@ -235,7 +235,6 @@ static void run_pairs(const char *name, const char *json)
 			                .v = v,
 			                .w = w,
 			                .r = r,
-			                .m = m,
 			                .rec = fused,
 			                .idx = ix,
 			                .n = nq,
