@@ -95,7 +95,8 @@ static int scalars(engine *e, size_t count[3], scalar *s)
 enum { OLD_NHIST = 4, OLD_FCOLS = 6 };
 typedef struct {
 	double *h; /* [B][OLD_NHIST], or NULL: this layout */
-	double *f; /* [B][OLD_FCOLS], or with this layout [B][3] */
+	double *f; /* [B][OLD_FCOLS], or with this layout [rows][3]: this
+	              rank's bonds' */
 } old_bonds;
 
 /* Whether contacts follow Yade's conventions (laws/material.h): they then
