@@ -164,17 +164,25 @@ static void add_array(crc_parts *p, const void *data, size_t n, size_t bytes, in
 	add_records(p, data, n, bytes, 0, bytes, team);
 }
 
-/* add() of the n floats from f as doubles (the values a checkpoint holds),
- * in pieces as add_records. */
-static void add_widened(crc_parts *p, const float *f, size_t n)
+/* Rows [k0, k0 + m) of three floats (ctx) as doubles, into buf: the values
+ * a checkpoint holds of the bonds' forces (a ranks_fill, ranks.h). */
+static void from_floats(void *ctx, size_t k0, size_t m, void *buf)
 {
-	double buf[CRC_PIECE / sizeof(double)];
-	for (size_t k0 = 0; k0 < n; k0 += CRC_PIECE / sizeof(double)) {
-		size_t m =
-		    n - k0 < CRC_PIECE / sizeof(double) ? n - k0 : CRC_PIECE / sizeof(double);
-		for (size_t k = 0; k < m; k++)
-			buf[k] = f[k0 + k];
-		add(p, buf, m * sizeof *buf);
+	const float *f = (const float *)ctx + 3 * k0;
+	for (size_t k = 0; k < 3 * m; k++)
+		((double *)buf)[k] = f[k];
+}
+
+/* add() of the rows of three floats from f as the checkpoint holds them
+ * (from_floats), a piece at a time. */
+static void add_widened(crc_parts *p, float *f, size_t rows)
+{
+	enum { ROWS = CRC_PIECE / (3 * sizeof(double)) };
+	double buf[3 * ROWS];
+	for (size_t r0 = 0; r0 < rows; r0 += ROWS) {
+		size_t m = rows - r0 < ROWS ? rows - r0 : ROWS;
+		from_floats(f, r0, m, buf);
+		add(p, buf, 3 * m * sizeof *buf);
 	}
 }
 
@@ -220,7 +228,7 @@ static void pairs_crc(crc_parts *p, const particles *P, const pairlist *l, int c
 	} else if (old) {
 		add(p, old->f, (old->h ? OLD_FCOLS : 3) * l->n * sizeof *old->f);
 	} else {
-		add_widened(p, l->fb, 3 * l->n);
+		add_widened(p, l->fb, l->n);
 	}
 	p->k++;
 }
@@ -435,14 +443,6 @@ static void from_array(void *ctx, size_t k0, size_t m, void *buf)
 	memcpy(buf, (const unsigned char *)a->base + k0 * a->row, m * a->row);
 }
 
-/* Rows of three floats (ctx) as doubles. */
-static void from_floats(void *ctx, size_t k0, size_t m, void *buf)
-{
-	const float *f = (const float *)ctx + 3 * k0;
-	for (size_t k = 0; k < 3 * m; k++)
-		((double *)buf)[k] = f[k];
-}
-
 typedef struct {
 	const field *f;
 	const bond *rec;
@@ -525,7 +525,7 @@ static void own_part(const engine *e, pairs_view *v, pairlist *contacts)
 	ranks_own_pairs(e, v);
 	const pairlist *C = &e->pairs.contacts;
 	size_t c0 = e->scratch.cfirst[e->ranks.blk0], c1 = e->scratch.cfirst[e->ranks.blk1];
-	*contacts = (pairlist){.n = c1 - c0, .rec = C->rec + c0, .f = C->f + 6 * c0, .fcols = 6};
+	*contacts = (pairlist){.n = c1 - c0, .rec = C->rec + c0, .f = C->f + 6 * c0};
 	v->contacts = contacts;
 }
 
@@ -743,7 +743,6 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 	}
 	L->f = xrealloc(L->f, 6 * (L->cap + 1) * sizeof *L->f);
 	L->ref = xrealloc(L->ref, 2 * (L->cap + 1) * sizeof *L->ref);
-	L->fcols = 6;
 	memset(L->f, 0, 6 * L->n * sizeof *L->f);
 	return 0;
 }
@@ -969,8 +968,7 @@ int checkpoint_read_file(engine *e, hid_t f)
 	size_t c0 = 0;
 	while (c0 < C->n && (size_t)C->rec[c0].i < p0)
 		c0++;
-	pairlist contacts = {
-	    .n = C->n - c0, .rec = C->rec + c0, .f = C->f + 6 * c0, .fcols = C->fcols};
+	pairlist contacts = {.n = C->n - c0, .rec = C->rec + c0, .f = C->f + 6 * c0};
 	v.contacts = &contacts;
 	if (!head)
 		v.ncand[0] = v.ncand[1] = 0;

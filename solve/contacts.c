@@ -72,7 +72,6 @@ static void reserve(const engine *e, pairlist *l, size_t n)
 		return;
 	size_t cap = l->cap > n ? l->cap : n + n / 8 + 64; /* an eighth to grow into */
 	l->rec = xrealloc(l->rec, cap * sizeof *l->rec);
-	l->fcols = 6;
 	l->f = xrealloc(l->f, 6 * cap * sizeof *l->f);
 	l->ref = xrealloc(l->ref, 2 * cap * sizeof *l->ref);
 	if (!l->off) {

@@ -19,8 +19,8 @@ static int finite_pair(const pairlist *L, size_t b)
 		for (size_t c = 0; c < 3; c++)
 			s += L->fb[3 * b + c];
 	else
-		for (int c = 0; c < L->fcols; c++)
-			s += L->f[(size_t)L->fcols * b + (size_t)c];
+		for (size_t c = 0; c < 6; c++)
+			s += L->f[6 * b + c];
 	return isfinite(s);
 }
 

@@ -16,11 +16,10 @@
 
 typedef struct {
 	size_t n, cap;
-	bond *rec; /* a contact keeps its K_n, K_s, C_n in h[0..2] */
-	double *f; /* contacts: [n][fcols = 6] force on i (N) then the torque
-	              per unit radius (N): the torque on i is r_i times it, on
-	              j r_j times it. NULL for the bonds. */
-	int fcols;
+	bond *rec;    /* a contact keeps its K_n, K_s, C_n in h[0..2] */
+	double *f;    /* contacts: [n][6] force on i (N) then the torque per unit
+	                 radius (N): the torque on i is r_i times it, on j r_j
+	                 times it. NULL for the bonds. */
 	float *fb;    /* bonds: [n][3] force on i (N) of the last step, for the
 	                 output only (snapshots, crack records, checkpoints, the
 	                 diagnosis), so single precision: each bond adds its force

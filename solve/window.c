@@ -150,8 +150,7 @@ static size_t renumber_pairs(pairlist *L, const int32_t *map)
 		L->rec[m].i = i;
 		L->rec[m].j = j;
 		if (m != c)
-			memcpy(L->f + (size_t)L->fcols * m, L->f + (size_t)L->fcols * c,
-			       (size_t)L->fcols * sizeof *L->f);
+			memcpy(L->f + 6 * m, L->f + 6 * c, 6 * sizeof *L->f);
 		m++;
 	}
 	size_t dropped = L->n - m;
