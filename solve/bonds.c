@@ -291,13 +291,30 @@ DEM_VECTOR_CLONES static void bonds_staged(engine *e, const int32_t *idx, int nq
 	}
 }
 
+/* Lane q of force_pairs' output, on the law's elastic branch: the new
+ * history of its bond b, t and, when history is set (o->history, or 0
+ * where the caller knows it is not), h and the state. */
+static inline void fused_history(bond *b, const law_fused *o, int q, int history)
+{
+	for (int c = 0; c < 3; c++)
+		b->t[c] = o->t[c][q];
+	if (history) {
+		for (int c = 0; c < LAW_NHIST; c++)
+			b->h[c] = o->h[c][q];
+		b->state = (uint8_t)o->state[q];
+	}
+}
+
 /* The nq bonds idx[0..nq) through the law's force_pairs (kinematics.h):
  * the lanes on its elastic branch (o->elastic[q]) from its one loop, their
- * records updated; the others as bonds_staged computes them, into
- * part[q]. Returns the count of elastic lanes. Inlined, so the vector
- * versions of its callers (clones.h) run their own copy of it. */
-static inline __attribute__((always_inline)) int
-bonds_fused(engine *e, const int32_t *idx, int nq, crack_buf *cb, law_fused *o, bond_part *part)
+ * records updated (unless keep is set and every lane is elastic: the
+ * caller then updates them, fused_history); the others as bonds_staged
+ * computes them, into part[q]. Returns the count of elastic lanes.
+ * Inlined, so the vector versions of its callers (clones.h) run their own
+ * copy of it. */
+static inline __attribute__((always_inline)) int bonds_fused(engine *e, const int32_t *idx, int nq,
+                                                             int keep, crack_buf *cb, law_fused *o,
+                                                             bond_part *part)
 {
 	const particles *P = &e->p;
 	bond *rec = e->pairs.bonds.rec;
@@ -311,6 +328,8 @@ bonds_fused(engine *e, const int32_t *idx, int nq, crack_buf *cb, law_fused *o, 
 	                .dt = e->clock.dt};
 	o->damage = 0;
 	int elastic = e->law->force_pairs(e->lp, &in, o);
+	if (keep && elastic == nq)
+		return elastic;
 	int32_t rest[BATCH] = {0}, lane[BATCH];
 	int nr = 0;
 	for (int q = 0; q < nq; q++) {
@@ -319,14 +338,7 @@ bonds_fused(engine *e, const int32_t *idx, int nq, crack_buf *cb, law_fused *o, 
 			lane[nr++] = q;
 			continue;
 		}
-		bond *b = &rec[idx[q]];
-		for (int c = 0; c < 3; c++)
-			b->t[c] = o->t[c][q];
-		if (o->history) {
-			for (int c = 0; c < LAW_NHIST; c++)
-				b->h[c] = o->h[c][q];
-			b->state = (uint8_t)o->state[q];
-		}
+		fused_history(&rec[idx[q]], o, q, o->history);
 	}
 	if (elastic == nq)
 		return elastic;
@@ -350,7 +362,7 @@ static void bonds_compute(engine *e, const int32_t *idx, int nq, int measure, cr
 		return;
 	}
 	law_fused o;
-	bonds_fused(e, idx, nq, cb, &o, part);
+	bonds_fused(e, idx, nq, 0, cb, &o, part);
 	for (int q = 0; q < nq; q++)
 		if (o.elastic[q]) {
 			bond_part *d = &part[q];
@@ -364,18 +376,18 @@ static void bonds_compute(engine *e, const int32_t *idx, int nq, int measure, cr
 
 /* Six doubles added to a particle's sums a (force, torque per unit radius)
  * as three vectors of two (which any x86-64 has), built in registers: the
- * same additions, each sum's in the same order, in fewer instructions. */
-typedef double acc_v2 __attribute__((vector_size(16)));
+ * same additions, each sum's in the same order, in fewer instructions.
+ * Read and written as vectors of doubles, not with memcpy, whose stores
+ * might alias anything and would make the compiler read the engine's
+ * pointers again after each. */
+typedef double acc_v2 __attribute__((vector_size(16), aligned(8)));
 static inline void acc_add(double *a, double d0, double d1, double d2, double d3, double d4,
                            double d5)
 {
 	acc_v2 d[3] = {{d0, d1}, {d2, d3}, {d4, d5}};
-	for (int k = 0; k < 3; k++) {
-		acc_v2 x;
-		memcpy(&x, a + 2 * k, sizeof x);
-		x += d[k];
-		memcpy(a + 2 * k, &x, sizeof x);
-	}
+	acc_v2 *x = (acc_v2 *)a;
+	for (int k = 0; k < 3; k++)
+		x[k] += d[k];
 }
 
 /* The force of a bond (i, j) on j (-f) and its torque per unit radius added
@@ -419,16 +431,33 @@ static inline void bond_add(engine *e, size_t b, const bond_part *o, int measure
 /* The same for lane q of force_pairs' output, a bond of the share: it
  * dissipates nothing but its viscous energy and any plastic work (adding
  * the zeros would leave the sums as they are: started at +0, a sum is
- * never -0). */
-static inline void bond_add_fused(engine *e, size_t b, const law_fused *o, int q, pair_sums *s)
+ * never -0), which damage says o holds (o->damage, or 0 where the caller
+ * knows it does not). */
+static inline void bond_add_fused(engine *e, size_t b, const law_fused *o, int q, pair_sums *s,
+                                  int damage)
 {
-	if (o->damage)
+	if (damage)
 		s->e_damage += o->e_damage[q];
 	s->e_viscous += o->e_viscous[q];
 	double f[6];
 	for (int c = 0; c < 6; c++)
 		f[c] = o->f[c][q];
 	bond_add_force(e, b, f, 1);
+}
+
+/* The bonds b0 + q of lanes q < nq of force_pairs' output, all on the
+ * law's elastic branch: each record updated and each bond added.
+ * full: whether o's history and plastic work may be set (else only t and
+ * the viscous energy are); a constant in each inlined copy, so that the
+ * loop tests neither. */
+static inline __attribute__((always_inline)) void
+bonds_add_elastic(engine *e, size_t b0, const law_fused *o, int nq, pair_sums *s, int full)
+{
+	for (int q = 0; q < nq; q++) {
+		size_t b = b0 + (size_t)q;
+		fused_history(&e->pairs.bonds.rec[b], o, q, full && o->history);
+		bond_add_fused(e, b, o, q, s, full && o->damage);
+	}
 }
 
 DEM_VECTOR_CLONES void bonds_cross(engine *e, int k, int measure)
@@ -493,17 +522,25 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 			bond_part part[BATCH];
 			int nq = 0;
 			bonds_prefetch(e, b0);
-			for (size_t b = b0; b < b1; b++)
-				if ((size_t)rec[b].j < p1)
+			/* The share's crossing bonds are its slots, in bond
+			 * order: none before b1, none in the batch. */
+			int own = slot == S->cfirst[k + 1] || (size_t)S->cross[slot] >= b1;
+			if (own)
+				for (size_t b = b0; b < b1; b++)
 					idx[nq++] = (int32_t)b;
+			else
+				for (size_t b = b0; b < b1; b++)
+					if ((size_t)rec[b].j < p1)
+						idx[nq++] = (int32_t)b;
 			/* A batch that was largely off the law's elastic branch
 			 * (broken, damaging, flowing bonds, whose lanes are
 			 * computed twice: by force_pairs, then staged) goes the
 			 * staged way for STAGED_STEPS steps, then tries again. */
 			int fused = fused_law && !S->staged[b0];
 			law_fused o;
+			int elastic = 0;
 			if (fused) {
-				int elastic = bonds_fused(e, idx, nq, cb, &o, part);
+				elastic = bonds_fused(e, idx, nq, own, cb, &o, part);
 				if (4 * elastic < 3 * nq)
 					S->staged[b0] = STAGED_STEPS;
 			} else {
@@ -511,12 +548,21 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 				if (fused_law)
 					S->staged[b0]--;
 			}
+			if (fused && own && elastic == nq) {
+				/* The whole batch is the share's own and on the
+				 * law's elastic branch: no lane to tell apart. */
+				if (o.history || o.damage)
+					bonds_add_elastic(e, b0, &o, nq, s, 1);
+				else
+					bonds_add_elastic(e, b0, &o, nq, s, 0);
+				continue;
+			}
 			int q = 0;
 			for (size_t b = b0; b < b1; b++) {
 				if ((size_t)rec[b].j >= p1)
 					bond_add(e, b, &S->part[slot++], measure, s, 0);
 				else if (fused && o.elastic[q])
-					bond_add_fused(e, b, &o, q++, s);
+					bond_add_fused(e, b, &o, q++, s, o.damage);
 				else
 					bond_add(e, b, &part[q++], measure, s, 1);
 			}
