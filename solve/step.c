@@ -262,8 +262,9 @@ typedef struct {
 /* move_free (DAMPING_VECTOR) and advance with ext fl->ext for the nf particles
  * fl->i[0..nf) of forces fl->F, fl->T, with their expressions, in a loop
  * the compiler can vectorise (the division of damp computed whatever the
- * speed, its result used only where it is positive, as damp uses it). XR
- * holds the positions at the last rebuild from particle xr0 on. */
+ * speed, its result chosen by law_sel only where the speed is positive, as
+ * damp uses it: with ?: the AVX2 version kept a branch and stayed scalar).
+ * XR holds the positions at the last rebuild from particle xr0 on. */
 DEM_VECTOR_CLONES __attribute__((noinline)) static void
 integrate_free(const double *restrict X, const double *restrict V, const double *restrict W,
                const double *restrict R, const double *restrict M, const double *restrict XR,
@@ -284,9 +285,9 @@ integrate_free(const double *restrict X, const double *restrict V, const double 
 		double mass = M[i], ri = R[i];
 		double im = 1 / mass, ii = 1 / (0.4 * mass * ri * ri);
 		double fa = sqrt(dot3(F, F)), va = sqrt(dot3(v, v));
-		double cfv = -alpha_t * fa / va, cf = va > 0 ? cfv : 0;
+		double cfv = -alpha_t * fa / va, cf = law_sel(va > 0, cfv, 0);
 		double ta = sqrt(dot3(T, T)), wa = sqrt(dot3(w, w));
-		double ctv = -alpha_r * ta / wa, ct = wa > 0 ? ctv : 0;
+		double ctv = -alpha_r * ta / wa, ct = law_sel(wa > 0, ctv, 0);
 		double fd[3], td[3], vn[3], wn[3];
 		for (int c = 0; c < 3; c++) {
 			fd[c] = cf * v[c];
