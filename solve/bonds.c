@@ -522,8 +522,9 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 			bond_part part[BATCH];
 			int nq = 0;
 			bonds_prefetch(e, b0);
-			/* The share's crossing bonds are its slots, in bond
-			 * order: none before b1, none in the batch. */
+			/* Whether the batch holds none of the share's crossing
+			 * bonds: they are its slots, in bond order, so the next
+			 * slot's bond says it. */
 			int own = slot == S->cfirst[k + 1] || (size_t)S->cross[slot] >= b1;
 			if (own)
 				for (size_t b = b0; b < b1; b++)
