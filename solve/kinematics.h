@@ -183,7 +183,9 @@ static inline void batch_force(const law_batch *B, const batch_geom *g, int q, d
 
 /* A batch of bonds with the particles they join, as law.force_pairs reads
  * them: the bonds rec[idx[0..n)], the particles' arrays (engine.h), the
- * time step. */
+ * time step. Each of x, v and w has one item (three doubles) more than
+ * the particles it holds, as the engine's windows do (window.c):
+ * law_pairs_load reads a particle's three values as four. */
 struct law_pairs {
 	const double *x, *v, *w, *r;
 	const bond *rec;
@@ -191,6 +193,27 @@ struct law_pairs {
 	int n;
 	double dt;
 };
+
+/* A batch's inputs lane by lane (law_pairs_load), as force_pairs' loops
+ * read them: dx = x_j - x_i, dv = v_j - v_i, the spins, the radii, and the
+ * bonds' fields from d0 to h (the record's order, bond in law.h). */
+typedef struct {
+	double dx[3][LAW_LANES], dv[3][LAW_LANES], wi[3][LAW_LANES], wj[3][LAW_LANES];
+	double ri[LAW_LANES], rj[LAW_LANES];
+	double d0[LAW_LANES], k[LAW_LANES], t[3][LAW_LANES], h[LAW_NHIST][LAW_LANES];
+	int32_t state[LAW_LANES];
+} law_lanes;
+
+/* The inputs of the batch in into L. With AVX2 each group of four lanes
+ * reads a particle's three values and a record's eight as vectors and
+ * transposes them, instead of one gather instruction for each value of
+ * each lane (about 30 a bond), which the compiler would emit for a loop
+ * over the lanes. The values are only moved, and dx, dv subtracted as the
+ * scalar loop does, so they are the same to the bit on every CPU. */
+void law_pairs_load(const law_pairs *restrict in, law_lanes *restrict L);
+/* Its lanes q0 <= q < in->n one value at a time: law_pairs_load without
+ * AVX2, and for the lanes after the last group of four. */
+void law_pairs_load_lanes(const law_pairs *restrict in, law_lanes *restrict L, int q0);
 
 /* What law.force_pairs gives for each lane q that stays on the law's
  * elastic branch (elastic[q] != 0; nothing for the others): the force on i
@@ -211,38 +234,21 @@ struct law_fused {
 
 /* The parameters of a law's force_pairs loop (a function with restrict
  * pointers, so the compiler knows the outputs alias none of the inputs and
- * can vectorise it), and the law_pairs *in that fills them. */
-#define LAW_PAIRS_PARAMS                                                                     \
-	const double *restrict x, const double *restrict v, const double *restrict w,        \
-	    const double *restrict r, const bond *restrict rec, const int32_t *restrict idx, \
-	    int n, double dt
-#define LAW_PAIRS_ARGS(in) \
-	(in)->x, (in)->v, (in)->w, (in)->r, (in)->rec, (in)->idx, (in)->n, (in)->dt
+ * can vectorise it): the batch's lanes, their count, the time step. */
+#define LAW_PAIRS_PARAMS const law_lanes *restrict L, int n, double dt
 
-/* The motion of the pair of bond b (pair_motion_of). */
-static inline pair_motion law_pairs_motion(const double *restrict x, const double *restrict v,
-                                           const double *restrict w, const double *restrict r,
-                                           const bond *restrict b, double dt)
+/* The motion of the pair of lane q (pair_motion_of). */
+static inline pair_motion law_lanes_motion(const law_lanes *restrict L, int q, double dt)
 {
-	int32_t i = b->i, j = b->j;
 	double dx[3], dv[3], wi[3], wj[3], t[3];
 	for (int c = 0; c < 3; c++) {
-		t[c] = b->t[c];
-		dx[c] = x[3 * j + c] - x[3 * i + c];
-		dv[c] = v[3 * j + c] - v[3 * i + c];
-		wi[c] = w[3 * i + c];
-		wj[c] = w[3 * j + c];
+		dx[c] = L->dx[c][q];
+		dv[c] = L->dv[c][q];
+		wi[c] = L->wi[c][q];
+		wj[c] = L->wj[c][q];
+		t[c] = L->t[c][q];
 	}
-	return pair_motion_of(dx, dv, wi, wj, r[i], r[j], b->d0, t, dt);
-}
-
-/* The states of the bonds rec[idx[0..n)] as 32-bit lanes, read one by one
- * (there is no vector gather of bytes). */
-static inline void law_pairs_states(const bond *restrict rec, const int32_t *restrict idx, int n,
-                                    int32_t state[LAW_LANES])
-{
-	for (int q = 0; q < n; q++)
-		state[q] = rec[idx[q]].state;
+	return pair_motion_of(dx, dv, wi, wj, L->ri[q], L->rj[q], L->d0[q], t, dt);
 }
 
 /* Lane q of a law_fused from the law's forces fn (its viscous part fv) and

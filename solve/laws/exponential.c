@@ -165,16 +165,13 @@ LAW_BATCH(exp, exp_force)
 DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
 exp_pairs_loop(const exp_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
-	int32_t state[LAW_LANES];
-	law_pairs_states(rec, idx, n, state);
 	o->history = 1;
 	int count = 0;
 	for (int q = 0; q < n; q++) {
-		const bond *b = &rec[idx[q]];
-		pair_motion k = law_pairs_motion(x, v, w, r, b, dt);
-		double h[LAW_NHIST] = {b->h[0], b->h[1], b->h[2]};
+		pair_motion k = law_lanes_motion(L, q, dt);
+		double h[LAW_NHIST] = {L->h[0][q], L->h[1][q], L->h[2][q]};
 		/* normal: dh_normal on the curve's first part */
-		double inv_d = 1 / b->d0, A = area_of_radii(1, r[b->i], r[b->j]),
+		double inv_d = 1 / L->d0[q], A = area_of_radii(1, L->ri[q], L->rj[q]),
 		       kn = A * p->q.E0 * inv_d;
 		double ks = kn * p->ks_over_kn;
 		double e;
@@ -185,7 +182,7 @@ exp_pairs_loop(const exp_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restri
 		double t[3] = {k.t[0] + k.dus[0], k.t[1] + k.dus[1], k.t[2] + k.dus[2]};
 		double limit = p->cohesion * A + -fn * p->tan_i,
 		       f = ks * sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-		int32_t ok = elastic & (state[q] < BOND_BROKEN_TENSION) & (f <= limit);
+		int32_t ok = elastic & (L->state[q] < BOND_BROKEN_TENSION) & (f <= limit);
 		double fs[3] = {t[0] * ks, t[1] * ks, t[2] * ks};
 		double fv = h[1] * k.vn;
 		int32_t st = h[0] > 0 ? BOND_DAMAGED : BOND_INTACT;
@@ -197,7 +194,9 @@ exp_pairs_loop(const exp_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restri
 
 static int exp_pairs(const law_params *p, const law_pairs *in, law_fused *o)
 {
-	return exp_pairs_loop((const exp_params *)p, LAW_PAIRS_ARGS(in), o);
+	law_lanes L;
+	law_pairs_load(in, &L);
+	return exp_pairs_loop((const exp_params *)p, &L, in->n, in->dt, o);
 }
 
 static double exp_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)

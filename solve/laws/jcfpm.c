@@ -218,24 +218,22 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void jcfpm_batch(const law_par
 DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
 jcfpm_pairs_loop(const jcfpm_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
-	int32_t state[LAW_LANES];
-	law_pairs_states(rec, idx, n, state);
 	o->history = 0;
 	int count = 0;
 	for (int q = 0; q < n; q++) {
-		const bond *b = &rec[idx[q]];
-		pair_motion k = law_pairs_motion(x, v, w, r, b, dt);
-		double h[LAW_NHIST] = {b->h[0], b->h[1], b->h[2]};
-		double ri = r[b->i], rj = r[b->j];
+		pair_motion k = law_lanes_motion(L, q, dt);
+		double h[LAW_NHIST] = {L->h[0][q], L->h[1][q], L->h[2][q]};
+		double ri = L->ri[q], rj = L->rj[q];
 		double kn = h[2], ks = p->ks_over_kn * kn, A = area_of_radii(1, ri, rj);
 		double u = k.un - h[0];
 		double t[3] = {k.t[0] + k.dus[0], k.t[1] + k.dus[1], k.t[2] + k.dus[2]};
 		double fn = kn * u;
 		double limit = p->cohesion * A + -fn * p->tan_b,
 		       f = ks * sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-		int32_t ok = (state[q] == BOND_INTACT) & !(u > p->sigma_t * A / kn) & (f <= limit);
+		int32_t ok =
+		    (L->state[q] == BOND_INTACT) & !(u > p->sigma_t * A / kn) & (f <= limit);
 		double fs[3] = {t[0] * ks, t[1] * ks, t[2] * ks};
-		law_fused_put(o, q, ok, &k, fn, 0, fs, dt, t, h, state[q]);
+		law_fused_put(o, q, ok, &k, fn, 0, fs, dt, t, h, L->state[q]);
 		count += ok;
 	}
 	return count;
@@ -243,7 +241,9 @@ jcfpm_pairs_loop(const jcfpm_params *restrict p, LAW_PAIRS_PARAMS, law_fused *re
 
 static int jcfpm_pairs(const law_params *p, const law_pairs *in, law_fused *o)
 {
-	return jcfpm_pairs_loop((const jcfpm_params *)p, LAW_PAIRS_ARGS(in), o);
+	law_lanes L;
+	law_pairs_load(in, &L);
+	return jcfpm_pairs_loop((const jcfpm_params *)p, &L, in->n, in->dt, o);
 }
 
 static double jcfpm_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)

@@ -198,25 +198,22 @@ DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
 linear_pairs_loop(const law_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
 	double alpha = p->area.alpha, tau = p->tau, mu1 = p->mu1, sigma_t = p->sigma_t;
-	int32_t state[LAW_LANES];
-	law_pairs_states(rec, idx, n, state);
 	o->history = 0;
 	int count = 0;
 	for (int q = 0; q < n; q++) {
-		const bond *b = &rec[idx[q]];
-		pair_motion k = law_pairs_motion(x, v, w, r, b, dt);
-		double h[LAW_NHIST] = {b->h[0], b->h[1], b->h[2]};
+		pair_motion k = law_lanes_motion(L, q, dt);
+		double h[LAW_NHIST] = {L->h[0][q], L->h[1][q], L->h[2][q]};
 		double kn = h[0], ks = h[1], cn = h[2], un = k.un;
 		double t[3] = {k.t[0] + k.dus[0], k.t[1] + k.dus[1], k.t[2] + k.dus[2]};
-		double area = area_of_radii(alpha, r[b->i], r[b->j]);
+		double area = area_of_radii(alpha, L->ri[q], L->rj[q]);
 		double fe = kn * un;
 		double fs[3] = {ks * t[0], ks * t[1], ks * t[2]};
 		double ff = fs[0] * fs[0] + fs[1] * fs[1] + fs[2] * fs[2];
 		double shear_limit = tau * area + mu1 * (fe < 0 ? -fe : 0);
-		int32_t ok = (state[q] < BOND_BROKEN_TENSION) & !(fe > sigma_t * area) &
+		int32_t ok = (L->state[q] < BOND_BROKEN_TENSION) & !(fe > sigma_t * area) &
 		             !(ff > shear_limit * shear_limit);
 		double fv = cn * k.vn;
-		law_fused_put(o, q, ok, &k, fe + fv, fv, fs, dt, t, h, state[q]);
+		law_fused_put(o, q, ok, &k, fe + fv, fv, fs, dt, t, h, L->state[q]);
 		count += ok;
 	}
 	return count;
@@ -225,7 +222,9 @@ linear_pairs_loop(const law_params *restrict p, LAW_PAIRS_PARAMS, law_fused *res
 DEM_VECTOR_CLONES __attribute__((flatten)) static int
 linear_pairs(const law_params *p, const law_pairs *in, law_fused *o)
 {
-	return linear_pairs_loop(p, LAW_PAIRS_ARGS(in), o);
+	law_lanes L;
+	law_pairs_load(in, &L);
+	return linear_pairs_loop(p, &L, in->n, in->dt, o);
 }
 
 static double linear_energy(const law_params *p, const law_pair *q, const bond *b, double un)

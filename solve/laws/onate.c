@@ -292,17 +292,14 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void onate_batch(const law_par
 static inline __attribute__((always_inline)) int
 onate_pairs_body(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o, int curve)
 {
-	int32_t state[LAW_LANES];
-	law_pairs_states(rec, idx, n, state);
 	o->history = 1;
 	o->damage = curve;
 	int count = 0;
 	for (int q = 0; q < n; q++) {
-		const bond *b = &rec[idx[q]];
-		pair_motion k = law_pairs_motion(x, v, w, r, b, dt);
-		double h[LAW_NHIST] = {b->h[0], b->h[1], b->h[2]}, d0 = b->d0;
+		pair_motion k = law_lanes_motion(L, q, dt);
+		double h[LAW_NHIST] = {L->h[0][q], L->h[1][q], L->h[2][q]}, d0 = L->d0[q];
 		/* normal: dh_normal */
-		double A = area_of_radii(p->area.alpha, r[b->i], r[b->j]), inv_d = 1 / d0;
+		double A = area_of_radii(p->area.alpha, L->ri[q], L->rj[q]), inv_d = 1 / d0;
 		double c = -(k.un * inv_d), e, fn;
 		int32_t elastic;
 		if (curve) {
@@ -323,10 +320,10 @@ onate_pairs_body(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *re
 		strength = ((p->coupled != 0) & (e > 0)) ? coupled : strength;
 		double us = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
 		double h1 = h[1];
-		int32_t ok = elastic & (state[q] < BOND_BROKEN_TENSION) & !(ks * us > strength);
+		int32_t ok = elastic & (L->state[q] < BOND_BROKEN_TENSION) & !(ks * us > strength);
 		double ss = ks * dh_secant(h1, p->delta_s);
 		double fs[3] = {t[0] * ss, t[1] * ss, t[2] * ss};
-		double fv = b->k * k.vn;
+		double fv = L->k[q] * k.vn;
 		int32_t st = (h[0] > 0) | (h[1] > 0) ? BOND_DAMAGED : BOND_INTACT;
 		law_fused_put(o, q, ok, &k, fn + fv, fv, fs, dt, t, h, st);
 		count += ok;
@@ -337,13 +334,13 @@ onate_pairs_body(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *re
 DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
 onate_pairs_first(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
-	return onate_pairs_body(p, x, v, w, r, rec, idx, n, dt, o, 0);
+	return onate_pairs_body(p, L, n, dt, o, 0);
 }
 
 DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
 onate_pairs_curve(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
-	return onate_pairs_body(p, x, v, w, r, rec, idx, n, dt, o, 1);
+	return onate_pairs_body(p, L, n, dt, o, 1);
 }
 
 /* The whole curve where a bond of the batch has been compressed past its
@@ -352,11 +349,13 @@ onate_pairs_curve(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *r
 static int onate_pairs(const law_params *lp, const law_pairs *in, law_fused *o)
 {
 	const onate_params *p = (const onate_params *)lp;
+	law_lanes L;
+	law_pairs_load(in, &L);
 	int hardened = 0;
 	for (int q = 0; q < in->n; q++)
-		hardened |= in->rec[in->idx[q]].h[2] > p->eps[0];
-	return hardened ? onate_pairs_curve(p, LAW_PAIRS_ARGS(in), o)
-	                : onate_pairs_first(p, LAW_PAIRS_ARGS(in), o);
+		hardened |= L.h[2][q] > p->eps[0];
+	return hardened ? onate_pairs_curve(p, &L, in->n, in->dt, o)
+	                : onate_pairs_first(p, &L, in->n, in->dt, o);
 }
 
 static double onate_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)

@@ -1,0 +1,118 @@
+/* law_pairs_load (kinematics.h): a batch's inputs lane by lane. */
+#include <stddef.h>
+
+#include "solve/kinematics.h"
+
+/* The record's fields from d0 to h are eight doubles in a row: read as two
+ * vectors of four, [d0 k t0 t1] and [t2 h0 h1 h2]. */
+_Static_assert(offsetof(bond, k) == offsetof(bond, d0) + 8 &&
+                   offsetof(bond, t) == offsetof(bond, d0) + 16 &&
+                   offsetof(bond, h) == offsetof(bond, d0) + 40 && LAW_NHIST == 3,
+               "bond: d0, k, t, h are eight doubles in a row");
+
+void law_pairs_load_lanes(const law_pairs *restrict in, law_lanes *restrict L, int q0)
+{
+	for (int q = q0; q < in->n; q++) {
+		const bond *b = &in->rec[in->idx[q]];
+		int32_t i = b->i, j = b->j;
+		for (int c = 0; c < 3; c++) {
+			L->dx[c][q] = in->x[3 * j + c] - in->x[3 * i + c];
+			L->dv[c][q] = in->v[3 * j + c] - in->v[3 * i + c];
+			L->wi[c][q] = in->w[3 * i + c];
+			L->wj[c][q] = in->w[3 * j + c];
+			L->t[c][q] = b->t[c];
+		}
+		L->ri[q] = in->r[i];
+		L->rj[q] = in->r[j];
+		L->d0[q] = b->d0;
+		L->k[q] = b->k;
+		for (int c = 0; c < LAW_NHIST; c++)
+			L->h[c][q] = b->h[c];
+		L->state[q] = b->state;
+	}
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+
+#define AVX2 __attribute__((target("avx2")))
+
+/* The transpose of the rows a[0..4): out[c] holds a[0..4][c]. */
+AVX2 static inline void transpose4(const __m256d a[4], __m256d out[4])
+{
+	__m256d t0 = _mm256_unpacklo_pd(a[0], a[1]), t1 = _mm256_unpackhi_pd(a[0], a[1]),
+	        t2 = _mm256_unpacklo_pd(a[2], a[3]), t3 = _mm256_unpackhi_pd(a[2], a[3]);
+	out[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
+	out[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
+	out[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
+	out[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
+}
+
+/* The three values of particles p[0..4) of the array a (four read from
+ * each: the next item's first, or the spare item's, is not used). */
+AVX2 static inline void particles3(const double *a, const int32_t p[4], __m256d out[4])
+{
+	__m256d row[4];
+	for (int l = 0; l < 4; l++)
+		row[l] = _mm256_loadu_pd(a + 3 * (ptrdiff_t)p[l]);
+	transpose4(row, out);
+}
+
+AVX2 static void load_avx2(const law_pairs *restrict in, law_lanes *restrict L)
+{
+	int q = 0;
+	for (; q + 4 <= in->n; q += 4) {
+		const bond *b[4];
+		int32_t i[4], j[4];
+		for (int l = 0; l < 4; l++) {
+			b[l] = &in->rec[in->idx[q + l]];
+			i[l] = b[l]->i;
+			j[l] = b[l]->j;
+			L->ri[q + l] = in->r[i[l]];
+			L->rj[q + l] = in->r[j[l]];
+			L->state[q + l] = b[l]->state;
+		}
+		__m256d pi[4], pj[4];
+		particles3(in->x, i, pi);
+		particles3(in->x, j, pj);
+		for (int c = 0; c < 3; c++)
+			_mm256_storeu_pd(&L->dx[c][q], _mm256_sub_pd(pj[c], pi[c]));
+		particles3(in->v, i, pi);
+		particles3(in->v, j, pj);
+		for (int c = 0; c < 3; c++)
+			_mm256_storeu_pd(&L->dv[c][q], _mm256_sub_pd(pj[c], pi[c]));
+		particles3(in->w, i, pi);
+		particles3(in->w, j, pj);
+		for (int c = 0; c < 3; c++) {
+			_mm256_storeu_pd(&L->wi[c][q], pi[c]);
+			_mm256_storeu_pd(&L->wj[c][q], pj[c]);
+		}
+		__m256d row[4], lo[4], hi[4];
+		for (int l = 0; l < 4; l++)
+			row[l] = _mm256_loadu_pd(&b[l]->d0);
+		transpose4(row, lo);
+		for (int l = 0; l < 4; l++)
+			row[l] = _mm256_loadu_pd(&b[l]->t[2]);
+		transpose4(row, hi);
+		double *to[8] = {L->d0, L->k, L->t[0], L->t[1], L->t[2], L->h[0], L->h[1], L->h[2]};
+		for (int c = 0; c < 4; c++) {
+			_mm256_storeu_pd(to[c] + q, lo[c]);
+			_mm256_storeu_pd(to[4 + c] + q, hi[c]);
+		}
+	}
+	law_pairs_load_lanes(in, L, q);
+}
+
+void law_pairs_load(const law_pairs *restrict in, law_lanes *restrict L)
+{
+	if (__builtin_cpu_supports("avx2"))
+		load_avx2(in, L);
+	else
+		law_pairs_load_lanes(in, L, 0);
+}
+#else
+void law_pairs_load(const law_pairs *restrict in, law_lanes *restrict L)
+{
+	law_pairs_load_lanes(in, L, 0);
+}
+#endif
