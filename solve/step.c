@@ -251,28 +251,30 @@ static inline int moves_freely(const engine *e, size_t i, int measure, int *conf
  * afterwards. ext is the confining force (0 but on the confined), already
  * in F; lateral its magnitude, where confined. */
 typedef struct {
-	int32_t i[BLOCK];
-	uint8_t confined[BLOCK];
+	uint8_t free[BLOCK], confined[BLOCK];
 	double F[3][BLOCK], T[3][BLOCK], ext[3][BLOCK], lateral[BLOCK];
 	double v[3][BLOCK], w[3][BLOCK], x[3][BLOCK];
 	double damped[BLOCK], ke[BLOCK], ke_new[BLOCK], vv[BLOCK], work[BLOCK], d2[BLOCK];
 	double finite[BLOCK]; /* the sum whose finiteness advance checks */
 } free_lanes;
 
-/* move_free (DAMPING_VECTOR) and advance with ext fl->ext for the nf particles
- * fl->i[0..nf) of forces fl->F, fl->T, with their expressions, in a loop
- * the compiler can vectorise (the division of damp computed whatever the
- * speed, its result chosen by law_sel only where the speed is positive, as
- * damp uses it: with ?: the AVX2 version kept a branch and stayed scalar).
- * XR holds the positions at the last rebuild from particle xr0 on. */
+/* move_free (DAMPING_VECTOR) and advance with ext fl->ext for the nl
+ * particles i0 + q (lanes q < nl) of forces fl->F, fl->T, with their
+ * expressions, in a loop the compiler can vectorise: the particles' values
+ * lie in a row, read as vectors; the division of damp is computed whatever
+ * the speed, its result chosen by law_sel only where the speed is positive,
+ * as damp uses it (with ?: the AVX2 version kept a branch and stayed
+ * scalar). The lanes of particles that do not move freely are computed too,
+ * and not used. XR holds the positions at the last rebuild from particle
+ * xr0 on. */
 DEM_VECTOR_CLONES __attribute__((noinline)) static void
 integrate_free(const double *restrict X, const double *restrict V, const double *restrict W,
                const double *restrict R, const double *restrict M, const double *restrict XR,
                int32_t xr0, double dt, double alpha_t, double alpha_r, free_lanes *restrict fl,
-               int nf)
+               int32_t i0, int nl)
 {
-	for (int q = 0; q < nf; q++) {
-		int32_t i = fl->i[q];
+	for (int q = 0; q < nl; q++) {
+		int32_t i = i0 + q;
 		double F[3], T[3], v[3], w[3], x[3], xr[3];
 		for (int c = 0; c < 3; c++) {
 			F[c] = fl->F[c][q];
@@ -324,6 +326,40 @@ integrate_free(const double *restrict X, const double *restrict V, const double 
 	}
 }
 
+/* Lane q of fl, particle i, added to the sums s (as integrate_one adds). */
+static inline void add_lane(particle_sums *s, const free_lanes *fl, int q, size_t i)
+{
+	if (fl->confined[q])
+		s->lateral_force += fl->lateral[q];
+	s->e_damped -= fl->damped[q];
+	s->ke += fl->ke[q];
+	s->ke_new += fl->ke_new[q];
+	s->v2max = fl->vv[q] > s->v2max ? fl->vv[q] : s->v2max;
+	s->e_work += fl->work[q];
+	s->disp2 = fl->d2[q] > s->disp2 ? fl->d2[q] : s->disp2;
+	if (!(isfinite(fl->finite[q])) && s->bad > (double)i)
+		s->bad = (double)i;
+}
+
+/* Lane q of fl, particle i's new state, into the particles' arrays. */
+static inline void store_lane(particles *P, size_t i, const free_lanes *fl, int q)
+{
+	for (int c = 0; c < 3; c++) {
+		P->v[3 * i + c] = fl->v[c][q];
+		P->w[3 * i + c] = fl->w[c][q];
+		P->x[3 * i + c] = fl->x[c][q];
+	}
+}
+
+/* The lanes 0..nl) of the values a of particles i0, i0 + 1, ... into
+ * their array A. */
+static inline void store_run(double *restrict A, const double a[3][BLOCK], size_t i0, int nl)
+{
+	for (int q = 0; q < nl; q++)
+		for (int c = 0; c < 3; c++)
+			A[3 * (i0 + (size_t)q) + c] = a[c][q];
+}
+
 DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
 {
 	size_t n = e->p.n;
@@ -340,55 +376,59 @@ DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
 	 * one; every particle's terms added to the sums in particle order. */
 	particles *P = &e->p;
 	free_lanes fl;
-	int nf = 0;
-	for (size_t i = k * BLOCK; i < hi; i++) {
+	int nl = (int)(hi - k * BLOCK), nf = 0;
+	for (int q = 0; q < nl; q++) {
+		size_t i = k * BLOCK + (size_t)q;
 		int confined;
-		if (!moves_freely(e, i, measure, &confined))
-			continue;
-		const double *acc = engine_acc(e, (size_t)i);
-		double F[3] = {acc[0], acc[1], acc[2]}, T[3] = {acc[3], acc[4], acc[5]};
-		double ext[3] = {0, 0, 0};
-		gather(&e->pairs.contacts, (int32_t)i, P->r[i], F, T);
-		fl.confined[nf] = (uint8_t)confined;
-		fl.lateral[nf] = 0;
-		if (confined) { /* as integrate_one: its sum added below */
+		double F[3] = {0, 0, 0}, T[3] = {0, 0, 0}, ext[3] = {0, 0, 0};
+		fl.free[q] = (uint8_t)moves_freely(e, i, measure, &confined);
+		fl.confined[q] = (uint8_t)confined;
+		fl.lateral[q] = 0;
+		if (fl.free[q]) {
+			const double *acc = engine_acc(e, i);
+			for (int c = 0; c < 3; c++) {
+				F[c] = acc[c];
+				T[c] = acc[3 + c];
+			}
+			gather(&e->pairs.contacts, (int32_t)i, P->r[i], F, T);
+			nf++;
+		}
+		if (fl.free[q] && confined) { /* as integrate_one: its sum added below */
 			double er[3];
 			particle_sums lateral = {0};
 			radial_unit(e, P->x + 3 * i, er);
 			confine(e, (int32_t)i, P->surf[i], er, F, ext, &lateral, 0);
-			fl.lateral[nf] = lateral.lateral_force;
+			fl.lateral[q] = lateral.lateral_force;
 		}
 		for (int c = 0; c < 3; c++) {
-			fl.F[c][nf] = F[c];
-			fl.T[c][nf] = T[c];
-			fl.ext[c][nf] = ext[c];
+			fl.F[c][q] = F[c];
+			fl.T[c][q] = T[c];
+			fl.ext[c][q] = ext[c];
 		}
-		fl.i[nf++] = (int32_t)i;
 	}
 	integrate_free(P->x, P->v, P->w, P->r, P->m, P->x_ref, (int32_t)P->own0, e->clock.dt,
-	               e->cs->alpha_t, e->cs->alpha_r, &fl, nf);
-	int q = 0;
-	for (size_t i = k * BLOCK; i < hi; i++) {
-		if (q == nf || fl.i[q] != (int32_t)i) {
+	               e->cs->alpha_t, e->cs->alpha_r, &fl, (int32_t)(k * BLOCK), nl);
+	if (nf == nl) {
+		/* The sums in a local, which no store can alias (so they stay
+		 * in registers), and the state in loops of their own, which
+		 * the compiler vectorises. */
+		particle_sums sums = *s;
+		for (int q = 0; q < nl; q++)
+			add_lane(&sums, &fl, q, k * BLOCK + (size_t)q);
+		*s = sums;
+		store_run(P->v, fl.v, k * BLOCK, nl);
+		store_run(P->w, fl.w, k * BLOCK, nl);
+		store_run(P->x, fl.x, k * BLOCK, nl);
+		return;
+	}
+	for (int q = 0; q < nl; q++) {
+		size_t i = k * BLOCK + (size_t)q;
+		if (!fl.free[q]) {
 			integrate_one(e, (int32_t)i, measure, s);
 			continue;
 		}
-		if (fl.confined[q])
-			s->lateral_force += fl.lateral[q];
-		s->e_damped -= fl.damped[q];
-		s->ke += fl.ke[q];
-		s->ke_new += fl.ke_new[q];
-		s->v2max = fl.vv[q] > s->v2max ? fl.vv[q] : s->v2max;
-		s->e_work += fl.work[q];
-		s->disp2 = fl.d2[q] > s->disp2 ? fl.d2[q] : s->disp2;
-		for (int c = 0; c < 3; c++) {
-			P->v[3 * i + c] = fl.v[c][q];
-			P->w[3 * i + c] = fl.w[c][q];
-			P->x[3 * i + c] = fl.x[c][q];
-		}
-		if (!(isfinite(fl.finite[q])) && s->bad > (double)i)
-			s->bad = (double)i;
-		q++;
+		add_lane(s, &fl, q, i);
+		store_lane(P, i, &fl, q);
 	}
 }
 
