@@ -245,11 +245,12 @@ static inline int moves_freely(const engine *e, size_t i, int measure, int *conf
 	       !(e->bc.loads.layers && (flag & (PF_LAYER_BOTTOM | PF_LAYER_TOP)));
 }
 
-/* What move_free and advance compute for the free particles of a block
- * (with the vector form of the damping), lane by lane: the new state and
- * each particle's terms of the block's sums, added in particle order
- * afterwards. ext is the confining force (0 but on the confined), already
- * in F; lateral its magnitude, where confined. */
+/* What move_free and advance compute for the particles of a block (with
+ * the vector form of the damping), lane q for its particle q: the new
+ * state and each particle's terms of the block's sums, added in particle
+ * order afterwards; used where free[q] (moves_freely). ext is the
+ * confining force (0 but on the confined), already in F; lateral its
+ * magnitude, where confined. */
 typedef struct {
 	uint8_t free[BLOCK], confined[BLOCK];
 	double F[3][BLOCK], T[3][BLOCK], ext[3][BLOCK], lateral[BLOCK];
@@ -392,13 +393,13 @@ DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
 			}
 			gather(&e->pairs.contacts, (int32_t)i, P->r[i], F, T);
 			nf++;
-		}
-		if (fl.free[q] && confined) { /* as integrate_one: its sum added below */
-			double er[3];
-			particle_sums lateral = {0};
-			radial_unit(e, P->x + 3 * i, er);
-			confine(e, (int32_t)i, P->surf[i], er, F, ext, &lateral, 0);
-			fl.lateral[q] = lateral.lateral_force;
+			if (confined) { /* as integrate_one: its sum added below */
+				double er[3];
+				particle_sums lateral = {0};
+				radial_unit(e, P->x + 3 * i, er);
+				confine(e, (int32_t)i, P->surf[i], er, F, ext, &lateral, 0);
+				fl.lateral[q] = lateral.lateral_force;
+			}
 		}
 		for (int c = 0; c < 3; c++) {
 			fl.F[c][q] = F[c];
