@@ -270,7 +270,6 @@ DEM_VECTOR_CLONES static void bonds_staged(engine *e, const int32_t *idx, int nq
 	law_batch B;
 	batch_geom g;
 	batch_kinematics(P->x, P->v, P->w, P->r, P->m, rec, idx, nq, e->clock.dt, &B, &g);
-	batch_history_load(rec, idx, &B);
 	e->law->force_batch(e->lp, &B);
 	batch_history_store(rec, idx, &B);
 	for (int q = 0; q < nq; q++) {

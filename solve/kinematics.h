@@ -82,46 +82,84 @@ static inline pair_motion pair_motion_of(const double dx[3], const double dv[3],
 	return k;
 }
 
+/* A batch of bonds with the particles they join, as law.force_pairs reads
+ * them: the bonds rec[idx[0..n)] (rec[0..n) when idx is NULL), the
+ * particles' arrays (engine.h), the time step. Each of x, v and w has one
+ * item (three doubles) more than the particles it holds, as the engine's
+ * windows do (window.c): law_pairs_load reads a particle's three values as
+ * four. */
+struct law_pairs {
+	const double *x, *v, *w, *r;
+	const bond *rec;
+	const int32_t *idx;
+	int n;
+	double dt;
+};
+
+/* A batch's inputs lane by lane (law_pairs_load), as force_pairs' loops
+ * read them: dx = x_j - x_i, dv = v_j - v_i, the spins, the radii, and the
+ * bonds' fields from d0 to h (the record's order, bond in law.h). */
+typedef struct {
+	double dx[3][LAW_LANES], dv[3][LAW_LANES], wi[3][LAW_LANES], wj[3][LAW_LANES];
+	double ri[LAW_LANES], rj[LAW_LANES];
+	double d0[LAW_LANES], k[LAW_LANES], t[3][LAW_LANES], h[LAW_NHIST][LAW_LANES];
+	int32_t state[LAW_LANES];
+} law_lanes;
+
+/* The inputs of the batch in into L. With AVX2 each group of four lanes
+ * reads a particle's three values and a record's eight as vectors and
+ * transposes them, instead of one gather instruction for each value of
+ * each lane (about 30 a bond), which the compiler would emit for a loop
+ * over the lanes. The values are only moved, and dx, dv subtracted as the
+ * scalar loop does, so they are the same to the bit on every CPU. */
+void law_pairs_load(const law_pairs *restrict in, law_lanes *restrict L);
+/* Its lanes q0 <= q < in->n one value at a time: law_pairs_load without
+ * AVX2, and for the lanes after the last group of four. */
+void law_pairs_load_lanes(const law_pairs *restrict in, law_lanes *restrict L, int q0);
+
+/* The motion of the pair of lane q (pair_motion_of). */
+static inline pair_motion law_lanes_motion(const law_lanes *restrict L, int q, double dt)
+{
+	double dx[3], dv[3], wi[3], wj[3], t[3];
+	for (int c = 0; c < 3; c++) {
+		dx[c] = L->dx[c][q];
+		dv[c] = L->dv[c][q];
+		wi[c] = L->wi[c][q];
+		wj[c] = L->wj[c][q];
+		t[c] = L->t[c][q];
+	}
+	return pair_motion_of(dx, dv, wi, wj, L->ri[q], L->rj[q], L->d0[q], t, dt);
+}
+
 /* Kinematics of the nq pairs rec[idx[0..nq)] (rec[0..nq) when idx is NULL)
  * into the pair and kinematics lanes of B (B->n = nq), with their
- * tangential histories rotated into B->t.
- * Staged: the records are read into arrays, one loop does all the
- * arithmetic on them (so the square roots and divisions of independent
- * pairs overlap, and the compiler can use the vector units). Always
- * inlined: a copy out of line would be compiled for any x86-64, not for
- * the vector units of its callers' versions (clones.h). */
+ * tangential histories rotated into B->t, and their histories, constants
+ * and states (h, k, state).
+ * Staged: the records are read into arrays (law_pairs_load), one loop does
+ * all the arithmetic on them (so the square roots and divisions of
+ * independent pairs overlap, and the compiler can use the vector units).
+ * Always inlined: a copy out of line would be compiled for any x86-64, not
+ * for the vector units of its callers' versions (clones.h). */
 static inline __attribute__((always_inline)) void
 batch_kinematics(const double *restrict x, const double *restrict v, const double *restrict w,
                  const double *restrict r, const double *restrict m, const bond *restrict rec,
                  const int32_t *restrict idx, int nq, double dt, law_batch *restrict B,
                  batch_geom *restrict g)
 {
-	double dx[3][BATCH], dv[3][BATCH], wi[3][BATCH], wj[3][BATCH];
+	law_pairs in = {.x = x, .v = v, .w = w, .r = r, .rec = rec, .idx = idx, .n = nq, .dt = dt};
+	law_lanes L;
+	law_pairs_load(&in, &L);
 	B->n = nq;
 	for (int q = 0; q < nq; q++) {
 		const bond *b = &rec[idx ? idx[q] : q];
-		int32_t i = b->i, j = b->j;
-		for (int c = 0; c < 3; c++) {
-			dx[c][q] = x[3 * j + c] - x[3 * i + c];
-			dv[c][q] = v[3 * j + c] - v[3 * i + c];
-			wi[c][q] = w[3 * i + c];
-			wj[c][q] = w[3 * j + c];
-			B->t[c][q] = b->t[c];
-		}
-		B->ri[q] = r[i];
-		B->rj[q] = r[j];
-		B->mi[q] = m[i];
-		B->mj[q] = m[j];
-		B->d0[q] = b->d0;
+		B->mi[q] = m[b->i];
+		B->mj[q] = m[b->j];
 	}
 	for (int q = 0; q < nq; q++) {
-		double dxq[3] = {dx[0][q], dx[1][q], dx[2][q]},
-		       dvq[3] = {dv[0][q], dv[1][q], dv[2][q]},
-		       wiq[3] = {wi[0][q], wi[1][q], wi[2][q]},
-		       wjq[3] = {wj[0][q], wj[1][q], wj[2][q]},
-		       tq[3] = {B->t[0][q], B->t[1][q], B->t[2][q]};
-		pair_motion k =
-		    pair_motion_of(dxq, dvq, wiq, wjq, B->ri[q], B->rj[q], B->d0[q], tq, dt);
+		pair_motion k = law_lanes_motion(&L, q, dt);
+		B->ri[q] = L.ri[q];
+		B->rj[q] = L.rj[q];
+		B->d0[q] = L.d0[q];
 		B->un[q] = k.un;
 		B->vn[q] = k.vn;
 		for (int c = 0; c < 3; c++) {
@@ -131,21 +169,14 @@ batch_kinematics(const double *restrict x, const double *restrict v, const doubl
 		}
 		g->d[q] = k.d;
 		g->s[q] = k.s;
+		for (int c = 0; c < LAW_NHIST; c++)
+			B->h[c][q] = L.h[c][q];
+		B->k[q] = L.k[q];
+		B->state[q] = L.state[q];
 	}
 }
 
-/* The law's history of the bonds rec[idx[0..B->n)] into B, and back. */
-static inline void batch_history_load(const bond *restrict rec, const int32_t *restrict idx,
-                                      law_batch *restrict B)
-{
-	for (int q = 0; q < B->n; q++) {
-		const bond *b = &rec[idx[q]];
-		for (int c = 0; c < LAW_NHIST; c++)
-			B->h[c][q] = b->h[c];
-		B->k[q] = b->k;
-		B->state[q] = b->state;
-	}
-}
+/* The histories of B back into the records rec[idx[0..B->n)]. */
 static inline void batch_history_store(bond *restrict rec, const int32_t *restrict idx,
                                        const law_batch *restrict B)
 {
@@ -181,40 +212,6 @@ static inline void batch_force(const law_batch *B, const batch_geom *g, int q, d
 	pair_force(n, g->s[q], B->fn[q], fs, f);
 }
 
-/* A batch of bonds with the particles they join, as law.force_pairs reads
- * them: the bonds rec[idx[0..n)], the particles' arrays (engine.h), the
- * time step. Each of x, v and w has one item (three doubles) more than
- * the particles it holds, as the engine's windows do (window.c):
- * law_pairs_load reads a particle's three values as four. */
-struct law_pairs {
-	const double *x, *v, *w, *r;
-	const bond *rec;
-	const int32_t *idx;
-	int n;
-	double dt;
-};
-
-/* A batch's inputs lane by lane (law_pairs_load), as force_pairs' loops
- * read them: dx = x_j - x_i, dv = v_j - v_i, the spins, the radii, and the
- * bonds' fields from d0 to h (the record's order, bond in law.h). */
-typedef struct {
-	double dx[3][LAW_LANES], dv[3][LAW_LANES], wi[3][LAW_LANES], wj[3][LAW_LANES];
-	double ri[LAW_LANES], rj[LAW_LANES];
-	double d0[LAW_LANES], k[LAW_LANES], t[3][LAW_LANES], h[LAW_NHIST][LAW_LANES];
-	int32_t state[LAW_LANES];
-} law_lanes;
-
-/* The inputs of the batch in into L. With AVX2 each group of four lanes
- * reads a particle's three values and a record's eight as vectors and
- * transposes them, instead of one gather instruction for each value of
- * each lane (about 30 a bond), which the compiler would emit for a loop
- * over the lanes. The values are only moved, and dx, dv subtracted as the
- * scalar loop does, so they are the same to the bit on every CPU. */
-void law_pairs_load(const law_pairs *restrict in, law_lanes *restrict L);
-/* Its lanes q0 <= q < in->n one value at a time: law_pairs_load without
- * AVX2, and for the lanes after the last group of four. */
-void law_pairs_load_lanes(const law_pairs *restrict in, law_lanes *restrict L, int q0);
-
 /* What law.force_pairs gives for each lane q that stays on the law's
  * elastic branch (elastic[q] != 0; nothing for the others): the force on i
  * and the torque per unit radius (pair_force), the viscous energy
@@ -236,20 +233,6 @@ struct law_fused {
  * pointers, so the compiler knows the outputs alias none of the inputs and
  * can vectorise it): the batch's lanes, their count, the time step. */
 #define LAW_PAIRS_PARAMS const law_lanes *restrict L, int n, double dt
-
-/* The motion of the pair of lane q (pair_motion_of). */
-static inline pair_motion law_lanes_motion(const law_lanes *restrict L, int q, double dt)
-{
-	double dx[3], dv[3], wi[3], wj[3], t[3];
-	for (int c = 0; c < 3; c++) {
-		dx[c] = L->dx[c][q];
-		dv[c] = L->dv[c][q];
-		wi[c] = L->wi[c][q];
-		wj[c] = L->wj[c][q];
-		t[c] = L->t[c][q];
-	}
-	return pair_motion_of(dx, dv, wi, wj, L->ri[q], L->rj[q], L->d0[q], t, dt);
-}
 
 /* Lane q of a law_fused from the law's forces fn (its viscous part fv) and
  * fs on the pair k, and the bond's new history. */

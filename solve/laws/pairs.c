@@ -10,10 +10,16 @@ _Static_assert(offsetof(bond, k) == offsetof(bond, d0) + 8 &&
                    offsetof(bond, h) == offsetof(bond, d0) + 40 && LAW_NHIST == 3,
                "bond: d0, k, t, h are eight doubles in a row");
 
+/* The record of lane q. */
+static inline const bond *lane_bond(const law_pairs *in, int q)
+{
+	return &in->rec[in->idx ? in->idx[q] : q];
+}
+
 void law_pairs_load_lanes(const law_pairs *restrict in, law_lanes *restrict L, int q0)
 {
 	for (int q = q0; q < in->n; q++) {
-		const bond *b = &in->rec[in->idx[q]];
+		const bond *b = lane_bond(in, q);
 		int32_t i = b->i, j = b->j;
 		for (int c = 0; c < 3; c++) {
 			L->dx[c][q] = in->x[3 * j + c] - in->x[3 * i + c];
@@ -65,7 +71,7 @@ AVX2 static void load_avx2(const law_pairs *restrict in, law_lanes *restrict L)
 		const bond *b[4];
 		int32_t i[4], j[4];
 		for (int l = 0; l < 4; l++) {
-			b[l] = &in->rec[in->idx[q + l]];
+			b[l] = lane_bond(in, q + l);
 			i[l] = b[l]->i;
 			j[l] = b[l]->j;
 			L->ri[q + l] = in->r[i[l]];

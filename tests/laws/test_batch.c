@@ -230,7 +230,6 @@ static void run_pairs(const char *name, const char *json)
 			law_batch B;
 			batch_geom geo;
 			batch_kinematics(x, v, w, r, m, rec, ix, nq, dt, &B, &geo);
-			batch_history_load(rec, ix, &B);
 			L->force_batch(p, &B);
 			batch_history_store(rec, ix, &B);
 			law_pairs in = {.x = x,
@@ -284,8 +283,8 @@ static void run_pairs(const char *name, const char *json)
 /* law_pairs_load (vectors and transposes, where the CPU has AVX2) gives
  * what its scalar loop gives, and that loop the lanes' definition, bit for
  * bit: every batch size from 1 to LAW_LANES (groups of four and the lanes
- * after them), the lanes out of order, the last particle among them (its
- * three values read as four: the spare item). */
+ * after them), the lanes out of order or without indices, the last
+ * particle among them (its three values read as four: the spare item). */
 static void check_load(void)
 {
 	enum { NP = 40, NR = 2 * LAW_LANES };
@@ -311,6 +310,9 @@ static void check_load(void)
 			rec[b].h[c] = rng_range(&g, 0.0, 1.0);
 		rec[b].state = (uint8_t)(b % 5);
 	}
+	int32_t order[LAW_LANES];
+	for (int q = 0; q < LAW_LANES; q++)
+		order[q] = q;
 	for (int n = 1; n <= LAW_LANES; n++) {
 		int32_t idx[LAW_LANES];
 		for (int q = 0; q < n; q++)
@@ -334,6 +336,14 @@ static void check_load(void)
 				        d.t[c][q] == b->t[c] && d.h[c][q] == b->h[c];
 			CHECK(same);
 		}
+		/* Without indices: the records rec[0..n). */
+		law_pairs in0 = {.x = x, .v = v, .w = w, .r = r, .rec = rec, .n = n};
+		law_pairs in1 = {.x = x, .v = v, .w = w, .r = r, .rec = rec, .idx = order, .n = n};
+		memset(&a, 0, sizeof a);
+		memset(&d, 0, sizeof d);
+		law_pairs_load(&in0, &a);
+		law_pairs_load_lanes(&in1, &d, 0);
+		CHECK(memcmp(&a, &d, sizeof a) == 0);
 	}
 }
 
