@@ -159,8 +159,8 @@ LAW_BATCH(exp, exp_force)
  * damage growing, no plastic flow, no failure: the first part of the
  * loading curve, strain below eps_max now and at the historical maximum, a
  * tension below the limit strain, a shear force within the Mohr-Coulomb
- * limit) from the particles' state to the forces in one vectorised pass
- * (kinematics.h), with exp_force's expressions, so the same to the bit;
+ * limit) from the batch's lanes (law_pairs_load) to the forces in one
+ * vectorised pass (kinematics.h), with exp_force's expressions, so the same to the bit;
  * every other lane goes through exp_force. */
 DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
 exp_pairs_loop(const exp_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)

@@ -213,8 +213,8 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void jcfpm_batch(const law_par
 	LAW_BATCH_REST(jcfpm_force, lp, B, elastic);
 }
 
-/* force_pairs: jcfpm_batch's vector loop, from the particles' state to the
- * forces in one pass (kinematics.h). */
+/* force_pairs: jcfpm_batch's vector loop, from the batch's lanes
+ * (law_pairs_load) to the forces in one pass (kinematics.h). */
 DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
 jcfpm_pairs_loop(const jcfpm_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
 {

@@ -192,8 +192,8 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void linear_batch(const law_pa
 	LAW_BATCH_REST(linear_force_one, p, B, elastic);
 }
 
-/* force_pairs: linear_batch's vector loop, from the particles' state to
- * the forces in one pass (kinematics.h). */
+/* force_pairs: linear_batch's vector loop, from the batch's lanes
+ * (law_pairs_load) to the forces in one pass (kinematics.h). */
 DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
 linear_pairs_loop(const law_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
 {

@@ -283,8 +283,8 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void onate_batch(const law_par
 	LAW_BATCH_REST(onate_force, lp, B, elastic);
 }
 
-/* force_pairs: onate_batch's vector loops as one, from the particles'
- * state to the forces in one pass (kinematics.h). With `curve`, the
+/* force_pairs: onate_batch's vector loops as one, from the batch's lanes
+ * (law_pairs_load) to the forces in one pass (kinematics.h). With `curve`, the
  * normal force on every part of the loading curve (dh_normal_curve):
  * loading past the largest compression with its plastic work
  * (o->e_damage), unloading and reloading about the permanent indentation;
