@@ -325,8 +325,10 @@ static inline __attribute__((always_inline)) int bonds_fused(engine *e, const in
 	                .idx = idx,
 	                .n = nq,
 	                .dt = e->clock.dt};
+	law_lanes L;
+	law_pairs_load(&in, &L);
 	o->damage = 0;
-	int elastic = e->law->force_pairs(e->lp, &in, o);
+	int elastic = e->law->force_pairs(e->lp, &L, nq, e->clock.dt, o);
 	if (keep && elastic == nq)
 		return elastic;
 	int32_t rest[BATCH] = {0}, lane[BATCH];

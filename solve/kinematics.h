@@ -82,12 +82,12 @@ static inline pair_motion pair_motion_of(const double dx[3], const double dv[3],
 	return k;
 }
 
-/* A batch of bonds with the particles they join, as law.force_pairs reads
- * them: the bonds rec[idx[0..n)] (rec[0..n) when idx is NULL), the
- * particles' arrays (engine.h), the time step. Each of x, v and w has one
- * item (three doubles) more than the particles it holds, as the engine's
- * windows do (window.c): law_pairs_load reads a particle's three values as
- * four. */
+/* A batch of bonds with the particles they join, as law_pairs_load reads
+ * them for law.force_pairs: the bonds rec[idx[0..n)] (rec[0..n) when idx
+ * is NULL), the particles' arrays (engine.h), the time step. Each of x, v
+ * and w has one item (three doubles) more than the particles it holds, as
+ * the engine's windows do (window.c): law_pairs_load reads a particle's
+ * three values as four. */
 struct law_pairs {
 	const double *x, *v, *w, *r;
 	const bond *rec;
@@ -99,12 +99,12 @@ struct law_pairs {
 /* A batch's inputs lane by lane (law_pairs_load), as force_pairs' loops
  * read them: dx = x_j - x_i, dv = v_j - v_i, the spins, the radii, and the
  * bonds' fields from d0 to h (the record's order, bond in law.h). */
-typedef struct {
+struct law_lanes {
 	double dx[3][LAW_LANES], dv[3][LAW_LANES], wi[3][LAW_LANES], wj[3][LAW_LANES];
 	double ri[LAW_LANES], rj[LAW_LANES];
 	double d0[LAW_LANES], k[LAW_LANES], t[3][LAW_LANES], h[LAW_NHIST][LAW_LANES];
 	int32_t state[LAW_LANES];
-} law_lanes;
+};
 
 /* The inputs of the batch in into L. With AVX2 each group of four lanes
  * reads a particle's three values and a record's eight as vectors and
@@ -229,10 +229,11 @@ struct law_fused {
 	int32_t state[LAW_LANES];
 };
 
-/* The parameters of a law's force_pairs loop (a function with restrict
- * pointers, so the compiler knows the outputs alias none of the inputs and
- * can vectorise it): the batch's lanes, their count, the time step. */
-#define LAW_PAIRS_PARAMS const law_lanes *restrict L, int n, double dt
+/* A law's force_pairs (law.h), with restrict pointers, so the compiler
+ * knows the outputs alias none of the inputs and can vectorise its loop:
+ * the law's parameters, the batch's lanes, their count, the time step. */
+#define LAW_PAIRS_PARAMS \
+	const law_params *restrict lp, const law_lanes *restrict L, int n, double dt
 
 /* Lane q of a law_fused from the law's forces fn (its viscous part fv) and
  * fs on the pair k, and the bond's new history. */

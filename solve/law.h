@@ -110,6 +110,7 @@ typedef struct {
 
 typedef struct law_params law_params; /* each law's own, opaque */
 typedef struct law_pairs law_pairs;   /* kinematics.h */
+typedef struct law_lanes law_lanes;   /* kinematics.h */
 typedef struct law_fused law_fused;   /* kinematics.h */
 
 typedef struct law {
@@ -141,13 +142,15 @@ typedef struct law {
 	              law_out *out);
 	/* The same over a batch, exactly (bit for bit) as force bond by bond. */
 	void (*force_batch)(const law_params *p, law_batch *b);
-	/* Optional (NULL when the law has none): a batch of bonds from the
-	 * particles' state to the forces on them in one loop, for the lanes
-	 * that stay on the law's elastic branch (out->elastic[q] != 0), to the
-	 * bit what batch_kinematics, force_batch and batch_force give
-	 * (kinematics.h); the other lanes are left to those, and their bonds
-	 * as they were. Returns the count of elastic lanes. */
-	int (*force_pairs)(const law_params *p, const law_pairs *in, law_fused *out);
+	/* Optional (NULL when the law has none): the n lanes of a batch of
+	 * bonds (L, from law_pairs_load) to the forces on them in one loop,
+	 * for the lanes that stay on the law's elastic branch
+	 * (out->elastic[q] != 0), to the bit what batch_kinematics,
+	 * force_batch and batch_force give (kinematics.h); the other lanes are
+	 * left to those, and their bonds as they were. Returns the count of
+	 * elastic lanes. */
+	int (*force_pairs)(const law_params *p, const law_lanes *L, int n, double dt,
+	                   law_fused *out);
 	/* Elastic energy stored in the bond (J) after the force() call whose
 	 * normal displacement was un (m). */
 	double (*energy)(const law_params *p, const law_pair *pair, const bond *b, double un);

@@ -162,9 +162,10 @@ LAW_BATCH(exp, exp_force)
  * limit) from the batch's lanes (law_pairs_load) to the forces in one
  * vectorised pass (kinematics.h), with exp_force's expressions, so the same to the bit;
  * every other lane goes through exp_force. */
-DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
-exp_pairs_loop(const exp_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
+DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int exp_pairs(LAW_PAIRS_PARAMS,
+                                                                          law_fused *restrict o)
 {
+	const exp_params *p = (const exp_params *)lp;
 	o->history = 1;
 	int count = 0;
 	for (int q = 0; q < n; q++) {
@@ -190,13 +191,6 @@ exp_pairs_loop(const exp_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restri
 		count += ok;
 	}
 	return count;
-}
-
-static int exp_pairs(const law_params *p, const law_pairs *in, law_fused *o)
-{
-	law_lanes L;
-	law_pairs_load(in, &L);
-	return exp_pairs_loop((const exp_params *)p, &L, in->n, in->dt, o);
 }
 
 static double exp_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)

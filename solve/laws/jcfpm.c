@@ -215,9 +215,10 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void jcfpm_batch(const law_par
 
 /* force_pairs: jcfpm_batch's vector loop, from the batch's lanes
  * (law_pairs_load) to the forces in one pass (kinematics.h). */
-DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
-jcfpm_pairs_loop(const jcfpm_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
+DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int jcfpm_pairs(LAW_PAIRS_PARAMS,
+                                                                            law_fused *restrict o)
 {
+	const jcfpm_params *p = (const jcfpm_params *)lp;
 	o->history = 0;
 	int count = 0;
 	for (int q = 0; q < n; q++) {
@@ -237,13 +238,6 @@ jcfpm_pairs_loop(const jcfpm_params *restrict p, LAW_PAIRS_PARAMS, law_fused *re
 		count += ok;
 	}
 	return count;
-}
-
-static int jcfpm_pairs(const law_params *p, const law_pairs *in, law_fused *o)
-{
-	law_lanes L;
-	law_pairs_load(in, &L);
-	return jcfpm_pairs_loop((const jcfpm_params *)p, &L, in->n, in->dt, o);
 }
 
 static double jcfpm_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)

@@ -194,9 +194,10 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void linear_batch(const law_pa
 
 /* force_pairs: linear_batch's vector loop, from the batch's lanes
  * (law_pairs_load) to the forces in one pass (kinematics.h). */
-DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
-linear_pairs_loop(const law_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
+DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int linear_pairs(LAW_PAIRS_PARAMS,
+                                                                             law_fused *restrict o)
 {
+	const law_params *p = lp;
 	double alpha = p->area.alpha, tau = p->tau, mu1 = p->mu1, sigma_t = p->sigma_t;
 	o->history = 0;
 	int count = 0;
@@ -217,14 +218,6 @@ linear_pairs_loop(const law_params *restrict p, LAW_PAIRS_PARAMS, law_fused *res
 		count += ok;
 	}
 	return count;
-}
-
-DEM_VECTOR_CLONES __attribute__((flatten)) static int
-linear_pairs(const law_params *p, const law_pairs *in, law_fused *o)
-{
-	law_lanes L;
-	law_pairs_load(in, &L);
-	return linear_pairs_loop(p, &L, in->n, in->dt, o);
 }
 
 static double linear_energy(const law_params *p, const law_pair *q, const bond *b, double un)

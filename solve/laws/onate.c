@@ -289,9 +289,10 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void onate_batch(const law_par
  * loading past the largest compression with its plastic work
  * (o->e_damage), unloading and reloading about the permanent indentation;
  * else on its first part only (dh_normal_first), which costs less. */
-static inline __attribute__((always_inline)) int
-onate_pairs_body(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o, int curve)
+static inline __attribute__((always_inline)) int onate_pairs_body(LAW_PAIRS_PARAMS,
+                                                                  law_fused *restrict o, int curve)
 {
+	const onate_params *p = (const onate_params *)lp;
 	o->history = 1;
 	o->damage = curve;
 	int count = 0;
@@ -332,30 +333,27 @@ onate_pairs_body(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *re
 }
 
 DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
-onate_pairs_first(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
+onate_pairs_first(LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
-	return onate_pairs_body(p, L, n, dt, o, 0);
+	return onate_pairs_body(lp, L, n, dt, o, 0);
 }
 
 DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
-onate_pairs_curve(const onate_params *restrict p, LAW_PAIRS_PARAMS, law_fused *restrict o)
+onate_pairs_curve(LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
-	return onate_pairs_body(p, L, n, dt, o, 1);
+	return onate_pairs_body(lp, L, n, dt, o, 1);
 }
 
 /* The whole curve where a bond of the batch has been compressed past its
  * first part (LCS1); else the first part, whose lanes that now load past
  * it go the staged way, this once. */
-static int onate_pairs(const law_params *lp, const law_pairs *in, law_fused *o)
+static int onate_pairs(LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
 	const onate_params *p = (const onate_params *)lp;
-	law_lanes L;
-	law_pairs_load(in, &L);
 	int hardened = 0;
-	for (int q = 0; q < in->n; q++)
-		hardened |= L.h[2][q] > p->eps[0];
-	return hardened ? onate_pairs_curve(p, &L, in->n, in->dt, o)
-	                : onate_pairs_first(p, &L, in->n, in->dt, o);
+	for (int q = 0; q < n; q++)
+		hardened |= L->h[2][q] > p->eps[0];
+	return hardened ? onate_pairs_curve(lp, L, n, dt, o) : onate_pairs_first(lp, L, n, dt, o);
 }
 
 static double onate_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)

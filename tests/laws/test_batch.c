@@ -240,9 +240,11 @@ static void run_pairs(const char *name, const char *json)
 			                .idx = ix,
 			                .n = nq,
 			                .dt = dt};
+			law_lanes loaded;
+			law_pairs_load(&in, &loaded);
 			law_fused o;
 			o.damage = 0; /* as the engine does (bonds.c) */
-			int count = L->force_pairs(p, &in, &o), elastic = 0;
+			int count = L->force_pairs(p, &loaded, nq, dt, &o), elastic = 0;
 			for (int q = 0; q < nq; q++) {
 				bond *b = &fused[ix[q]];
 				same &= memcmp(b, &before[ix[q]], sizeof *b) == 0;
