@@ -236,7 +236,9 @@ struct law_fused {
 	const law_params *restrict lp, const law_lanes *restrict L, int n, double dt
 
 /* Lane q of a law_fused from the law's forces fn (its viscous part fv) and
- * fs on the pair k, and the bond's new history. */
+ * fs on the pair k, and the bond's new history: t, and h and state unless h
+ * is NULL (a law whose force_pairs sets o->history to 0: nothing reads
+ * them). */
 static inline void law_fused_put(law_fused *o, int q, int32_t elastic, const pair_motion *k,
                                  double fn, double fv, const double fs[3], double dt,
                                  const double t[3], const double h[LAW_NHIST], int32_t state)
@@ -249,6 +251,8 @@ static inline void law_fused_put(law_fused *o, int q, int32_t elastic, const pai
 	o->e_viscous[q] = fv * k->vn * dt;
 	for (int c = 0; c < 3; c++)
 		o->t[c][q] = t[c];
+	if (!h)
+		return;
 	for (int c = 0; c < LAW_NHIST; c++)
 		o->h[c][q] = h[c];
 	o->state[q] = state;

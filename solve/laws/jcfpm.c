@@ -234,7 +234,7 @@ DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int jcfpm_pairs(LAW_
 		int32_t ok =
 		    (L->state[q] == BOND_INTACT) & !(u > p->sigma_t * A / kn) & (f <= limit);
 		double fs[3] = {t[0] * ks, t[1] * ks, t[2] * ks};
-		law_fused_put(o, q, ok, &k, fn, 0, fs, dt, t, h, L->state[q]);
+		law_fused_put(o, q, ok, &k, fn, 0, fs, dt, t, NULL, 0);
 		count += ok;
 	}
 	return count;

@@ -214,7 +214,7 @@ DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int linear_pairs(LAW
 		int32_t ok = (L->state[q] < BOND_BROKEN_TENSION) & !(fe > sigma_t * area) &
 		             !(ff > shear_limit * shear_limit);
 		double fv = cn * k.vn;
-		law_fused_put(o, q, ok, &k, fe + fv, fv, fs, dt, t, h, L->state[q]);
+		law_fused_put(o, q, ok, &k, fe + fv, fv, fs, dt, t, NULL, 0);
 		count += ok;
 	}
 	return count;
