@@ -304,16 +304,18 @@ static inline void fused_history(bond *b, const law_fused *o, int q, int history
 	}
 }
 
-/* The nq bonds idx[0..nq) through the law's force_pairs (kinematics.h):
+/* The nq bonds idx[0..nq) (or b0 + q, q < nq, when idx is NULL) through
+ * the law's force_pairs (kinematics.h):
  * the lanes on its elastic branch (o->elastic[q]) from its one loop, their
  * records updated (unless keep is set and every lane is elastic: the
  * caller then updates them, fused_history); the others as bonds_staged
  * computes them, into part[q]. Returns the count of elastic lanes.
  * Inlined, so the vector versions of its callers (clones.h) run their own
  * copy of it. */
-static inline __attribute__((always_inline)) int bonds_fused(engine *e, const int32_t *idx, int nq,
-                                                             int keep, crack_buf *cb, law_fused *o,
-                                                             bond_part *part)
+static inline __attribute__((always_inline)) int bonds_fused(engine *e, size_t b0,
+                                                             const int32_t *idx, int nq, int keep,
+                                                             crack_buf *cb, law_lanes *L,
+                                                             law_fused *o, bond_part *part)
 {
 	const particles *P = &e->p;
 	bond *rec = e->pairs.bonds.rec;
@@ -321,25 +323,25 @@ static inline __attribute__((always_inline)) int bonds_fused(engine *e, const in
 	                .v = P->v,
 	                .w = P->w,
 	                .r = P->r,
-	                .rec = rec,
+	                .rec = idx ? rec : rec + b0,
 	                .idx = idx,
 	                .n = nq,
 	                .dt = e->clock.dt};
-	law_lanes L;
-	law_pairs_load(&in, &L);
+	law_pairs_load(&in, L);
 	o->damage = 0;
-	int elastic = e->law->force_pairs(e->lp, &L, nq, e->clock.dt, o);
+	int elastic = e->law->force_pairs(e->lp, L, nq, e->clock.dt, o);
 	if (keep && elastic == nq)
 		return elastic;
 	int32_t rest[BATCH] = {0}, lane[BATCH];
 	int nr = 0;
 	for (int q = 0; q < nq; q++) {
+		int32_t b = idx ? idx[q] : (int32_t)(b0 + (size_t)q);
 		if (!o->elastic[q]) {
-			rest[nr] = idx[q];
+			rest[nr] = b;
 			lane[nr++] = q;
 			continue;
 		}
-		fused_history(&rec[idx[q]], o, q, o->history);
+		fused_history(&rec[b], o, q, o->history);
 	}
 	if (elastic == nq)
 		return elastic;
@@ -362,8 +364,9 @@ static void bonds_compute(engine *e, const int32_t *idx, int nq, int measure, cr
 		bonds_staged(e, idx, nq, measure, cb, part);
 		return;
 	}
+	law_lanes L;
 	law_fused o;
-	bonds_fused(e, idx, nq, 0, cb, &o, part);
+	bonds_fused(e, 0, idx, nq, 0, cb, &L, &o, part);
 	for (int q = 0; q < nq; q++)
 		if (o.elastic[q]) {
 			bond_part *d = &part[q];
@@ -446,18 +449,95 @@ static inline void bond_add_fused(engine *e, size_t b, const law_fused *o, int q
 	bond_add_force(e, b, f, 1);
 }
 
+/* Four doubles (or floats) read and written at any 8-byte (4-byte)
+ * boundary, as acc_v2. */
+typedef double acc_v4 __attribute__((vector_size(32), aligned(8)));
+typedef float fb_v4 __attribute__((vector_size(16), aligned(4)));
+
+/* The rows of a[0..4): out[l] holds a[0..4)[l]. */
+static inline void transpose4(const acc_v4 a[4], acc_v4 out[4])
+{
+	acc_v4 t0 = __builtin_shufflevector(a[0], a[1], 0, 4, 2, 6),
+	       t1 = __builtin_shufflevector(a[0], a[1], 1, 5, 3, 7),
+	       t2 = __builtin_shufflevector(a[2], a[3], 0, 4, 2, 6),
+	       t3 = __builtin_shufflevector(a[2], a[3], 1, 5, 3, 7);
+	out[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+	out[1] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+	out[2] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+	out[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+}
+
+/* The sums a particle gets from lanes q..q+3 of o, r the radii of that end
+ * of each lane and sign -1 for the ends j: head[l] the force and the first
+ * torque component of lane q + l, tail[l] the other two. */
+static inline void lanes_sums(const law_fused *o, int q, const double *r, double sign,
+                              acc_v4 head[4], acc_v2 tail[4])
+{
+	acc_v4 rv = *(const acc_v4 *)(r + q);
+	acc_v4 col[4] = {
+	    sign * *(const acc_v4 *)(o->f[0] + q), sign * *(const acc_v4 *)(o->f[1] + q),
+	    sign * *(const acc_v4 *)(o->f[2] + q), rv * *(const acc_v4 *)(o->f[3] + q)};
+	transpose4(col, head);
+	acc_v4 u = rv * *(const acc_v4 *)(o->f[4] + q), w = rv * *(const acc_v4 *)(o->f[5] + q);
+	acc_v4 t0 = __builtin_shufflevector(u, w, 0, 4, 2, 6),
+	       t1 = __builtin_shufflevector(u, w, 1, 5, 3, 7);
+	tail[0] = __builtin_shufflevector(t0, t0, 0, 1);
+	tail[1] = __builtin_shufflevector(t1, t1, 0, 1);
+	tail[2] = __builtin_shufflevector(t0, t0, 2, 3);
+	tail[3] = __builtin_shufflevector(t1, t1, 2, 3);
+}
+
+/* head and tail added to the sums a of a particle. */
+static inline void acc_add_rows(double *a, acc_v4 head, acc_v2 tail)
+{
+	*(acc_v4 *)a += head;
+	*(acc_v2 *)(a + 4) += tail;
+}
+
 /* The bonds b0 + q of lanes q < nq of force_pairs' output, all on the
  * law's elastic branch: each record updated and each bond added.
  * full: whether o's history and plastic work may be set (else only t and
  * the viscous energy are); a constant in each inlined copy, so that the
- * loop tests neither. */
-static inline __attribute__((always_inline)) void
-bonds_add_elastic(engine *e, size_t b0, const law_fused *o, int nq, pair_sums *s, int full)
+ * loop tests neither. Four lanes at a time, their forces and torques
+ * (times the radii of L) are transposed into one row per lane and end
+ * instead of being read value by value: the same values added in the same
+ * order as bond_add_fused adds them. */
+static inline __attribute__((always_inline)) void bonds_add_elastic(engine *e, size_t b0,
+                                                                    const law_lanes *L,
+                                                                    const law_fused *o, int nq,
+                                                                    pair_sums *s, int full)
 {
+	pairlist *B = &e->pairs.bonds;
 	for (int q = 0; q < nq; q++) {
-		size_t b = b0 + (size_t)q;
-		fused_history(&e->pairs.bonds.rec[b], o, q, full && o->history);
-		bond_add_fused(e, b, o, q, s, full && o->damage);
+		fused_history(&B->rec[b0 + (size_t)q], o, q, full && o->history);
+		if (full && o->damage)
+			s->e_damage += o->e_damage[q];
+		s->e_viscous += o->e_viscous[q];
+	}
+	int q = 0;
+	for (; q + 4 <= nq; q += 4) {
+		acc_v4 hi[4], hj[4];
+		acc_v2 ti[4], tj[4];
+		lanes_sums(o, q, L->ri, 1, hi, ti);
+		lanes_sums(o, q, L->rj, -1, hj, tj);
+		for (int l = 0; l < 4; l++) {
+			size_t b = b0 + (size_t)(q + l);
+			const bond *bd = &B->rec[b];
+			fb_v4 fb = __builtin_convertvector(hi[l], fb_v4);
+			if (l < 3) /* the fourth float is the next bond's, stored next */
+				*(fb_v4 *)(B->fb + 3 * b) = fb;
+			else
+				for (int c = 0; c < 3; c++)
+					B->fb[3 * b + c] = fb[c];
+			acc_add_rows(engine_acc(e, (size_t)bd->i), hi[l], ti[l]);
+			acc_add_rows(engine_acc(e, (size_t)bd->j), hj[l], tj[l]);
+		}
+	}
+	for (; q < nq; q++) {
+		double f[6];
+		for (int c = 0; c < 6; c++)
+			f[c] = o->f[c][q];
+		bond_add_force(e, b0 + (size_t)q, f, 1);
 	}
 }
 
@@ -474,18 +554,19 @@ DEM_VECTOR_CLONES void bonds_cross(engine *e, int k, int measure)
 
 /* Ahead of the batch at bond b0: the records of the batch PREFETCH_RECORDS
  * batches on into the cache (their first read otherwise waits for memory,
- * a tenth of a step). Only the speed depends on it. */
-enum { PREFETCH_RECORDS = 4 };
+ * a tenth of a step). Only the speed depends on it. The lines of a whole
+ * batch, unrolled: past the last record they fetch what follows, and
+ * prefetching never faults. */
+enum { PREFETCH_RECORDS = 4, PREFETCH_LINES = BATCH * sizeof(bond) / 64 + 1 };
 static inline void bonds_prefetch(const engine *e, size_t b0)
 {
-	const bond *rec = e->pairs.bonds.rec;
-	size_t n = e->pairs.bonds.n;
-	size_t r0 = b0 + PREFETCH_RECORDS * BATCH, r1 = r0 + BATCH < n ? r0 + BATCH : n;
-	if (r0 >= n)
+	size_t r0 = b0 + PREFETCH_RECORDS * BATCH;
+	if (r0 >= e->pairs.bonds.n)
 		return;
-	const char *p0 = (const char *)(rec + r0), *p1 = (const char *)(rec + r1);
-	for (const char *p = p0; p < p1; p += 64)
-		__builtin_prefetch(p);
+	const char *p0 = (const char *)(e->pairs.bonds.rec + r0);
+#pragma GCC unroll 32
+	for (int l = 0; l < PREFETCH_LINES; l++)
+		__builtin_prefetch(p0 + 64 * l);
 }
 
 /* The steps a batch with more than a quarter of its lanes off the law's
@@ -521,28 +602,31 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 			size_t b1 = hi - b0 < BATCH ? hi : b0 + BATCH;
 			int32_t idx[BATCH];
 			bond_part part[BATCH];
-			int nq = 0;
 			bonds_prefetch(e, b0);
 			/* Whether the batch holds none of the share's crossing
 			 * bonds: they are its slots, in bond order, so the next
 			 * slot's bond says it. */
 			int own = slot == S->cfirst[k + 1] || (size_t)S->cross[slot] >= b1;
-			if (own)
-				for (size_t b = b0; b < b1; b++)
-					idx[nq++] = (int32_t)b;
-			else
-				for (size_t b = b0; b < b1; b++)
-					if ((size_t)rec[b].j < p1)
-						idx[nq++] = (int32_t)b;
 			/* A batch that was largely off the law's elastic branch
 			 * (broken, damaging, flowing bonds, whose lanes are
 			 * computed twice: by force_pairs, then staged) goes the
 			 * staged way for STAGED_STEPS steps, then tries again. */
 			int fused = fused_law && !S->staged[b0];
+			/* The batch's bonds, listed unless they are b0..b1 and go
+			 * through force_pairs, which reads them in a row. */
+			int nq = 0;
+			if (own && fused)
+				nq = (int)(b1 - b0);
+			else
+				for (size_t b = b0; b < b1; b++)
+					if (own || (size_t)rec[b].j < p1)
+						idx[nq++] = (int32_t)b;
+			law_lanes L;
 			law_fused o;
 			int elastic = 0;
 			if (fused) {
-				elastic = bonds_fused(e, idx, nq, own, cb, &o, part);
+				elastic =
+				    bonds_fused(e, b0, own ? NULL : idx, nq, own, cb, &L, &o, part);
 				if (4 * elastic < 3 * nq)
 					S->staged[b0] = STAGED_STEPS;
 			} else {
@@ -554,9 +638,9 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 				/* The whole batch is the share's own and on the
 				 * law's elastic branch: no lane to tell apart. */
 				if (o.history || o.damage)
-					bonds_add_elastic(e, b0, &o, nq, s, 1);
+					bonds_add_elastic(e, b0, &L, &o, nq, s, 1);
 				else
-					bonds_add_elastic(e, b0, &o, nq, s, 0);
+					bonds_add_elastic(e, b0, &L, &o, nq, s, 0);
 				continue;
 			}
 			int q = 0;

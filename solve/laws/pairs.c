@@ -64,14 +64,17 @@ AVX2 static inline void particles3(const double *a, const int32_t p[4], __m256d 
 	transpose4(row, out);
 }
 
-AVX2 static void load_avx2(const law_pairs *restrict in, law_lanes *restrict L)
+/* listed: whether in->idx lists the records (else they are in a row): a
+ * constant in each inlined copy, so that no lane tests it. */
+AVX2 static inline __attribute__((always_inline)) void
+load_avx2_body(const law_pairs *restrict in, law_lanes *restrict L, int listed)
 {
 	int q = 0;
 	for (; q + 4 <= in->n; q += 4) {
 		const bond *b[4];
 		int32_t i[4], j[4];
 		for (int l = 0; l < 4; l++) {
-			b[l] = lane_bond(in, q + l);
+			b[l] = &in->rec[listed ? in->idx[q + l] : q + l];
 			i[l] = b[l]->i;
 			j[l] = b[l]->j;
 			L->ri[q + l] = in->r[i[l]];
@@ -107,6 +110,14 @@ AVX2 static void load_avx2(const law_pairs *restrict in, law_lanes *restrict L)
 		}
 	}
 	law_pairs_load_lanes(in, L, q);
+}
+
+AVX2 static void load_avx2(const law_pairs *restrict in, law_lanes *restrict L)
+{
+	if (in->idx)
+		load_avx2_body(in, L, 1);
+	else
+		load_avx2_body(in, L, 0);
 }
 
 void law_pairs_load(const law_pairs *restrict in, law_lanes *restrict L)
