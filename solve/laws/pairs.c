@@ -64,6 +64,19 @@ AVX2 static inline void particles3(const double *a, const int32_t p[4], __m256d 
 	transpose4(row, out);
 }
 
+/* The differences a_j - a_i of the three values of particles j[l] and
+ * i[l], l < 4, as particles3 gives them: each row subtracted before the
+ * transpose, so one transpose instead of two (the same differences). */
+AVX2 static inline void particles3_diff(const double *a, const int32_t i[4], const int32_t j[4],
+                                        __m256d out[4])
+{
+	__m256d row[4];
+	for (int l = 0; l < 4; l++)
+		row[l] = _mm256_sub_pd(_mm256_loadu_pd(a + 3 * (ptrdiff_t)j[l]),
+		                       _mm256_loadu_pd(a + 3 * (ptrdiff_t)i[l]));
+	transpose4(row, out);
+}
+
 /* listed: whether in->idx lists the records (else they are in a row): a
  * constant in each inlined copy, so that no lane tests it. */
 AVX2 static inline __attribute__((always_inline)) void
@@ -82,14 +95,12 @@ load_avx2_body(const law_pairs *restrict in, law_lanes *restrict L, int listed)
 			L->state[q + l] = b[l]->state;
 		}
 		__m256d pi[4], pj[4];
-		particles3(in->x, i, pi);
-		particles3(in->x, j, pj);
+		particles3_diff(in->x, i, j, pi);
 		for (int c = 0; c < 3; c++)
-			_mm256_storeu_pd(&L->dx[c][q], _mm256_sub_pd(pj[c], pi[c]));
-		particles3(in->v, i, pi);
-		particles3(in->v, j, pj);
+			_mm256_storeu_pd(&L->dx[c][q], pi[c]);
+		particles3_diff(in->v, i, j, pi);
 		for (int c = 0; c < 3; c++)
-			_mm256_storeu_pd(&L->dv[c][q], _mm256_sub_pd(pj[c], pi[c]));
+			_mm256_storeu_pd(&L->dv[c][q], pi[c]);
 		particles3(in->w, i, pi);
 		particles3(in->w, j, pj);
 		for (int c = 0; c < 3; c++) {
