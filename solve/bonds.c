@@ -325,8 +325,7 @@ static inline __attribute__((always_inline)) int bonds_fused(engine *e, size_t b
 	                .r = P->r,
 	                .rec = idx ? rec : rec + b0,
 	                .idx = idx,
-	                .n = nq,
-	                .dt = e->clock.dt};
+	                .n = nq};
 	law_pairs_load(&in, L);
 	o->damage = 0;
 	int elastic = e->law->force_pairs(e->lp, L, nq, e->clock.dt, o);

@@ -84,16 +84,15 @@ static inline pair_motion pair_motion_of(const double dx[3], const double dv[3],
 
 /* A batch of bonds with the particles they join, as law_pairs_load reads
  * them for law.force_pairs: the bonds rec[idx[0..n)] (rec[0..n) when idx
- * is NULL), the particles' arrays (engine.h), the time step. Each of x, v
- * and w has one item (three doubles) more than the particles it holds, as
- * the engine's windows do (window.c): law_pairs_load reads a particle's
- * three values as four. */
+ * is NULL) and the particles' arrays (engine.h). Each of x, v and w has
+ * one item (three doubles) more than the particles it holds, as the
+ * engine's windows do (window.c): law_pairs_load reads a particle's three
+ * values as four. */
 struct law_pairs {
 	const double *x, *v, *w, *r;
 	const bond *rec;
 	const int32_t *idx;
 	int n;
-	double dt;
 };
 
 /* A batch's inputs lane by lane (law_pairs_load), as force_pairs' loops
@@ -146,7 +145,7 @@ batch_kinematics(const double *restrict x, const double *restrict v, const doubl
                  const int32_t *restrict idx, int nq, double dt, law_batch *restrict B,
                  batch_geom *restrict g)
 {
-	law_pairs in = {.x = x, .v = v, .w = w, .r = r, .rec = rec, .idx = idx, .n = nq, .dt = dt};
+	law_pairs in = {.x = x, .v = v, .w = w, .r = r, .rec = rec, .idx = idx, .n = nq};
 	law_lanes L;
 	law_pairs_load(&in, &L);
 	B->n = nq;

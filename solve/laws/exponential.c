@@ -160,8 +160,8 @@ LAW_BATCH(exp, exp_force)
  * loading curve, strain below eps_max now and at the historical maximum, a
  * tension below the limit strain, a shear force within the Mohr-Coulomb
  * limit) from the batch's lanes (law_pairs_load) to the forces in one
- * vectorised pass (kinematics.h), with exp_force's expressions, so the same to the bit;
- * every other lane goes through exp_force. */
+ * vectorised pass (kinematics.h), with exp_force's expressions, so the
+ * same to the bit; every other lane goes through exp_force. */
 DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int exp_pairs(LAW_PAIRS_PARAMS,
                                                                           law_fused *restrict o)
 {

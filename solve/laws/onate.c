@@ -284,8 +284,8 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void onate_batch(const law_par
 }
 
 /* force_pairs: onate_batch's vector loops as one, from the batch's lanes
- * (law_pairs_load) to the forces in one pass (kinematics.h). With `curve`, the
- * normal force on every part of the loading curve (dh_normal_curve):
+ * (law_pairs_load) to the forces in one pass (kinematics.h). With `curve`,
+ * the normal force on every part of the loading curve (dh_normal_curve):
  * loading past the largest compression with its plastic work
  * (o->e_damage), unloading and reloading about the permanent indentation;
  * else on its first part only (dh_normal_first), which costs less. */

@@ -232,14 +232,8 @@ static void run_pairs(const char *name, const char *json)
 			batch_kinematics(x, v, w, r, m, rec, ix, nq, dt, &B, &geo);
 			L->force_batch(p, &B);
 			batch_history_store(rec, ix, &B);
-			law_pairs in = {.x = x,
-			                .v = v,
-			                .w = w,
-			                .r = r,
-			                .rec = fused,
-			                .idx = ix,
-			                .n = nq,
-			                .dt = dt};
+			law_pairs in = {
+			    .x = x, .v = v, .w = w, .r = r, .rec = fused, .idx = ix, .n = nq};
 			law_lanes loaded;
 			law_pairs_load(&in, &loaded);
 			law_fused o;
