@@ -19,6 +19,7 @@
 #include "solve/pairlist.h"
 #include "solve/par.h"
 #include "solve/ranks.h"
+#include "solve/vec4.h"
 
 /* Whether the centre of one of spheres i, j lies inside the other. */
 static int nested(const particles *P, size_t i, int32_t j)
@@ -448,38 +449,22 @@ static inline void bond_add_fused(engine *e, size_t b, const law_fused *o, int q
 	bond_add_force(e, b, f, 1);
 }
 
-/* Four doubles (or floats) read and written at any 8-byte (4-byte)
- * boundary, as acc_v2. */
-typedef double acc_v4 __attribute__((vector_size(32), aligned(8)));
+/* Four floats, written at any 4-byte boundary. */
 typedef float fb_v4 __attribute__((vector_size(16), aligned(4)));
-
-/* The rows of a[0..4): out[l] holds a[0..4)[l]. */
-static inline void transpose4(const acc_v4 a[4], acc_v4 out[4])
-{
-	acc_v4 t0 = __builtin_shufflevector(a[0], a[1], 0, 4, 2, 6),
-	       t1 = __builtin_shufflevector(a[0], a[1], 1, 5, 3, 7),
-	       t2 = __builtin_shufflevector(a[2], a[3], 0, 4, 2, 6),
-	       t3 = __builtin_shufflevector(a[2], a[3], 1, 5, 3, 7);
-	out[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
-	out[1] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
-	out[2] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
-	out[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
-}
 
 /* The sums a particle gets from lanes q..q+3 of o, r the radii of that end
  * of each lane and sign -1 for the ends j: head[l] the force and the first
  * torque component of lane q + l, tail[l] the other two. */
-static inline void lanes_sums(const law_fused *o, int q, const double *r, double sign,
-                              acc_v4 head[4], acc_v2 tail[4])
+static inline void lanes_sums(const law_fused *o, int q, const double *r, double sign, vec4 head[4],
+                              acc_v2 tail[4])
 {
-	acc_v4 rv = *(const acc_v4 *)(r + q);
-	acc_v4 col[4] = {
-	    sign * *(const acc_v4 *)(o->f[0] + q), sign * *(const acc_v4 *)(o->f[1] + q),
-	    sign * *(const acc_v4 *)(o->f[2] + q), rv * *(const acc_v4 *)(o->f[3] + q)};
-	transpose4(col, head);
-	acc_v4 u = rv * *(const acc_v4 *)(o->f[4] + q), w = rv * *(const acc_v4 *)(o->f[5] + q);
-	acc_v4 t0 = __builtin_shufflevector(u, w, 0, 4, 2, 6),
-	       t1 = __builtin_shufflevector(u, w, 1, 5, 3, 7);
+	vec4 rv = *(const vec4 *)(r + q);
+	vec4 col[4] = {sign * *(const vec4 *)(o->f[0] + q), sign * *(const vec4 *)(o->f[1] + q),
+	               sign * *(const vec4 *)(o->f[2] + q), rv * *(const vec4 *)(o->f[3] + q)};
+	vec4_transpose(col, head);
+	vec4 u = rv * *(const vec4 *)(o->f[4] + q), w = rv * *(const vec4 *)(o->f[5] + q);
+	vec4 t0 = __builtin_shufflevector(u, w, 0, 4, 2, 6),
+	     t1 = __builtin_shufflevector(u, w, 1, 5, 3, 7);
 	tail[0] = __builtin_shufflevector(t0, t0, 0, 1);
 	tail[1] = __builtin_shufflevector(t1, t1, 0, 1);
 	tail[2] = __builtin_shufflevector(t0, t0, 2, 3);
@@ -487,9 +472,9 @@ static inline void lanes_sums(const law_fused *o, int q, const double *r, double
 }
 
 /* head and tail added to the sums a of a particle. */
-static inline void acc_add_rows(double *a, acc_v4 head, acc_v2 tail)
+static inline void acc_add_rows(double *a, vec4 head, acc_v2 tail)
 {
-	*(acc_v4 *)a += head;
+	*(vec4 *)a += head;
 	*(acc_v2 *)(a + 4) += tail;
 }
 
@@ -515,7 +500,7 @@ static inline __attribute__((always_inline)) void bonds_add_elastic(engine *e, s
 	}
 	int q = 0;
 	for (; q + 4 <= nq; q += 4) {
-		acc_v4 hi[4], hj[4];
+		vec4 hi[4], hj[4];
 		acc_v2 ti[4], tj[4];
 		lanes_sums(o, q, L->ri, 1, hi, ti);
 		lanes_sums(o, q, L->rj, -1, hj, tj);

@@ -39,42 +39,31 @@ void law_pairs_load_lanes(const law_pairs *restrict in, law_lanes *restrict L, i
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
-#include <immintrin.h>
+#include "solve/vec4.h"
 
 #define AVX2 __attribute__((target("avx2")))
 
-/* The transpose of the rows a[0..4): out[c] holds a[0..4][c]. */
-AVX2 static inline void transpose4(const __m256d a[4], __m256d out[4])
-{
-	__m256d t0 = _mm256_unpacklo_pd(a[0], a[1]), t1 = _mm256_unpackhi_pd(a[0], a[1]),
-	        t2 = _mm256_unpacklo_pd(a[2], a[3]), t3 = _mm256_unpackhi_pd(a[2], a[3]);
-	out[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
-	out[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
-	out[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
-	out[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
-}
-
 /* The three values of particles p[0..4) of the array a (four read from
  * each: the next item's first, or the spare item's, is not used). */
-AVX2 static inline void particles3(const double *a, const int32_t p[4], __m256d out[4])
+AVX2 static inline void particles3(const double *a, const int32_t p[4], vec4 out[4])
 {
-	__m256d row[4];
+	vec4 row[4];
 	for (int l = 0; l < 4; l++)
-		row[l] = _mm256_loadu_pd(a + 3 * (ptrdiff_t)p[l]);
-	transpose4(row, out);
+		row[l] = *(const vec4 *)(a + 3 * (ptrdiff_t)p[l]);
+	vec4_transpose(row, out);
 }
 
 /* The differences a_j - a_i of the three values of particles j[l] and
  * i[l], l < 4, as particles3 gives them: each row subtracted before the
  * transpose, so one transpose instead of two (the same differences). */
 AVX2 static inline void particles3_diff(const double *a, const int32_t i[4], const int32_t j[4],
-                                        __m256d out[4])
+                                        vec4 out[4])
 {
-	__m256d row[4];
+	vec4 row[4];
 	for (int l = 0; l < 4; l++)
-		row[l] = _mm256_sub_pd(_mm256_loadu_pd(a + 3 * (ptrdiff_t)j[l]),
-		                       _mm256_loadu_pd(a + 3 * (ptrdiff_t)i[l]));
-	transpose4(row, out);
+		row[l] = *(const vec4 *)(a + 3 * (ptrdiff_t)j[l]) -
+		         *(const vec4 *)(a + 3 * (ptrdiff_t)i[l]);
+	vec4_transpose(row, out);
 }
 
 /* listed: whether in->idx lists the records (else they are in a row): a
@@ -94,30 +83,30 @@ load_avx2_body(const law_pairs *restrict in, law_lanes *restrict L, int listed)
 			L->rj[q + l] = in->r[j[l]];
 			L->state[q + l] = b[l]->state;
 		}
-		__m256d pi[4], pj[4];
+		vec4 pi[4], pj[4];
 		particles3_diff(in->x, i, j, pi);
 		for (int c = 0; c < 3; c++)
-			_mm256_storeu_pd(&L->dx[c][q], pi[c]);
+			*(vec4 *)&L->dx[c][q] = pi[c];
 		particles3_diff(in->v, i, j, pi);
 		for (int c = 0; c < 3; c++)
-			_mm256_storeu_pd(&L->dv[c][q], pi[c]);
+			*(vec4 *)&L->dv[c][q] = pi[c];
 		particles3(in->w, i, pi);
 		particles3(in->w, j, pj);
 		for (int c = 0; c < 3; c++) {
-			_mm256_storeu_pd(&L->wi[c][q], pi[c]);
-			_mm256_storeu_pd(&L->wj[c][q], pj[c]);
+			*(vec4 *)&L->wi[c][q] = pi[c];
+			*(vec4 *)&L->wj[c][q] = pj[c];
 		}
-		__m256d row[4], lo[4], hi[4];
+		vec4 row[4], lo[4], hi[4];
 		for (int l = 0; l < 4; l++)
-			row[l] = _mm256_loadu_pd(&b[l]->d0);
-		transpose4(row, lo);
+			row[l] = *(const vec4 *)&b[l]->d0;
+		vec4_transpose(row, lo);
 		for (int l = 0; l < 4; l++)
-			row[l] = _mm256_loadu_pd(&b[l]->t[2]);
-		transpose4(row, hi);
+			row[l] = *(const vec4 *)&b[l]->t[2];
+		vec4_transpose(row, hi);
 		double *to[8] = {L->d0, L->k, L->t[0], L->t[1], L->t[2], L->h[0], L->h[1], L->h[2]};
 		for (int c = 0; c < 4; c++) {
-			_mm256_storeu_pd(to[c] + q, lo[c]);
-			_mm256_storeu_pd(to[4 + c] + q, hi[c]);
+			*(vec4 *)(to[c] + q) = lo[c];
+			*(vec4 *)(to[4 + c] + q) = hi[c];
 		}
 	}
 	law_pairs_load_lanes(in, L, q);
