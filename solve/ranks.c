@@ -153,6 +153,21 @@ size_t ranks_share_pairs(const engine *e, const bond *rec, size_t n, bond **in)
 	return m;
 }
 
+/* The arrays only a rank's own particles need (the positions at the last
+ * rebuild, the sums of the bond forces), made for its own particles (all
+ * of them with one rank), whose range a split may change. */
+static void keep_own(engine *e)
+{
+	size_t p0, p1;
+	ranks_own(e, &p0, &p1);
+	particles *P = &e->p;
+	P->own0 = p0;
+	P->own1 = p1;
+	free(P->x_ref), free(e->scratch.acc);
+	P->x_ref = xcalloc(3 * (p1 - p0) + 1, sizeof *P->x_ref);
+	e->scratch.acc = xcalloc(6 * (p1 - p0) + 1, sizeof *e->scratch.acc);
+}
+
 void ranks_split(engine *e)
 {
 	rank_split *R = &e->ranks;
@@ -193,6 +208,7 @@ void ranks_split(engine *e)
 	}
 	links_buffers(&R->bsend, 6);
 	links_buffers(&R->brecv, 6);
+	keep_own(e);
 }
 
 void ranks_contacts(engine *e)

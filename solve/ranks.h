@@ -115,7 +115,9 @@ typedef struct {
 	const int32_t *who[2];
 } pairs_view;
 
-/* This rank's part of the shares (after bonds_split). In setup with
+/* This rank's part of the shares (after bonds_split), and the arrays of
+ * its own particles made for them (their positions at the last rebuild,
+ * zero until the next, and their sums of the bond forces). In setup with
  * several ranks, where each holds its share of the particles' order
  * (order.h), the particles first go to the ranks that own them. */
 void ranks_split(engine *e);

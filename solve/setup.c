@@ -30,21 +30,6 @@
 #include "solve/timestep.h"
 #include "solve/window.h"
 
-/* The arrays only a rank's own particles need (the positions at the last
- * rebuild, the sums of the bond forces) for its own from now on, once the
- * particles are split among the ranks (all of them with one). */
-static void keep_own(engine *e)
-{
-	size_t p0, p1;
-	ranks_own(e, &p0, &p1);
-	particles *P = &e->p;
-	P->own0 = p0;
-	P->own1 = p1;
-	free(P->x_ref), free(e->scratch.acc);
-	P->x_ref = xcalloc(3 * (p1 - p0) + 1, sizeof *P->x_ref);
-	e->scratch.acc = xcalloc(6 * (p1 - p0) + 1, sizeof *e->scratch.acc);
-}
-
 /* The exact sum of the values v[i] of this rank's particles, over the
  * ranks once the particles are split (ranks_own): the same bits for any
  * split (lib/xsum.h). */
@@ -282,7 +267,6 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 		               par_size(), e->p.n, BLOCK, e->pairs.split.n,
 		               e->pairs.split.n > 1 ? "s" : "");
 	ranks_split(e);
-	keep_own(e);
 	if (!o->whole)
 		window_start(e);
 	law_packing pk = packing_of(e, a);
