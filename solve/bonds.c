@@ -678,6 +678,85 @@ static void cross_slots(engine *e, int s0, int s1)
 	S->cfirst[s1] = S->ncross;
 }
 
+/* The bonds across the start of each particle block (crossing bonds if a
+ * share began there): span[b], b <= nblk, counts those (i, j) with
+ * i < b BLOCK <= j, over the ranks. */
+typedef struct {
+	uint64_t *from, *past; /* [nblk + 2] */
+} span_ctx;
+
+static void span_one(void *ctx, size_t b, int32_t i, int32_t j)
+{
+	span_ctx *c = ctx;
+	(void)b;
+	c->from[i / BLOCK + 1]++;
+	c->past[j / BLOCK + 1]++;
+}
+
+static uint64_t *crossing_span(engine *e, size_t nblk)
+{
+	span_ctx c = {xcalloc(nblk + 2, sizeof *c.from), xcalloc(nblk + 2, sizeof *c.past)};
+	size_t p0, p1;
+	int split = ranks_own(e, &p0, &p1);
+	each_bond(e, p0, p1, span_one, &c);
+	if (split) {
+		par_sum_u64(c.from, nblk + 2);
+		par_sum_u64(c.past, nblk + 2);
+	}
+	uint64_t open = 0;
+	for (size_t b = 0; b <= nblk; b++) {
+		open += c.from[b] - c.past[b];
+		c.from[b] = open;
+	}
+	free(c.past);
+	return c.from;
+}
+
+/* The work of share k - 1 of split_blocks ending at block b, from block
+ * a, less an equal part of the work left (m shares), taking the m - 1 ends
+ * left to cross as many bonds as b. */
+static double share_excess(const double *before, const uint64_t *span, size_t nblk, size_t a,
+                           size_t b, int m)
+{
+	double cross = (double)span[b];
+	return before[b] - before[a] + cross - (before[nblk] - before[a] + (m - 1) * cross) / m;
+}
+
+/* The first particles of shares 1 .. shares - 1 into pfirst: whole
+ * particle blocks, at least one a share, of about equal work. A share's
+ * work is taken as its particles and bonds (a bond costs about as much as
+ * a particle's step) and the bonds that cross its end, once more: such a
+ * bond is computed apart, before the barrier of the step (bonds_cross),
+ * its force kept and added later on its own, and the batch it leaves has a
+ * gap, which takes the slower way. Each end is the block boundary nearest
+ * to an equal part of the work left (not the first past it, which made
+ * the first share the heaviest by up to a block). */
+static void split_blocks(engine *e, int shares, size_t *pfirst)
+{
+	const size_t *bfirst = e->pairs.split.bfirst;
+	size_t n = e->p.n, nblk = nblocks(n);
+	if (shares < 2)
+		return;
+	/* before[b]: the work of the blocks before b. */
+	double *before = xmalloc((nblk + 1) * sizeof *before);
+	for (size_t b = 0; b < nblk; b++)
+		before[b] = (double)(bfirst[b] + b * BLOCK);
+	before[nblk] = (double)(e->pairs.nbonds + n);
+	uint64_t *span = crossing_span(e, nblk);
+	for (int k = 1; k < shares; k++) {
+		int m = shares - k + 1;
+		size_t a = pfirst[k - 1] / BLOCK, last = nblk - (size_t)(shares - k), b = a + 1;
+		while (b < last && share_excess(before, span, nblk, a, b, m) < 0)
+			b++;
+		if (b > a + 1 && -share_excess(before, span, nblk, a, b - 1, m) <
+		                     share_excess(before, span, nblk, a, b, m))
+			b--;
+		pfirst[k] = b * BLOCK;
+	}
+	free(before);
+	free(span);
+}
+
 void bonds_split(engine *e, int shares)
 {
 	bond_split *S = &e->pairs.split;
@@ -691,8 +770,7 @@ void bonds_split(engine *e, int shares)
 			b++;
 		S->bfirst[blk] = f->bfirst ? f->bfirst[blk] : b;
 	}
-	/* Shares of about equal work (a bond costs about a particle), in whole
-	 * particle blocks. */
+	/* Shares of about equal work, in whole particle blocks. */
 	if ((size_t)shares > nblk)
 		shares = (int)nblk;
 	if (shares < 1)
@@ -700,15 +778,8 @@ void bonds_split(engine *e, int shares)
 	S->n = shares;
 	S->pfirst = xmalloc(((size_t)shares + 1) * sizeof *S->pfirst);
 	S->cfirst = xmalloc(((size_t)shares + 1) * sizeof *S->cfirst);
-	double total = (double)(n + nb);
 	S->pfirst[0] = 0;
-	for (int k = 1, blk = 0; k < shares; k++) {
-		while ((size_t)blk < nblk &&
-		       (double)(S->bfirst[blk] + (size_t)blk * BLOCK) < total * k / shares)
-			blk++;
-		size_t first = (size_t)blk * BLOCK < n ? (size_t)blk * BLOCK : n;
-		S->pfirst[k] = first > S->pfirst[k - 1] ? first : S->pfirst[k - 1];
-	}
+	split_blocks(e, shares, S->pfirst);
 	S->pfirst[shares] = n;
 	/* Every share's crossing bonds, in bond order (bonds_own keeps this
 	 * rank's), where this rank holds every particle; else each rank finds

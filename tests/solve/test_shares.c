@@ -4,6 +4,7 @@
  * shares than particle blocks (cut down to one a block). The runs load a
  * cylinder until bonds break, so failures, crossing bonds and the bonds'
  * block sums are all compared. */
+#include <math.h>
 #include <string.h>
 
 #include "solve/engine.h"
@@ -28,6 +29,33 @@ static void run(engine *e, const dem_case *c, const dem_assembly *a, int shares)
 	ranks_split(e);
 	for (int s = 0; s < STEPS; s++)
 		engine_step(e, s % 50 == 0);
+}
+
+/* Split e into shares of a larger specimen: each non-empty, and the work
+ * bonds_split takes each share to have (particles, bonds, crossing bonds
+ * once more) within one particle block's of the mean. */
+static void check_balance(engine *e, int shares)
+{
+	bonds_split(e, shares);
+	const bond_split *S = &e->pairs.split;
+	CHECK(S->n == shares);
+	size_t nblk = nblocks(e->p.n), most = 0, total = 0;
+	for (size_t b = 0; b < nblk; b++) {
+		size_t w = S->bfirst[b + 1] - S->bfirst[b] + BLOCK;
+		most = w > most ? w : most;
+	}
+	double work[16];
+	for (int k = 0; k < shares; k++) {
+		size_t p0 = S->pfirst[k], p1 = S->pfirst[k + 1];
+		CHECK(p1 > p0);
+		size_t cross = S->cfirst[k + 1] - S->cfirst[k];
+		most = cross > most ? cross : most;
+		work[k] =
+		    (double)(p1 - p0 + S->bfirst[nblocks(p1)] - S->bfirst[p0 / BLOCK] + cross);
+		total += (size_t)work[k];
+	}
+	for (int k = 0; k < shares; k++)
+		CHECK(fabs(work[k] - (double)total / shares) <= (double)most);
 }
 
 static int same(const void *x, const void *y, size_t n) { return memcmp(x, y, n) == 0; }
@@ -73,6 +101,24 @@ int main(void)
 		           one.out.cracks.n * sizeof *one.out.cracks.bond));
 	}
 	engine_free(&one), engine_free(&many), engine_free(&most);
+	/* About 11 000 spheres, 43 blocks. */
+	lattice l = {.kind = LATTICE_FCC,
+	             .nx = 14,
+	             .ny = 14,
+	             .nz = 14,
+	             .r = 1e-3,
+	             .jitter = 0.02,
+	             .polydisp = 0.02,
+	             .seed = 7};
+	dem_assembly big;
+	fixture_lattice(&big, &l);
+	engine e;
+	harness_engine(&e, &c, &big);
+	CHECK(nblocks(e.p.n) > 40);
+	for (int shares = 2; shares <= 16; shares *= 2)
+		check_balance(&e, shares);
+	engine_free(&e);
+	assembly_free(&big);
 	case_free(&c);
 	assembly_free(&a);
 	return check_done();
