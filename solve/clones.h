@@ -23,4 +23,25 @@
 #define DEM_VECTOR_CLONES
 #endif
 
+/* The laws' fused loops (law.force_pairs, LAW_PAIRS_VERSIONS in
+ * kinematics.h) have one version more, for x86-64 with AVX-512 and 512-bit
+ * vectors (DEM_WIDE_VECTORS), which AMD's cores with AVX-512 (Zen 4 and
+ * later) run: they run it at their full clock, and a Zen 5 the bond phase
+ * about 7 % faster (share/doc/solve.md). Intel's keep the 256-bit vectors
+ * GCC tunes them for (512-bit ones lower the clock of several of them).
+ * The lanes are computed alike, so the results are the same to the bit. */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
+    !defined(__SANITIZE_ADDRESS__)
+#ifdef DEM_NATIVE_BUILD
+#define DEM_WIDE_VECTORS __attribute__((target("prefer-vector-width=512")))
+#else
+#define DEM_WIDE_VECTORS __attribute__((target("arch=x86-64-v4,prefer-vector-width=512")))
+#endif
+/* Whether this CPU runs the DEM_WIDE_VECTORS versions. */
+static inline int dem_wide_vectors(void)
+{
+	return __builtin_cpu_is("amd") && __builtin_cpu_supports("x86-64-v4");
+}
+#endif
+
 #endif

@@ -162,8 +162,8 @@ LAW_BATCH(exp, exp_force)
  * limit) from the batch's lanes (law_pairs_load) to the forces in one
  * vectorised pass (kinematics.h), with exp_force's expressions, so the
  * same to the bit; every other lane goes through exp_force. */
-DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int exp_pairs(LAW_PAIRS_PARAMS,
-                                                                          law_fused *restrict o)
+static inline __attribute__((always_inline)) int exp_pairs_loop(LAW_PAIRS_PARAMS,
+                                                                law_fused *restrict o)
 {
 	const exp_params *p = (const exp_params *)lp;
 	o->history = 1;
@@ -192,6 +192,7 @@ DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int exp_pairs(LAW_PA
 	}
 	return count;
 }
+LAW_PAIRS_VERSIONS(exp_pairs, exp_pairs_loop)
 
 static double exp_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)
 {

@@ -215,8 +215,8 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void jcfpm_batch(const law_par
 
 /* force_pairs: jcfpm_batch's vector loop, from the batch's lanes
  * (law_pairs_load) to the forces in one pass (kinematics.h). */
-DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int jcfpm_pairs(LAW_PAIRS_PARAMS,
-                                                                            law_fused *restrict o)
+static inline __attribute__((always_inline)) int jcfpm_pairs_loop(LAW_PAIRS_PARAMS,
+                                                                  law_fused *restrict o)
 {
 	const jcfpm_params *p = (const jcfpm_params *)lp;
 	o->history = 0;
@@ -239,6 +239,7 @@ DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int jcfpm_pairs(LAW_
 	}
 	return count;
 }
+LAW_PAIRS_VERSIONS(jcfpm_pairs, jcfpm_pairs_loop)
 
 static double jcfpm_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)
 {

@@ -194,8 +194,8 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void linear_batch(const law_pa
 
 /* force_pairs: linear_batch's vector loop, from the batch's lanes
  * (law_pairs_load) to the forces in one pass (kinematics.h). */
-DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int linear_pairs(LAW_PAIRS_PARAMS,
-                                                                             law_fused *restrict o)
+static inline __attribute__((always_inline)) int linear_pairs_loop(LAW_PAIRS_PARAMS,
+                                                                   law_fused *restrict o)
 {
 	const law_params *p = lp;
 	double alpha = p->area.alpha, tau = p->tau, mu1 = p->mu1, sigma_t = p->sigma_t;
@@ -219,6 +219,7 @@ DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int linear_pairs(LAW
 	}
 	return count;
 }
+LAW_PAIRS_VERSIONS(linear_pairs, linear_pairs_loop)
 
 static double linear_energy(const law_params *p, const law_pair *q, const bond *b, double un)
 {

@@ -332,17 +332,19 @@ static inline __attribute__((always_inline)) int onate_pairs_body(LAW_PAIRS_PARA
 	return count;
 }
 
-DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
-onate_pairs_first(LAW_PAIRS_PARAMS, law_fused *restrict o)
+static inline __attribute__((always_inline)) int onate_first_body(LAW_PAIRS_PARAMS,
+                                                                  law_fused *restrict o)
 {
 	return onate_pairs_body(lp, L, n, dt, o, 0);
 }
+LAW_PAIRS_VERSIONS(onate_pairs_first, onate_first_body)
 
-DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int
-onate_pairs_curve(LAW_PAIRS_PARAMS, law_fused *restrict o)
+static inline __attribute__((always_inline)) int onate_curve_body(LAW_PAIRS_PARAMS,
+                                                                  law_fused *restrict o)
 {
 	return onate_pairs_body(lp, L, n, dt, o, 1);
 }
+LAW_PAIRS_VERSIONS(onate_pairs_curve, onate_curve_body)
 
 /* The whole curve where a bond of the batch has been compressed past its
  * first part (LCS1); else the first part, whose lanes that now load past
