@@ -24,12 +24,14 @@
 #endif
 
 /* The laws' fused loops (law.force_pairs, LAW_PAIRS_VERSIONS in
- * kinematics.h) have one version more, for x86-64 with AVX-512 and 512-bit
- * vectors (DEM_WIDE_VECTORS), which AMD's cores with AVX-512 (Zen 4 and
- * later) run: they run it at their full clock, and a Zen 5 the bond phase
- * about 7 % faster (share/doc/solve.md). Intel's keep the 256-bit vectors
- * GCC tunes them for (512-bit ones lower the clock of several of them).
- * The lanes are computed alike, so the results are the same to the bit. */
+ * kinematics.h) and the particles' (integrate_free, solve/step.c) have one
+ * version more (DEM_VERSIONS), for x86-64 with AVX-512 and 512-bit vectors
+ * (DEM_WIDE_VECTORS), which AMD's cores with AVX-512 (Zen 4 and later)
+ * run: they run it at their full clock, and a Zen 5 the bond phase about
+ * 7 % faster and the particles' a sixth (share/doc/solve.md). Intel's keep
+ * the 256-bit vectors GCC tunes them for (512-bit ones lower the clock of
+ * several of them). The lanes are computed alike, so the results are the
+ * same to the bit. */
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
     !defined(__SANITIZE_ADDRESS__)
 #ifdef DEM_NATIVE_BUILD
@@ -42,6 +44,37 @@ static inline int dem_wide_vectors(void)
 {
 	return __builtin_cpu_is("amd") && __builtin_cpu_supports("x86-64-v4");
 }
+#endif
+
+/* The function NAME PARAMS returning RET (RETURN: return, or nothing for
+ * void) from BODY, an always-inline function called with ARGS (NAME's
+ * parameters): the versions of DEM_VECTOR_CLONES and, where the compiler
+ * makes it, the 512-bit one, which NAME calls on the CPUs that run it
+ * (dem_wide_vectors). */
+#ifdef DEM_WIDE_VECTORS
+#define DEM_VERSIONS(RET, RETURN, NAME, PARAMS, ARGS, BODY)                                  \
+	DEM_WIDE_VECTORS __attribute__((flatten, noinline)) static RET NAME##_wide PARAMS    \
+	{                                                                                    \
+		RETURN BODY ARGS;                                                            \
+	}                                                                                    \
+	DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static RET NAME##_narrow PARAMS \
+	{                                                                                    \
+		RETURN BODY ARGS;                                                            \
+	}                                                                                    \
+	static RET NAME PARAMS                                                               \
+	{                                                                                    \
+		if (dem_wide_vectors()) {                                                    \
+			RETURN NAME##_wide ARGS;                                             \
+		} else {                                                                     \
+			RETURN NAME##_narrow ARGS;                                           \
+		}                                                                            \
+	}
+#else
+#define DEM_VERSIONS(RET, RETURN, NAME, PARAMS, ARGS, BODY)                         \
+	DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static RET NAME PARAMS \
+	{                                                                           \
+		RETURN BODY ARGS;                                                   \
+	}
 #endif
 
 #endif

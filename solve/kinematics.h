@@ -235,34 +235,10 @@ struct law_fused {
 	const law_params *restrict lp, const law_lanes *restrict L, int n, double dt
 
 /* A law's force_pairs NAME from its loop BODY, an always-inline function
- * with NAME's parameters: the versions of clones.h (DEM_VECTOR_CLONES),
- * and where the compiler makes them the 512-bit one (DEM_WIDE_VECTORS),
- * which NAME calls on the CPUs that run it (dem_wide_vectors). */
-#ifdef DEM_WIDE_VECTORS
-#define LAW_PAIRS_VERSIONS(NAME, BODY)                                                 \
-	DEM_WIDE_VECTORS __attribute__((flatten, noinline)) static int NAME##_wide(    \
-	    LAW_PAIRS_PARAMS, law_fused *restrict o)                                   \
-	{                                                                              \
-		return BODY(lp, L, n, dt, o);                                          \
-	}                                                                              \
-	DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int NAME##_narrow( \
-	    LAW_PAIRS_PARAMS, law_fused *restrict o)                                   \
-	{                                                                              \
-		return BODY(lp, L, n, dt, o);                                          \
-	}                                                                              \
-	static int NAME(LAW_PAIRS_PARAMS, law_fused *restrict o)                       \
-	{                                                                              \
-		return dem_wide_vectors() ? NAME##_wide(lp, L, n, dt, o)               \
-		                          : NAME##_narrow(lp, L, n, dt, o);            \
-	}
-#else
-#define LAW_PAIRS_VERSIONS(NAME, BODY)                                        \
-	DEM_VECTOR_CLONES __attribute__((flatten, noinline)) static int NAME( \
-	    LAW_PAIRS_PARAMS, law_fused *restrict o)                          \
-	{                                                                     \
-		return BODY(lp, L, n, dt, o);                                 \
-	}
-#endif
+ * with NAME's parameters, in the versions of DEM_VERSIONS (clones.h). */
+#define LAW_PAIRS_VERSIONS(NAME, BODY)                                             \
+	DEM_VERSIONS(int, return, NAME, (LAW_PAIRS_PARAMS, law_fused *restrict o), \
+	             (lp, L, n, dt, o), BODY)
 
 /* Lane q of a law_fused from the law's forces fn (its viscous part fv) and
  * fs on the pair k, and the bond's new history: t, and h and state unless h

@@ -268,11 +268,11 @@ typedef struct {
  * scalar). The lanes of particles that do not move freely are computed too,
  * and not used. XR holds the positions at the last rebuild from particle
  * xr0 on. */
-DEM_VECTOR_CLONES __attribute__((noinline)) static void
-integrate_free(const double *restrict X, const double *restrict V, const double *restrict W,
-               const double *restrict R, const double *restrict M, const double *restrict XR,
-               int32_t xr0, double dt, double alpha_t, double alpha_r, free_lanes *restrict fl,
-               int32_t i0, int nl)
+static inline __attribute__((always_inline)) void
+integrate_free_lanes(const double *restrict X, const double *restrict V, const double *restrict W,
+                     const double *restrict R, const double *restrict M, const double *restrict XR,
+                     int32_t xr0, double dt, double alpha_t, double alpha_r,
+                     free_lanes *restrict fl, int32_t i0, int nl)
 {
 	for (int q = 0; q < nl; q++) {
 		int32_t i = i0 + q;
@@ -326,6 +326,12 @@ integrate_free(const double *restrict X, const double *restrict V, const double 
 		}
 	}
 }
+DEM_VERSIONS(void, , integrate_free,
+             (const double *restrict X, const double *restrict V, const double *restrict W,
+              const double *restrict R, const double *restrict M, const double *restrict XR,
+              int32_t xr0, double dt, double alpha_t, double alpha_r, free_lanes *restrict fl,
+              int32_t i0, int nl),
+             (X, V, W, R, M, XR, xr0, dt, alpha_t, alpha_r, fl, i0, nl), integrate_free_lanes)
 
 /* Lane q of fl, particle i, added to the sums s (as integrate_one adds). */
 static inline void add_lane(particle_sums *s, const free_lanes *fl, int q, size_t i)
