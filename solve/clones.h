@@ -27,11 +27,11 @@
  * kinematics.h) and the particles' (integrate_free, solve/step.c) have one
  * version more (DEM_VERSIONS), for x86-64 with AVX-512 and 512-bit vectors
  * (DEM_WIDE_VECTORS), which AMD's cores with AVX-512 (Zen 4 and later)
- * run: they run it at their full clock, and a Zen 5 the bond phase about
- * 7 % faster and the particles' a sixth (share/doc/solve.md). Intel's keep
- * the 256-bit vectors GCC tunes them for (512-bit ones lower the clock of
- * several of them). The lanes are computed alike, so the results are the
- * same to the bit. */
+ * run, at their full clock: on a Zen 5 the bond phase runs about 7 %
+ * faster with it, the particles' a sixth (share/doc/solve.md). Intel's
+ * keep the 256-bit vectors GCC tunes them for (512-bit ones lower the
+ * clock of several of them). The lanes are computed alike, so the results
+ * are the same to the bit. */
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
     !defined(__SANITIZE_ADDRESS__)
 #ifdef DEM_NATIVE_BUILD
