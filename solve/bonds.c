@@ -432,7 +432,16 @@ static inline void bond_add(engine *e, size_t b, const bond_part *o, int measure
 	bond_add_force(e, b, o->f, both);
 }
 
-/* The same for lane q of force_pairs' output, a bond of the share: it
+/* Bond b's force from lane q of force_pairs' output (bond_add_force). */
+static inline void bond_add_lane(engine *e, size_t b, const law_fused *o, int q)
+{
+	double f[6];
+	for (int c = 0; c < 6; c++)
+		f[c] = o->f[c][q];
+	bond_add_force(e, b, f, 1);
+}
+
+/* bond_add for lane q of force_pairs' output, a bond of the share: it
  * dissipates nothing but its viscous energy and any plastic work (adding
  * the zeros would leave the sums as they are: started at +0, a sum is
  * never -0), which damage says o holds (o->damage, or 0 where the caller
@@ -443,10 +452,7 @@ static inline void bond_add_fused(engine *e, size_t b, const law_fused *o, int q
 	if (damage)
 		s->e_damage += o->e_damage[q];
 	s->e_viscous += o->e_viscous[q];
-	double f[6];
-	for (int c = 0; c < 6; c++)
-		f[c] = o->f[c][q];
-	bond_add_force(e, b, f, 1);
+	bond_add_lane(e, b, o, q);
 }
 
 /* Four floats, written at any 4-byte boundary. */
@@ -517,12 +523,8 @@ static inline __attribute__((always_inline)) void bonds_add_elastic(engine *e, s
 			acc_add_rows(engine_acc(e, (size_t)bd->j), hj[l], tj[l]);
 		}
 	}
-	for (; q < nq; q++) {
-		double f[6];
-		for (int c = 0; c < 6; c++)
-			f[c] = o->f[c][q];
-		bond_add_force(e, b0 + (size_t)q, f, 1);
-	}
+	for (; q < nq; q++)
+		bond_add_lane(e, b0 + (size_t)q, o, q);
 }
 
 DEM_VECTOR_CLONES void bonds_cross(engine *e, int k, int measure)
