@@ -715,55 +715,67 @@ static uint64_t *crossing_span(engine *e, size_t nblk)
 }
 
 /* The work of share k - 1 of split_blocks ending at block b, from block
- * a, less an equal part of the work left (m shares), taking the m - 1 ends
- * left to cross as many bonds as b. */
+ * a, less its part f of the work left, taking the ends left to cross as
+ * many bonds as b (m shares left, of weight w out of the left's). */
 static double share_excess(const double *before, const uint64_t *span, size_t nblk, size_t a,
-                           size_t b, int m)
+                           size_t b, int m, double w, double left)
 {
 	double cross = (double)span[b];
-	return before[b] - before[a] + cross - (before[nblk] - before[a] + (m - 1) * cross) / m;
+	return before[b] - before[a] + cross -
+	       (before[nblk] - before[a] + (m - 1) * cross) * w / left;
 }
 
-/* The first particles of shares 1 .. shares - 1 into pfirst: whole
- * particle blocks, at least one a share, of about equal work. A share's
- * work is taken as its particles and bonds (a bond costs about as much as
- * a particle's step) and the bonds that cross its end, once more: such a
- * bond is computed apart, before the barrier of the step (bonds_cross),
- * its force kept and added later on its own, and the batch it leaves has a
- * gap, which takes the slower way. Each end is the block boundary nearest
- * to an equal part of the work left (not the first past it, which made
+/* The first particles of shares 1 .. shares - 1 into pfirst, and the work
+ * of each share into work: whole particle blocks, at least one a share,
+ * the work in proportion to weight (NULL: equal). A share's work is taken
+ * as its particles and bonds (a bond costs about as much as a particle's
+ * step) and the bonds that cross its end, once more: such a bond is
+ * computed apart, before the barrier of the step (bonds_cross), its force
+ * kept and added later on its own, and the batch it leaves has a gap,
+ * which takes the slower way. Each end is the block boundary nearest to
+ * the share's part of the work left (not the first past it, which made
  * the first share the heaviest by up to a block). */
-static void split_blocks(engine *e, int shares, size_t *pfirst)
+static void split_blocks(engine *e, int shares, const double *weight, size_t *pfirst, double *work)
 {
 	const size_t *bfirst = e->pairs.split.bfirst;
 	size_t n = e->p.n, nblk = nblocks(n);
-	if (shares < 2)
-		return;
 	/* before[b]: the work of the blocks before b. */
 	double *before = xmalloc((nblk + 1) * sizeof *before);
 	for (size_t b = 0; b < nblk; b++)
 		before[b] = (double)(bfirst[b] + b * BLOCK);
 	before[nblk] = (double)(e->pairs.nbonds + n);
-	uint64_t *span = crossing_span(e, nblk);
+	uint64_t *span = shares > 1 ? crossing_span(e, nblk) : NULL;
+	double left = 0;
+	for (int k = 0; k < shares; k++)
+		left += weight ? weight[k] : 1;
 	for (int k = 1; k < shares; k++) {
 		int m = shares - k + 1;
+		double w = weight ? weight[k - 1] : 1;
 		size_t a = pfirst[k - 1] / BLOCK, last = nblk - (size_t)(shares - k), b = a + 1;
-		while (b < last && share_excess(before, span, nblk, a, b, m) < 0)
+		while (b < last && share_excess(before, span, nblk, a, b, m, w, left) < 0)
 			b++;
-		if (b > a + 1 && -share_excess(before, span, nblk, a, b - 1, m) <
-		                     share_excess(before, span, nblk, a, b, m))
+		if (b > a + 1 && -share_excess(before, span, nblk, a, b - 1, m, w, left) <
+		                     share_excess(before, span, nblk, a, b, m, w, left))
 			b--;
+		left -= w;
 		pfirst[k] = b * BLOCK;
+		work[k - 1] = before[b] - before[a] + (double)span[b];
 	}
+	work[shares - 1] = before[nblk] - before[pfirst[shares - 1] / BLOCK];
 	free(before);
 	free(span);
 }
 
-void bonds_split(engine *e, int shares)
+/* bonds_split with each share's work in proportion to weight (NULL:
+ * equal). */
+static void split_weighted(engine *e, int shares, const double *weight)
 {
 	bond_split *S = &e->pairs.split;
 	size_t n = e->p.n, nblk = nblocks(n), nb = e->pairs.nbonds;
+	uint8_t *staged = S->staged;
+	S->staged = NULL;
 	bonds_split_free(S);
+	S->staged = staged;
 	S->bfirst = xmalloc((nblk + 1) * sizeof *S->bfirst);
 	const bond_search *f = &e->pairs.formed;
 	const pairlist *L = &e->pairs.bonds;
@@ -780,8 +792,9 @@ void bonds_split(engine *e, int shares)
 	S->n = shares;
 	S->pfirst = xmalloc(((size_t)shares + 1) * sizeof *S->pfirst);
 	S->cfirst = xmalloc(((size_t)shares + 1) * sizeof *S->cfirst);
+	S->work = xmalloc((size_t)shares * sizeof *S->work);
 	S->pfirst[0] = 0;
-	split_blocks(e, shares, S->pfirst);
+	split_blocks(e, shares, weight, S->pfirst, S->work);
 	S->pfirst[shares] = n;
 	/* Every share's crossing bonds, in bond order (bonds_own keeps this
 	 * rank's), where this rank holds every particle; else each rank finds
@@ -789,6 +802,69 @@ void bonds_split(engine *e, int shares)
 	memset(S->cfirst, 0, ((size_t)shares + 1) * sizeof *S->cfirst);
 	if (!e->p.glob)
 		cross_slots(e, 0, shares);
+	share_balance *B = &e->pairs.balance;
+	if (B->n != shares) {
+		share_balance_free(B);
+		B->n = shares;
+		B->busy = xcalloc((size_t)shares, sizeof *B->busy);
+		B->busy_run = xcalloc((size_t)shares, sizeof *B->busy_run);
+		const char *t = getenv("DEM_BALANCE_TEST");
+		B->test = t && *t && strcmp(t, "0") != 0;
+		rng_seed(&B->gen, 1);
+	}
+}
+
+void bonds_split(engine *e, int shares) { split_weighted(e, shares, NULL); }
+
+/* The steps between looks at the shares' times (about a second of a
+ * 70 000-sphere specimen: long enough to average out the steps' jitter,
+ * short enough to follow a core that slows down), and the gain in the
+ * step's time that moves their ends (a split again costs about half a
+ * step). */
+enum { BALANCE_STEPS = 200, BALANCE_TEST_STEPS = 3 };
+static const double BALANCE_GAIN = 0.03;
+
+void bonds_balance(engine *e)
+{
+	bond_split *S = &e->pairs.split;
+	share_balance *B = &e->pairs.balance;
+	int n = S->n;
+	if (n < 2 || e->ranks.size > 1 || B->n != n ||
+	    ++B->steps < (B->test ? BALANCE_TEST_STEPS : BALANCE_STEPS))
+		return;
+	/* Each share's speed, its work over its time; the step's time now,
+	 * that of the slowest, and if each took a part of the work in
+	 * proportion to its speed. */
+	double *speed = xmalloc((size_t)n * sizeof *speed), sum = 0, work = 0, slowest = 0;
+	for (int k = 0; k < n; k++) {
+		speed[k] = B->busy[k] > 0 ? S->work[k] / B->busy[k] : 0;
+		sum += speed[k];
+		work += S->work[k];
+		slowest = B->busy[k] > slowest ? B->busy[k] : slowest;
+		B->busy_run[k] += B->busy[k];
+		B->busy[k] = 0;
+	}
+	B->steps = 0;
+	int move = sum > 0 && work / sum < (1 - BALANCE_GAIN) * slowest;
+	for (int k = 0; move && k < n; k++)
+		move = speed[k] > 0;
+	if (B->test) {
+		for (int k = 0; k < n; k++)
+			speed[k] = rng_range(&B->gen, 0.1, 1);
+		move = 1;
+	}
+	if (move) {
+		split_weighted(e, n, speed);
+		bonds_own(e, 0, n);
+		B->resplits++;
+	}
+	free(speed);
+}
+
+void share_balance_free(share_balance *b)
+{
+	free(b->busy), free(b->busy_run);
+	memset(b, 0, sizeof *b);
 }
 
 /* Slot c's share in [s0, s1) by its particle j, or -1. */
@@ -872,14 +948,14 @@ void bonds_own(engine *e, int s0, int s1)
 			S->in[S->infirst[k + 1]++] = (int32_t)c;
 	}
 	bonds_keep(e, p0, p1, b0, b1);
-	free(S->staged);
-	S->staged = xcalloc(e->pairs.bonds.n + 1, sizeof *S->staged);
+	if (!S->staged)
+		S->staged = xcalloc(e->pairs.bonds.n + 1, sizeof *S->staged);
 }
 
 void bonds_split_free(bond_split *s)
 {
 	free(s->pfirst), free(s->cfirst), free(s->cross), free(s->ci), free(s->cj), free(s->part);
-	free(s->bfirst), free(s->infirst), free(s->in), free(s->staged);
+	free(s->bfirst), free(s->infirst), free(s->in), free(s->staged), free(s->work);
 	memset(s, 0, sizeof *s);
 }
 

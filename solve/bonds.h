@@ -6,6 +6,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "lib/rng.h"
 #include "lib/runfile.h"
 #include "solve/cells.h"
 #include "solve/law.h"
@@ -64,9 +65,29 @@ typedef struct {
 	/* [bonds] at the first bond of each batch of bonds_share: 0 when the
 	 * batch goes through the law's force_pairs, else the steps left that
 	 * it goes the staged way (more than a quarter of its lanes were off
-	 * the law's elastic branch). Only the speed depends on it. */
+	 * the law's elastic branch). Only the speed depends on it. Kept when
+	 * the bonds are split again: it goes by the bond. */
 	uint8_t *staged;
+	double *work; /* [n] each share's work as the split estimated it */
 } bond_split;
+
+/* The balance of one rank's threads: a share's work is its particles and
+ * bonds, but the threads that take them need not run alike (the cores of
+ * one machine differ, and change, when other work shares them), so the
+ * shares' times are measured and, when that pays, their ends moved
+ * (bonds_balance). The forces do not depend on the ends. */
+typedef struct {
+	int n;            /* shares */
+	double *busy;     /* [n] seconds each share took after the barrier of
+	                     the step (bonds_share and the particles), since the
+	                     shares were last looked at */
+	double *busy_run; /* [n] the same over the run, up to that look */
+	int steps;        /* steps since the shares were last looked at */
+	int resplits;     /* times their ends moved */
+	int test;         /* DEM_BALANCE_TEST: moved every few steps, at
+	                     random (the forces must not change) */
+	rng gen;
+} share_balance;
 
 /* Bonds between the particles within the law's range (Eq. 16), as
  * e->pairs.formed until bonds_own makes a rank's records: a cell grid over
@@ -102,6 +123,13 @@ void bonds_split(engine *e, int shares);
  * ones. */
 void bonds_own(engine *e, int s0, int s1);
 void bonds_split_free(bond_split *s);
+/* Every so many steps, with one rank and several shares: whether the
+ * shares' measured times (e->pairs.balance) say that moving their ends
+ * would shorten the step by a few percent, and if so, the split again with
+ * each share's work in proportion to its measured speed. Outside the
+ * step's parallel region. */
+void bonds_balance(engine *e);
+void share_balance_free(share_balance *b);
 /* This step's forces of the crossing bonds of share k, inside the step's
  * parallel region (before a barrier). */
 void bonds_cross(engine *e, int k, int measure);

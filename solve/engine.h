@@ -106,6 +106,7 @@ typedef struct {
 	bond_search formed;
 	pairlist contacts, contacts_old;
 	bond_split split; /* the shares of the particles and bonds among threads */
+	share_balance balance;
 	cells grid;
 	double skin;      /* m, Verlet skin of the contact list */
 	int rebuild;      /* neighbour lists are due */

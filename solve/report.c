@@ -49,6 +49,23 @@ static long rss_start;
 
 void report_start(void) { rss_start = report_peak_rss(); }
 
+/* The largest time of this rank's shares after the barrier of the step
+ * over their mean (bonds.h, share_balance), over the run. */
+static double threads_balance(const engine *e)
+{
+	const share_balance *B = &e->pairs.balance;
+	double top = 0, sum = 0;
+	int s0 = e->ranks.s0, s1 = e->ranks.s1;
+	if (B->n != e->pairs.split.n || s1 <= s0)
+		return 1;
+	for (int k = s0; k < s1; k++) {
+		double t = B->busy_run[k] + B->busy[k];
+		top = t > top ? t : top;
+		sum += t;
+	}
+	return sum > 0 ? top * (s1 - s0) / sum : 1;
+}
+
 void report_print(const engine *e, int64_t step0, const char *status, const run_opts *o)
 {
 	double steps = (double)(e->clock.step - step0), wall = e->tm.total[TM_TOTAL];
@@ -68,6 +85,12 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 		    " neighbour rebuilds\n",
 		    err_program_name(), steps, wall, rate, e->team, e->team > 1 ? "s" : "", ns_bond,
 		    state / n, e->pairs.rebuilds);
+		if (e->ranks.s1 - e->ranks.s0 > 1)
+			fprintf(stderr,
+			        "  threads: the slowest share of the particles took %.3f times the "
+			        "mean after the step's barrier; their ends moved %d times to "
+			        "balance them\n",
+			        threads_balance(e), e->pairs.balance.resplits);
 		if (e->ranks.size > 1) {
 			const rank_split *R = &e->ranks;
 			fprintf(stderr,
@@ -116,6 +139,8 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	json_num(j, "particles", n);
 	json_num(j, "bonds", nb);
 	json_num(j, "threads", e->team);
+	json_num(j, "threads_busy_max_over_mean", threads_balance(e));
+	json_num(j, "threads_resplits", e->pairs.balance.resplits);
 	json_num(j, "ranks", e->ranks.size);
 	json_num(j, "rank_particles_max_over_mean", pbal[0] / pbal[1]);
 	json_num(j, "rank_bonds_max_over_mean", bbal[1] > 0 ? bbal[0] / bbal[1] : 1);

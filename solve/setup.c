@@ -337,6 +337,7 @@ void engine_free(engine *e)
 	free(e->scratch.pblock), free(e->scratch.bblock), free(e->scratch.cblock),
 	    free(e->scratch.cfirst), free(e->scratch.parts), free(e->scratch.acc);
 	bonds_split_free(&e->pairs.split);
+	share_balance_free(&e->pairs.balance);
 	ranks_free(&e->ranks);
 	for (int t = 0; t < e->nthreads; t++)
 		free(e->out.thread_cracks[t].c), free(e->out.thread_cracks[t].bond);

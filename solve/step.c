@@ -539,6 +539,7 @@ void engine_step(engine *e, int measure)
 		contacts_rebuild(e);
 	if (surface_due(e))
 		surface_update(e);
+	bonds_balance(e);
 	boundary_prepare(e);
 	if (measure) {
 		e->sums.meas = (measurement){.t = e->clock.t,
@@ -575,15 +576,23 @@ void engine_step(engine *e, int measure)
 			phase_start(&e->tm, TM_BONDS);
 		}
 #pragma omp barrier
-		for (int k = s0 + tid; k < s1; k += nth)
+		/* Each share's time from here (bonds_balance). */
+		double *busy = e->pairs.balance.busy;
+		for (int k = s0 + tid; k < s1; k += nth) {
+			double t0 = omp_get_wtime();
 			bonds_share(e, k, measure);
+			busy[k] += omp_get_wtime() - t0;
+		}
 #pragma omp master
 		{
 			phase_stop(&e->tm, TM_BONDS);
 			phase_start(&e->tm, TM_INTEGRATE);
 		}
-		for (int k = s0 + tid; k < s1; k += nth)
+		for (int k = s0 + tid; k < s1; k += nth) {
+			double t0 = omp_get_wtime();
 			particles_integrate(e, k, measure);
+			busy[k] += omp_get_wtime() - t0;
+		}
 		step_part_sums(e, tid, nth);
 #pragma omp master
 		e->scratch.nparts = nth;

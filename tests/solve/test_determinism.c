@@ -5,7 +5,10 @@
  *   C  on two threads with a step budget, then restarted on one thread,
  *   D  on two threads, interrupted by SIGINT at an arbitrary moment, then
  *      restarted on two threads (its report must say two threads ran);
- * C and D must equal A in every history column (but the wall-clock rate),
+ *   E  on three threads whose shares of the particles move every few steps
+ *      to random ends (DEM_BALANCE_TEST: the balance of the threads, bonds.h,
+ *      made to move them far more often and farther than it does);
+ * C, D and E must equal A in every history column (but the wall-clock rate),
  * every crack and every snapshot. D runs on two threads from start to end,
  * so a result that depended on the threads would differ from A there. The
  * interrupted files must be valid run files with status "interrupted"; one
@@ -122,6 +125,19 @@ int main(void)
 	CHECK(report && cfg_integer(report, "threads", &threads, 1, 1024) == 0 && threads == 2);
 	cfg_free(report);
 
+	/* E: the shares' ends moved, the forces the same. */
+	setenv("DEM_BALANCE_TEST", "1", 1);
+	snprintf(args, sizeof args, "--threads 3 --report %s --output %s %s", path("det-E.json"),
+	         path("det-E.h5"), cpath);
+	CHECK(solve(args) == 0);
+	unsetenv("DEM_BALANCE_TEST");
+	report = cfg_load(path("det-E.json"));
+	long resplits = 0;
+	CHECK(report && cfg_integer(report, "threads_resplits", &resplits, 0, 1L << 30) == 0);
+	fprintf(stderr, "E: the shares moved %ld times\n", resplits);
+	CHECK(resplits > 100);
+	cfg_free(report);
+
 	dem_run ra;
 	harness_read(path("det-A.h5"), &ra);
 	fprintf(stderr, "A: %s, %zu rows, %zu cracks, %zu snapshots\n", ra.status, ra.nrows,
@@ -138,6 +154,7 @@ int main(void)
 	free(message);
 	CHECK(harness_same_runs(path("det-A.h5"), path("det-C.h5")) == 0);
 	CHECK(harness_same_runs(path("det-A.h5"), path("det-D.h5")) == 0);
+	CHECK(harness_same_runs(path("det-A.h5"), path("det-E.h5")) == 0);
 	assembly_free(&a);
 	return check_done();
 }
