@@ -304,10 +304,12 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 }
 
 /* Steps until the run ends; everything besides engine_step is timed as
- * output. */
+ * output (the phase between steps). */
 static void loop(loop_state *L)
 {
 	engine *e = L->e;
+	phase_start(&e->tm, TM_OUTPUT);
+	e->tm.between = 1 + TM_OUTPUT;
 	for (int how = END_NONE; how == END_NONE;) {
 		int measure = L->ending[0] || e->clock.step % e->cs->history_every == 0 ||
 		              boundary_clock_ends_run(e);
@@ -318,10 +320,10 @@ static void loop(loop_state *L)
 		           timer_now() - L->wall0 >= L->o->max_wall;
 		agree[2] = par_rank() == 0 && checkpoint_due_by_wall(L);
 		engine_step(e, measure);
-		phase_start(&e->tm, TM_OUTPUT);
 		how = after_step(L, measure, rebuilds);
-		phase_stop(&e->tm, TM_OUTPUT);
 	}
+	e->tm.between = 0;
+	phase_stop(&e->tm, TM_OUTPUT);
 	finish(L);
 }
 

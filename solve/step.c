@@ -532,7 +532,7 @@ static int surface_due(const engine *e)
 
 void engine_step(engine *e, int measure)
 {
-	phase_start(&e->tm, TM_NEIGHBOUR);
+	phase_enter(&e->tm, TM_NEIGHBOUR);
 	/* The search reads each rank's own particles and its ghosts; the
 	 * surface and the gauge each rank's own. */
 	if (e->pairs.rebuild)
@@ -549,8 +549,7 @@ void engine_step(engine *e, int measure)
 		                             .lateral_area = e->bc.surf.lateral_area,
 		                             .volume = e->bc.surf.volume};
 	}
-	phase_stop(&e->tm, TM_NEIGHBOUR);
-	phase_start(&e->tm, TM_BONDS);
+	phase_switch(&e->tm, TM_NEIGHBOUR, TM_BONDS);
 	/* Each thread takes this rank's shares s0 + tid, s0 + tid + team, ...
 	 * (bonds.h, ranks.h): the crossing bonds, then the contacts, then, once
 	 * the crossing forces have reached the ranks of their j, the other
@@ -564,16 +563,12 @@ void engine_step(engine *e, int measure)
 		for (int k = s0 + tid; k < s1; k += nth)
 			bonds_cross(e, k, measure);
 #pragma omp master
-		{
-			phase_stop(&e->tm, TM_BONDS);
-			phase_start(&e->tm, TM_CONTACTS);
-		}
+		phase_switch(&e->tm, TM_BONDS, TM_CONTACTS);
 		contacts_forces(e, measure);
 #pragma omp master
 		{
 			ranks_exchange_forces(e);
-			phase_stop(&e->tm, TM_CONTACTS);
-			phase_start(&e->tm, TM_BONDS);
+			phase_switch(&e->tm, TM_CONTACTS, TM_BONDS);
 		}
 #pragma omp barrier
 		/* Each share's time from here (bonds_balance). */
@@ -584,10 +579,7 @@ void engine_step(engine *e, int measure)
 			busy[k] += omp_get_wtime() - t0;
 		}
 #pragma omp master
-		{
-			phase_stop(&e->tm, TM_BONDS);
-			phase_start(&e->tm, TM_INTEGRATE);
-		}
+		phase_switch(&e->tm, TM_BONDS, TM_INTEGRATE);
 		for (int k = s0 + tid; k < s1; k += nth) {
 			double t0 = omp_get_wtime();
 			particles_integrate(e, k, measure);
@@ -599,8 +591,7 @@ void engine_step(engine *e, int measure)
 	}
 	bonds_collect_cracks(e);
 	int failures = step_sums(e, ncracks);
-	phase_stop(&e->tm, TM_INTEGRATE);
-	phase_start(&e->tm, TM_NEIGHBOUR);
+	phase_switch(&e->tm, TM_INTEGRATE, TM_NEIGHBOUR);
 
 	const particle_sums *ps = &e->sums.particles;
 	e->energy.kinetic = ps->ke;
@@ -633,10 +624,9 @@ void engine_step(engine *e, int measure)
 	double drift = sqrt(ps->disp2);
 	if (2 * drift >= e->pairs.skin || drift + platens_drift(e) >= e->pairs.skin)
 		e->pairs.rebuild = 1;
-	phase_stop(&e->tm, TM_NEIGHBOUR);
 	/* The next step reads the halo (a neighbour rebuild, its ghosts too:
 	 * ranks.h). */
-	phase_start(&e->tm, TM_INTEGRATE);
+	phase_switch(&e->tm, TM_NEIGHBOUR, TM_INTEGRATE);
 	ranks_share_state(e);
-	phase_stop(&e->tm, TM_INTEGRATE);
+	phase_leave(&e->tm, TM_INTEGRATE);
 }

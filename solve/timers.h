@@ -15,6 +15,8 @@ typedef struct {
 	double start[TM_N]; /* s, of the phase running */
 	double cpu[TM_N];   /* s, CPU time of the timing thread, accumulated */
 	double cpu_start[TM_N];
+	int between; /* 1 + the phase that runs between steps (the run loop's
+	                output), or 0 */
 } phase_timers;
 
 static inline void phase_start(phase_timers *t, int k)
@@ -27,6 +29,37 @@ static inline void phase_stop(phase_timers *t, int k)
 {
 	t->total[k] += timer_now() - t->start[k];
 	t->cpu[k] += timer_thread_cpu() - t->cpu_start[k];
+}
+
+/* phase_stop(from) and phase_start(to) at once, reading each clock once:
+ * the thread's CPU clock costs a system call (1.2 µs on a virtual machine,
+ * against 25 ns for the wall clock), and a step has a dozen and a half
+ * phase boundaries. */
+static inline void phase_switch(phase_timers *t, int from, int to)
+{
+	double now = timer_now(), cpu = timer_thread_cpu();
+	t->total[from] += now - t->start[from];
+	t->cpu[from] += cpu - t->cpu_start[from];
+	t->start[to] = now;
+	t->cpu_start[to] = cpu;
+}
+
+/* The first phase of a step starts, and the last ends: from and to the
+ * phase between steps, if one runs, reading the clocks once. */
+static inline void phase_enter(phase_timers *t, int k)
+{
+	if (t->between)
+		phase_switch(t, t->between - 1, k);
+	else
+		phase_start(t, k);
+}
+
+static inline void phase_leave(phase_timers *t, int k)
+{
+	if (t->between)
+		phase_switch(t, k, t->between - 1);
+	else
+		phase_stop(t, k);
 }
 
 #endif
