@@ -33,8 +33,8 @@ static inline void phase_stop(phase_timers *t, int k)
 
 /* phase_stop(from) and phase_start(to) at once, reading each clock once:
  * the thread's CPU clock costs a system call (1.2 µs on a virtual machine,
- * against 25 ns for the wall clock), and a step has a dozen and a half
- * phase boundaries. */
+ * against 25 ns for the wall clock), and a step crosses eight phase
+ * boundaries. */
 static inline void phase_switch(phase_timers *t, int from, int to)
 {
 	double now = timer_now(), cpu = timer_thread_cpu();
