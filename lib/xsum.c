@@ -64,6 +64,13 @@ double xsum_round(const xsum *s)
 		return INFINITY;
 	if (s->d[XSUM_NINF])
 		return -INFINITY;
+	/* Most of a step's sums are of nothing on most steps (the measuring
+	 * sums, the contacts' when none touch): no digit to carry. */
+	int64_t any = 0;
+	for (int k = 0; k < XSUM_DIGITS; k++)
+		any |= s->d[k];
+	if (!any)
+		return 0;
 	xsum t = *s;
 	xsum_normalize(&t);
 	double sign = 1;

@@ -94,6 +94,12 @@ int main(void)
 
 	/* Cancellation the plain sum loses entirely. */
 	CHECK(sum_of((const double[]){1e308, 1, -1e308}, 3) == 1);
+	/* Nothing, and terms that cancel exactly: +0. One term in the top
+	 * digits only, and one in the lowest. */
+	CHECK(same_bits(sum_of(NULL, 0), 0.0));
+	CHECK(same_bits(sum_of((const double[]){1, 1e300, -1, -1e300}, 4), 0.0));
+	CHECK(sum_of((const double[]){DBL_MAX}, 1) == DBL_MAX);
+	CHECK(sum_of((const double[]){-DBL_TRUE_MIN}, 1) == -DBL_TRUE_MIN);
 	CHECK(sum_of((const double[]){0x1p-1074, 1e300, 0x1p-1074, -1e300}, 4) == 0x1p-1073);
 	/* Subnormals, exactly. */
 	CHECK(sum_of((const double[]){DBL_TRUE_MIN, DBL_TRUE_MIN, DBL_TRUE_MIN}, 3) ==
