@@ -95,4 +95,10 @@ void *xcalloc(size_t count, size_t size)
 
 void *xrealloc(void *p, size_t n) { return check(realloc(p, n ? n : 1), n); }
 
+void *xaligned(size_t align, size_t n)
+{
+	void *p = NULL;
+	return check(posix_memalign(&p, align, n ? n : 1) ? NULL : p, n);
+}
+
 char *xstrdup(const char *s) { return check(strdup(s), strlen(s) + 1); }

@@ -40,6 +40,9 @@ void warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void *xmalloc(size_t n);
 void *xcalloc(size_t count, size_t size);
 void *xrealloc(void *p, size_t n);
+/* n bytes aligned to `align` (a power of two, a multiple of sizeof(void *));
+ * released with free. */
+void *xaligned(size_t align, size_t n);
 char *xstrdup(const char *s);
 
 #ifdef __cplusplus

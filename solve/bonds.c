@@ -139,7 +139,7 @@ static void each_bond(const engine *e, size_t p0, size_t p1, bond_visit visit, v
  * measures it). */
 typedef struct {
 	const particles *P;
-	bond *rec;
+	pair_rec *rec;
 	size_t b0;
 } keep_ctx;
 
@@ -152,7 +152,7 @@ static void keep_one(void *ctx, size_t b, int32_t i, int32_t j)
 		double dx = x[3 * (size_t)j + c] - x[3 * (size_t)i + c];
 		d2 += dx * dx;
 	}
-	bond *bd = &k->rec[b - k->b0];
+	pair_rec *bd = &k->rec[b - k->b0];
 	bd->i = i;
 	bd->j = j;
 	bd->d0 = sqrt(d2);
@@ -173,15 +173,17 @@ static void bonds_keep(engine *e, size_t p0, size_t p1, size_t b0, size_t b1)
 	}
 	pairlist_free(L);
 	L->n = L->cap = b1 - b0;
-	L->rec = xcalloc(L->n + 1, sizeof *L->rec);
+	L->rec = pairlist_records(NULL, 0, L->n);
 	each_bond(e, p0, p1, keep_one, &(keep_ctx){&e->p, L->rec, b0});
+	L->state = xcalloc(L->n + 1, sizeof *L->state);
+	L->k = e->law->keeps_k ? xcalloc(L->n + 1, sizeof *L->k) : NULL;
 	L->fb = xcalloc(3 * L->n + 1, sizeof *L->fb);
 	e->pairs.bond0 = b0;
 	bonds_search_free(f);
 }
 
 /* The law's pair description of bond b (for init and constants). */
-static law_pair pair_of(const particles *P, const bond *b)
+static law_pair pair_of(const particles *P, const pair_rec *b)
 {
 	return (law_pair){
 	    .ri = P->r[b->i], .rj = P->r[b->j], .mi = P->m[b->i], .mj = P->m[b->j], .d0 = b->d0};
@@ -189,7 +191,7 @@ static law_pair pair_of(const particles *P, const bond *b)
 
 void engine_bond_entry(const engine *e, const pairlist *L, size_t b, int32_t ends[2], law_const *c)
 {
-	const bond *bd = &L->rec[b];
+	const pair_rec *bd = &L->rec[b];
 	int32_t oi = e->p.orig[bd->i], oj = e->p.orig[bd->j];
 	ends[0] = oi < oj ? oi : oj;
 	ends[1] = oi < oj ? oj : oi;
@@ -202,11 +204,13 @@ void engine_bond_entry(const engine *e, const pairlist *L, size_t b, int32_t end
 void bonds_init_history(engine *e)
 {
 	const particles *P = &e->p;
+	pairlist *L = &e->pairs.bonds;
 	double xi = e->cs->mat.damping;
-	for (size_t b = 0; b < e->pairs.bonds.n; b++) {
-		bond *bd = &e->pairs.bonds.rec[b];
-		law_pair q = pair_of(P, bd);
-		e->law->init(e->lp, &q, bd);
+	for (size_t b = 0; b < L->n; b++) {
+		law_pair q = pair_of(P, &L->rec[b]);
+		bond bd = pair_bond(&L->rec[b], BOND_INTACT, 0);
+		e->law->init(e->lp, &q, &bd);
+		pairlist_put(L, b, &bd);
 		law_const c;
 		e->law->constants(e->lp, &q, &c);
 		double mij = q.mi * q.mj / (q.mi + q.mj);
@@ -220,10 +224,12 @@ void bonds_restore(engine *e)
 {
 	if (!e->law->restore)
 		return;
-	for (size_t b = 0; b < e->pairs.bonds.n; b++) {
-		bond *bd = &e->pairs.bonds.rec[b];
-		law_pair q = pair_of(&e->p, bd);
-		e->law->restore(e->lp, &q, bd);
+	pairlist *L = &e->pairs.bonds;
+	for (size_t b = 0; b < L->n; b++) {
+		law_pair q = pair_of(&e->p, &L->rec[b]);
+		bond bd = pairlist_bond(L, b);
+		e->law->restore(e->lp, &q, &bd);
+		pairlist_put(L, b, &bd);
 	}
 }
 
@@ -236,7 +242,7 @@ static void record_crack(engine *e, crack_buf *cb, size_t b, int mode, const bat
 		cb->c = xrealloc(cb->c, cb->cap * sizeof *cb->c);
 		cb->bond = xrealloc(cb->bond, cb->cap * sizeof *cb->bond);
 	}
-	const bond *bd = &e->pairs.bonds.rec[b];
+	const pair_rec *bd = &e->pairs.bonds.rec[b];
 	const particles *P = &e->p;
 	const float *f = e->pairs.bonds.fb + 3 * b;
 	b += e->pairs.bond0; /* its place in the whole specimen's bond order */
@@ -267,12 +273,13 @@ DEM_VECTOR_CLONES static void bonds_staged(engine *e, const int32_t *idx, int nq
                                            crack_buf *cb, bond_part *part)
 {
 	const particles *P = &e->p;
-	bond *rec = e->pairs.bonds.rec;
+	pairlist *L = &e->pairs.bonds;
 	law_batch B;
 	batch_geom g;
-	batch_kinematics(P->x, P->v, P->w, P->r, P->m, rec, idx, nq, e->clock.dt, &B, &g);
+	batch_kinematics(P->x, P->v, P->w, P->r, P->m, L->rec, L->state, L->k, idx, nq, e->clock.dt,
+	                 &B, &g);
 	e->law->force_batch(e->lp, &B);
-	batch_history_store(rec, idx, &B);
+	batch_history_store(L->rec, L->state, idx, &B);
 	for (int q = 0; q < nq; q++) {
 		bond_part *o = &part[q];
 		if (B.failed[q])
@@ -283,26 +290,28 @@ DEM_VECTOR_CLONES static void bonds_staged(engine *e, const int32_t *idx, int nq
 		o->e_viscous = B.fn_viscous[q] * B.vn[q] * e->clock.dt;
 		if (measure) {
 			law_pair pair = law_lane_pair(&B, q);
-			o->e_elastic = e->law->energy(e->lp, &pair, &rec[idx[q]], B.un[q]);
+			bond bd = pairlist_bond(L, (size_t)idx[q]);
+			o->e_elastic = e->law->energy(e->lp, &pair, &bd, B.un[q]);
 			memset(o->love, 0, sizeof o->love);
 			love_add(o->love, &g, q, o->f);
-			o->state = rec[idx[q]].state;
+			o->state = bd.state;
 		}
 	}
 }
 
 /* Lane q of force_pairs' output, on the law's elastic branch: the new
- * history of its bond b, t and, when history is set (o->history, or 0
- * where the caller knows it is not), h and the state. */
-static inline void fused_history(bond *b, const law_fused *o, int q, int history)
+ * history of its bond into its record r, t and, when history is set
+ * (o->history, or 0 where the caller knows it is not), h; the caller
+ * stores the state (a byte, whose store may alias anything: the compiler
+ * would read every pointer and flag again after it, so loops store the
+ * states apart). */
+static inline void fused_history(pair_rec *r, const law_fused *o, int q, int history)
 {
 	for (int c = 0; c < 3; c++)
-		b->t[c] = o->t[c][q];
-	if (history) {
+		r->t[c] = o->t[c][q];
+	if (history)
 		for (int c = 0; c < LAW_NHIST; c++)
-			b->h[c] = o->h[c][q];
-		b->state = (uint8_t)o->state[q];
-	}
+			r->h[c] = o->h[c][q];
 }
 
 /* The nq bonds idx[0..nq) (or b0 + q, q < nq, when idx is NULL) through
@@ -319,12 +328,15 @@ static inline __attribute__((always_inline)) int bonds_fused(engine *e, size_t b
                                                              law_fused *o, bond_part *part)
 {
 	const particles *P = &e->p;
-	bond *rec = e->pairs.bonds.rec;
+	pairlist *bl = &e->pairs.bonds;
+	size_t at = idx ? 0 : b0; /* the batch's records, states, constants */
 	law_pairs in = {.x = P->x,
 	                .v = P->v,
 	                .w = P->w,
 	                .r = P->r,
-	                .rec = idx ? rec : rec + b0,
+	                .rec = bl->rec + at,
+	                .state = bl->state + at,
+	                .k = bl->k ? bl->k + at : NULL,
 	                .idx = idx,
 	                .n = nq};
 	law_pairs_load(&in, L);
@@ -341,7 +353,9 @@ static inline __attribute__((always_inline)) int bonds_fused(engine *e, size_t b
 			lane[nr++] = q;
 			continue;
 		}
-		fused_history(&rec[b], o, q, o->history);
+		fused_history(&bl->rec[b], o, q, o->history);
+		if (o->history)
+			bl->state[b] = (uint8_t)o->state[q];
 	}
 	if (elastic == nq)
 		return elastic;
@@ -407,7 +421,7 @@ static inline void add_to_j(engine *e, int32_t j, const double f[6])
 static inline void bond_add_force(engine *e, size_t b, const double f[6], int both)
 {
 	pairlist *L = &e->pairs.bonds;
-	const bond *bd = &L->rec[b];
+	const pair_rec *bd = &L->rec[b];
 	for (int c = 0; c < 3; c++)
 		L->fb[3 * b + c] = (float)f[c];
 	double ri = e->p.r[bd->i];
@@ -498,12 +512,15 @@ static inline __attribute__((always_inline)) void bonds_add_elastic(engine *e, s
                                                                     pair_sums *s, int full)
 {
 	pairlist *B = &e->pairs.bonds;
+	int history = full && o->history;
 	for (int q = 0; q < nq; q++) {
-		fused_history(&B->rec[b0 + (size_t)q], o, q, full && o->history);
+		fused_history(&B->rec[b0 + (size_t)q], o, q, history);
 		if (full && o->damage)
 			s->e_damage += o->e_damage[q];
 		s->e_viscous += o->e_viscous[q];
 	}
+	for (int q = 0; history && q < nq; q++)
+		B->state[b0 + (size_t)q] = (uint8_t)o->state[q];
 	int q = 0;
 	for (; q + 4 <= nq; q += 4) {
 		vec4 hi[4], hj[4];
@@ -512,7 +529,7 @@ static inline __attribute__((always_inline)) void bonds_add_elastic(engine *e, s
 		lanes_sums(o, q, L->rj, -1, hj, tj);
 		for (int l = 0; l < 4; l++) {
 			size_t b = b0 + (size_t)(q + l);
-			const bond *bd = &B->rec[b];
+			const pair_rec *bd = &B->rec[b];
 			fb_v4 fb = __builtin_convertvector(hi[l], fb_v4);
 			if (l < 3) /* the fourth float is the next bond's, stored next */
 				*(fb_v4 *)(B->fb + 3 * b) = fb;
@@ -541,9 +558,9 @@ DEM_VECTOR_CLONES void bonds_cross(engine *e, int k, int measure)
 /* Ahead of the batch at bond b0: the records of the batch PREFETCH_RECORDS
  * batches on into the cache (their first read otherwise waits for memory,
  * a tenth of a step). Only the speed depends on it. The lines of a whole
- * batch, unrolled: past the last record they fetch what follows, and
- * prefetching never faults. */
-enum { PREFETCH_RECORDS = 4, PREFETCH_LINES = BATCH * sizeof(bond) / 64 + 1 };
+ * batch, a record each (pairlist_records), unrolled: past the last record
+ * they fetch what follows, and prefetching never faults. */
+enum { PREFETCH_RECORDS = 4, PREFETCH_LINES = BATCH * sizeof(pair_rec) / 64 };
 static inline void bonds_prefetch(const engine *e, size_t b0)
 {
 	size_t r0 = b0 + PREFETCH_RECORDS * BATCH;
@@ -565,7 +582,7 @@ enum { STAGED_STEPS = 64 };
 DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 {
 	bond_split *S = &e->pairs.split;
-	const bond *rec = e->pairs.bonds.rec;
+	const pair_rec *rec = e->pairs.bonds.rec;
 	crack_buf *cb = &e->out.thread_cracks[omp_get_thread_num()];
 	size_t p0 = S->pfirst[k], p1 = S->pfirst[k + 1], base = e->pairs.bond0;
 	if (p0 == p1)

@@ -123,34 +123,38 @@ static void add(crc_parts *p, const void *data, size_t bytes)
 }
 
 /* The bytes [off, off + bytes) of each of n records of `stride` bytes from
- * base, in order, as add() of each would: in pieces of about CRC_PIECE
- * bytes, each copied together and checksummed on its own by the threads,
- * then combined in order (crc32_combine). */
+ * base, each followed by its byte of tail when tail is not NULL, in order,
+ * as add() of each would: in pieces of about CRC_PIECE bytes, each copied
+ * together and checksummed on its own by the threads, then combined in
+ * order (crc32_combine). */
 enum { CRC_PIECE = 1 << 15 };
 static void add_records(crc_parts *p, const void *base, size_t n, size_t stride, size_t off,
-                        size_t bytes, int team)
+                        size_t bytes, const uint8_t *tail, int team)
 {
-	size_t per = CRC_PIECE / bytes > 0 ? CRC_PIECE / bytes : 1;
+	size_t row = bytes + (tail != NULL);
+	size_t per = CRC_PIECE / row > 0 ? CRC_PIECE / row : 1;
 	size_t pieces = (n + per - 1) / per;
 	uLong *crc = xmalloc((pieces + 1) * sizeof *crc);
 #define PIECE_ITEMS(k) (n - (k)*per < per ? n - (k)*per : per)
 #pragma omp parallel num_threads(team)
 	{
-		unsigned char *buf = stride == bytes ? NULL : xmalloc(per * bytes);
+		unsigned char *buf = stride == row && !tail ? NULL : xmalloc(per * row);
 #pragma omp for schedule(static)
 		for (size_t k = 0; k < pieces; k++) {
 			const unsigned char *r =
 			    (const unsigned char *)base + k * per * stride + off;
 			size_t m = PIECE_ITEMS(k);
-			if (buf)
-				for (size_t q = 0; q < m; q++)
-					memcpy(buf + q * bytes, r + q * stride, bytes);
-			crc[k] = crc32_z(0, buf ? buf : r, m * bytes);
+			for (size_t q = 0; buf && q < m; q++) {
+				memcpy(buf + q * row, r + q * stride, bytes);
+				if (tail)
+					buf[q * row + bytes] = tail[k * per + q];
+			}
+			crc[k] = crc32_z(0, buf ? buf : r, m * row);
 		}
 		free(buf);
 	}
 	for (size_t k = 0; k < pieces; k++) {
-		z_off_t len = (z_off_t)(PIECE_ITEMS(k) * bytes);
+		z_off_t len = (z_off_t)(PIECE_ITEMS(k) * row);
 		p->crc[p->k] = crc32_combine(p->crc[p->k], crc[k], len);
 		p->len[p->k] += (uint64_t)len;
 	}
@@ -161,7 +165,7 @@ static void add_records(crc_parts *p, const void *base, size_t n, size_t stride,
 /* add() of n contiguous items of `bytes` bytes (add_records). */
 static void add_array(crc_parts *p, const void *data, size_t n, size_t bytes, int team)
 {
-	add_records(p, data, n, bytes, 0, bytes, team);
+	add_records(p, data, n, bytes, 0, bytes, NULL, team);
 }
 
 /* Rows [k0, k0 + m) of three floats (ctx) as doubles, into buf: the values
@@ -192,15 +196,14 @@ static void add_widened(crc_parts *p, float *f, size_t rows)
  * segments. old: when not NULL, the bonds' h and f as a checkpoint held
  * them (old_bonds); else the forces the bonds keep, as a checkpoint holds
  * them. */
-_Static_assert(offsetof(bond, h) == offsetof(bond, t) + 3 * sizeof(double) &&
-                   offsetof(bond, state) == offsetof(bond, h) + LAW_NHIST * sizeof(double),
-               "bond: t, h and state follow each other, as a bond's checksum takes them");
+_Static_assert(offsetof(pair_rec, h) == offsetof(pair_rec, t) + 3 * sizeof(double),
+               "pair_rec: t and h follow each other, as a bond's checksum takes them");
 static void pairs_crc(crc_parts *p, const particles *P, const pairlist *l, int contacts, int yade,
                       const old_bonds *old, int team)
 {
 	if (contacts) {
 		for (size_t b = 0; b < l->n; b++) {
-			const bond *r = &l->rec[b];
+			const pair_rec *r = &l->rec[b];
 			int32_t ends[2] = {(int32_t)particle_global(P, (size_t)r->i),
 			                   (int32_t)particle_global(P, (size_t)r->j)};
 			add(p, ends, sizeof ends);
@@ -208,23 +211,22 @@ static void pairs_crc(crc_parts *p, const particles *P, const pairlist *l, int c
 		}
 	} else if (old && old->h) {
 		for (size_t b = 0; b < l->n; b++) {
-			const bond *r = &l->rec[b];
-			add(p, r->t, sizeof r->t);
+			add(p, l->rec[b].t, sizeof l->rec[b].t);
 			add(p, old->h + OLD_NHIST * b, OLD_NHIST * sizeof *old->h);
-			add(p, &r->state, sizeof r->state);
+			add(p, &l->state[b], sizeof *l->state);
 		}
-	} else {
-		add_records(p, l->rec, l->n, sizeof *l->rec, offsetof(bond, t),
-		            offsetof(bond, state) + sizeof l->rec->state - offsetof(bond, t), team);
+	} else { /* t, h and the state, as when the state ended the record */
+		add_records(p, l->rec, l->n, sizeof *l->rec, offsetof(pair_rec, t),
+		            (3 + LAW_NHIST) * sizeof(double), l->state, team);
 	}
 	p->k++;
 	if (contacts) { /* their constants, as the contiguous rows of contact_k */
-		add_records(p, l->rec, l->n, sizeof *l->rec, offsetof(bond, h), 3 * sizeof(double),
-		            team);
+		add_records(p, l->rec, l->n, sizeof *l->rec, offsetof(pair_rec, h),
+		            3 * sizeof(double), NULL, team);
 		p->k++;
 		if (yade)
-			add_records(p, l->rec, l->n, sizeof *l->rec, offsetof(bond, d0),
-			            sizeof(double), team);
+			add_records(p, l->rec, l->n, sizeof *l->rec, offsetof(pair_rec, d0),
+			            sizeof(double), NULL, team);
 	} else if (old) {
 		add(p, old->f, (old->h ? OLD_FCOLS : 3) * l->n * sizeof *old->f);
 	} else {
@@ -374,7 +376,7 @@ static hid_t open_rows(hid_t g, const char *name, size_t n, size_t cols)
 
 /* Rows [first, first + rows) of one field of n records (the dataset must
  * have exactly n rows) into rec[0 .. rows). */
-static int get_field(hid_t g, const field *f, bond *rec, size_t first, size_t rows, size_t n)
+static int get_field(hid_t g, const field *f, pair_rec *rec, size_t first, size_t rows, size_t n)
 {
 	size_t cols = f->cols > 1 ? f->cols : 0;
 	hid_t d = open_rows(g, f->name, n, cols);
@@ -411,15 +413,16 @@ static int get_rows(hid_t g, const char *name, hid_t type, void *dst, size_t fir
 	return 0;
 }
 
-#define FIELD(name, type, member, cols)                                                        \
-	{                                                                                      \
-		name, type, offsetof(bond, member), cols, sizeof(((bond *)0)->member) / (cols) \
+#define FIELD(name, type, member, cols)                       \
+	{                                                     \
+		name, type, offsetof(pair_rec, member), cols, \
+		    sizeof(((pair_rec *)0)->member) / (cols)  \
 	}
 
+/* And the bonds' states, an array (bond_state). */
 static const field bond_fields[] = {
     FIELD("bond_t", T_F64, t, 3),
     FIELD("bond_h", T_F64, h, LAW_NHIST),
-    FIELD("bond_state", T_U8, state, 1),
 };
 static const field contact_fields[] = {
     FIELD("contact_i", T_I32, i, 1),
@@ -445,7 +448,7 @@ static void from_array(void *ctx, size_t k0, size_t m, void *buf)
 
 typedef struct {
 	const field *f;
-	const bond *rec;
+	const pair_rec *rec;
 	const particles *P; /* for a contact's end: its index in the whole
 	                       specimen written; else NULL */
 } field_rows;
@@ -567,8 +570,9 @@ int checkpoint_write(engine *e, hid_t file)
 	rc = rc || put_array(e, g, "flag", H5T_NATIVE_UINT8, 0, P->flag + p0, p1 - p0) ||
 	     put(g, "surface_particle", H5T_NATIVE_INT32, e->bc.surf.idx, e->bc.surf.n, 0) ||
 	     put(g, "surface_area", H5T_NATIVE_DOUBLE, e->bc.surf.area, e->bc.surf.n, 0);
-	for (int k = 0; k < 3; k++)
+	for (int k = 0; k < 2; k++)
 		rc = rc || put_field_rows(e, g, &bond_fields[k], v.bonds);
+	rc = rc || put_array(e, g, "bond_state", H5T_NATIVE_UINT8, 0, v.bonds->state, v.bonds->n);
 	rc = rc || put_rows(e, g, "bond_force", H5T_NATIVE_DOUBLE, 3, v.bonds->n, from_floats,
 	                    v.bonds->fb);
 	for (int k = 0; k < 4; k++)
@@ -702,18 +706,18 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 	L->n = 0;
 	if (c1 - c0 > L->cap || !L->rec) { /* none yet at a restart (engine_opts) */
 		L->cap = c1 - c0;
-		L->rec = xrealloc(L->rec, (L->cap + 1) * sizeof *L->rec);
+		L->rec = pairlist_records(L->rec, 0, L->cap);
 	}
 	for (size_t at = c0; !rc && at < c1; at += PIECE) {
 		size_t m = c1 - at < PIECE ? c1 - at : PIECE;
-		bond *piece = L->rec + (at - c0);
+		pair_rec *piece = L->rec + (at - c0);
 		memset(piece, 0, m * sizeof *piece);
 		for (int k = 0; !rc && k < 4; k++)
 			rc = get_field(g, &contact_fields[k], piece, at, m, nc);
 		if (!rc && yade_contacts(e))
 			rc = get_field(g, &contact_start, piece, at, m, nc);
 		for (size_t q = 0; !rc && q < m; q++) {
-			bond *b = &piece[q];
+			pair_rec *b = &piece[q];
 			size_t i = (size_t)b->i, j = (size_t)b->j;
 			if (b->i < 0 || b->j < 0 || i >= e->p.n || j >= e->p.n)
 				rc = err_set("%s: checkpoint contact %zu: particle out of range",
@@ -723,18 +727,17 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 				    "%s: checkpoint contact %zu: not in the order of its first "
 				    "particle",
 				    h5_name(g), at + q);
-			b->state = BOND_BROKEN_TENSION;
 		}
 	}
 	if (rc)
 		return -1;
 	L->n = c1 - c0;
 	if (split) { /* those of earlier ranks' i with an own j first */
-		bond *in;
+		pair_rec *in;
 		size_t m = ranks_share_pairs(e, L->rec, L->n, &in);
 		if (L->n + m > L->cap) {
 			L->cap = L->n + m;
-			L->rec = xrealloc(L->rec, (L->cap + 1) * sizeof *L->rec);
+			L->rec = pairlist_records(L->rec, L->n, L->cap);
 		}
 		memmove(L->rec + m, L->rec, L->n * sizeof *L->rec);
 		memcpy(L->rec, in, m * sizeof *in);
@@ -948,15 +951,14 @@ int checkpoint_read_file(engine *e, hid_t f)
 	     get_rows(g, "x_ref", H5T_NATIVE_DOUBLE, P->x_ref, p0, own, n, 3) ||
 	     get_rows(g, "flag", H5T_NATIVE_UINT8, P->flag + p0, p0, own, n, 0) ||
 	     get_field(g, &bond_fields[0], L->rec, first, rows, nb) ||
-	     get_field(g, &bond_fields[2], L->rec, first, rows, nb) ||
+	     get_rows(g, "bond_state", H5T_NATIVE_UINT8, L->state, first, rows, nb, 0) ||
 	     read_bond_h_f(g, e, first, rows, nb, &old, &is_old) || read_surface(g, e) ||
 	     read_pairs(g, e, count[0]) || read_platens(g, e) || hold_contacts(g, f, e);
 	for (size_t b = 0; !rc && b < rows; b++)
-		if (L->rec[b].state > BOND_BROKEN_SHEAR)
+		if (L->state[b] > BOND_BROKEN_SHEAR)
 			rc = err_set("%s: checkpoint dataset 'bond_state': value %d at row %zu: "
 			             "expected a bond state from %d to %d",
-			             path, L->rec[b].state, first + b, BOND_INTACT,
-			             BOND_BROKEN_SHEAR);
+			             path, L->state[b], first + b, BOND_INTACT, BOND_BROKEN_SHEAR);
 	/* The checksum: the parts of each rank's particles, bonds and
 	 * contacts (those of its own i, after the others in its list), and of
 	 * the rest on rank 0 (the platen contacts, which every rank reads

@@ -29,7 +29,7 @@ static int before(int32_t a, int32_t b, int32_t i, int32_t j) { return a < i || 
 
 /* The first of the n records rec, sorted by (i, j), that does not come
  * before (i, j). */
-static size_t first_not_before(const bond *rec, size_t n, int32_t i, int32_t j)
+static size_t first_not_before(const pair_rec *rec, size_t n, int32_t i, int32_t j)
 {
 	size_t lo = 0;
 	for (size_t hi = n; lo < hi;) {
@@ -71,7 +71,7 @@ static void reserve(const engine *e, pairlist *l, size_t n)
 	if (n <= l->cap && l->off)
 		return;
 	size_t cap = l->cap > n ? l->cap : n + n / 8 + 64; /* an eighth to grow into */
-	l->rec = xrealloc(l->rec, cap * sizeof *l->rec);
+	l->rec = pairlist_records(l->rec, l->n, cap);
 	l->f = xrealloc(l->f, 6 * cap * sizeof *l->f);
 	l->ref = xrealloc(l->ref, 2 * cap * sizeof *l->ref);
 	if (!l->off) {
@@ -86,7 +86,7 @@ static void reserve(const engine *e, pairlist *l, size_t n)
 /* The contact (i, j) into c, with the shear history and start of the same
  * pair in the old list, which *o walks along (it is the first old pair
  * not before the previous one). */
-static void new_contact(const engine *e, bond *c, const pairlist *old, size_t *o, int32_t i,
+static void new_contact(const engine *e, pair_rec *c, const pairlist *old, size_t *o, int32_t i,
                         int32_t j)
 {
 	const particles *P = &e->p;
@@ -94,7 +94,6 @@ static void new_contact(const engine *e, bond *c, const pairlist *old, size_t *o
 	c->i = i;
 	c->j = j;
 	c->d0 = P->r[i] + P->r[j];
-	c->state = BOND_BROKEN_TENSION;
 	while (*o < old->n && before(old->rec[*o].i, old->rec[*o].j, i, j))
 		(*o)++;
 	if (*o < old->n && old->rec[*o].i == i && old->rec[*o].j == j) {
@@ -344,8 +343,9 @@ DEM_VECTOR_CLONES static void contact_block(engine *e, size_t lo, size_t hi, int
 	memset(s, 0, sizeof *s);
 	for (size_t c0 = lo; c0 < hi; c0 += BATCH) {
 		int nq = (int)(hi - c0 < BATCH ? hi - c0 : BATCH);
-		bond *rec = &L->rec[c0];
-		batch_kinematics(P->x, P->v, P->w, P->r, P->m, rec, NULL, nq, e->clock.dt, &B, &g);
+		pair_rec *rec = &L->rec[c0];
+		batch_kinematics(P->x, P->v, P->w, P->r, P->m, rec, NULL, NULL, NULL, nq,
+		                 e->clock.dt, &B, &g);
 		for (int q = 0; q < nq; q++) {
 			size_t c = c0 + q;
 			const double *k = rec[q].h;

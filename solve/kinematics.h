@@ -84,20 +84,24 @@ static inline pair_motion pair_motion_of(const double dx[3], const double dv[3],
 
 /* A batch of bonds with the particles they join, as law_pairs_load reads
  * them for law.force_pairs: the bonds rec[idx[0..n)] (rec[0..n) when idx
- * is NULL) and the particles' arrays (engine.h). Each of x, v and w has
- * one item (three doubles) more than the particles it holds, as the
- * engine's windows do (window.c): law_pairs_load reads a particle's three
- * values as four. */
+ * is NULL), with their states and constants at the same indices of state
+ * and k (NULL: BOND_BROKEN_TENSION, as a contact's, and 0), and the
+ * particles' arrays (engine.h). Each of x, v and w has one item (three
+ * doubles) more than the particles it holds, as the engine's windows do
+ * (window.c): law_pairs_load reads a particle's three values as four, and
+ * so the record after the last (pairlist_records). */
 struct law_pairs {
 	const double *x, *v, *w, *r;
-	const bond *rec;
+	const pair_rec *rec;
+	const uint8_t *state;
+	const double *k;
 	const int32_t *idx;
 	int n;
 };
 
 /* A batch's inputs lane by lane (law_pairs_load), as force_pairs' loops
  * read them: dx = x_j - x_i, dv = v_j - v_i, the spins, the radii, and the
- * bonds' fields from d0 to h (the record's order, bond in law.h). */
+ * bonds' fields (bond in law.h). */
 struct law_lanes {
 	double dx[3][LAW_LANES], dv[3][LAW_LANES], wi[3][LAW_LANES], wj[3][LAW_LANES];
 	double ri[LAW_LANES], rj[LAW_LANES];
@@ -133,7 +137,8 @@ static inline pair_motion law_lanes_motion(const law_lanes *restrict L, int q, d
 /* Kinematics of the nq pairs rec[idx[0..nq)] (rec[0..nq) when idx is NULL)
  * into the pair and kinematics lanes of B (B->n = nq), with their
  * tangential histories rotated into B->t, and their histories, constants
- * and states (h, k, state).
+ * and states (h, and k and state from the arrays at the same indices, as
+ * law_pairs has them).
  * Staged: the records are read into arrays (law_pairs_load), one loop does
  * all the arithmetic on them (so the square roots and divisions of
  * independent pairs overlap, and the compiler can use the vector units).
@@ -141,16 +146,25 @@ static inline pair_motion law_lanes_motion(const law_lanes *restrict L, int q, d
  * for the vector units of its callers' versions (clones.h). */
 static inline __attribute__((always_inline)) void
 batch_kinematics(const double *restrict x, const double *restrict v, const double *restrict w,
-                 const double *restrict r, const double *restrict m, const bond *restrict rec,
+                 const double *restrict r, const double *restrict m, const pair_rec *restrict rec,
+                 const uint8_t *restrict state, const double *restrict k,
                  const int32_t *restrict idx, int nq, double dt, law_batch *restrict B,
                  batch_geom *restrict g)
 {
-	law_pairs in = {.x = x, .v = v, .w = w, .r = r, .rec = rec, .idx = idx, .n = nq};
+	law_pairs in = {.x = x,
+	                .v = v,
+	                .w = w,
+	                .r = r,
+	                .rec = rec,
+	                .state = state,
+	                .k = k,
+	                .idx = idx,
+	                .n = nq};
 	law_lanes L;
 	law_pairs_load(&in, &L);
 	B->n = nq;
 	for (int q = 0; q < nq; q++) {
-		const bond *b = &rec[idx ? idx[q] : q];
+		const pair_rec *b = &rec[idx ? idx[q] : q];
 		B->mi[q] = m[b->i];
 		B->mj[q] = m[b->j];
 	}
@@ -175,17 +189,18 @@ batch_kinematics(const double *restrict x, const double *restrict v, const doubl
 	}
 }
 
-/* The histories of B back into the records rec[idx[0..B->n)]. */
-static inline void batch_history_store(bond *restrict rec, const int32_t *restrict idx,
-                                       const law_batch *restrict B)
+/* The histories of B back into the records rec[idx[0..B->n)] and their
+ * states. */
+static inline void batch_history_store(pair_rec *restrict rec, uint8_t *restrict state,
+                                       const int32_t *restrict idx, const law_batch *restrict B)
 {
 	for (int q = 0; q < B->n; q++) {
-		bond *b = &rec[idx[q]];
+		pair_rec *b = &rec[idx[q]];
 		for (int c = 0; c < 3; c++)
 			b->t[c] = B->t[c][q];
 		for (int c = 0; c < LAW_NHIST; c++)
 			b->h[c] = B->h[c][q];
-		b->state = (uint8_t)B->state[q];
+		state[idx[q]] = (uint8_t)B->state[q];
 	}
 }
 

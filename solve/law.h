@@ -37,7 +37,9 @@
 
 enum { LAW_NHIST = 3 };
 
-/* One bond (or contact) as the engine stores it: 80 bytes. */
+/* A bond (or contact) as a law sees it. The engine stores the fields
+ * from i to h as a pair_rec (below), and the state and k in arrays of
+ * their own. */
 typedef struct {
 	int32_t i, j; /* particle indices */
 	double d0;    /* m, reference length: centre distance at bonding */
@@ -49,6 +51,28 @@ typedef struct {
 	double h[LAW_NHIST]; /* law-defined history: damage, plastic state, ... */
 	uint8_t state;       /* BOND_INTACT, BOND_DAMAGED, BOND_BROKEN_* (lib/states.h) */
 } bond;
+
+/* A bond or contact as the engine stores it: 64 bytes, one cache line in
+ * the engine's arrays (pairlist.h), which is what a step reads and writes
+ * of every bond. A bond's state and the law's constant k are arrays of
+ * their own beside the records (pairlist.state, pairlist.k): k is kept
+ * only for a law that has one (law.keeps_k), and a contact has neither. */
+typedef struct {
+	int32_t i, j;
+	double d0;
+	double t[3];
+	double h[LAW_NHIST];
+} pair_rec;
+_Static_assert(sizeof(pair_rec) == 64, "pair_rec: one cache line");
+
+/* The law's view of record r, with its state and constant k. */
+static inline bond pair_bond(const pair_rec *r, int state, double k)
+{
+	bond b = {.i = r->i, .j = r->j, .d0 = r->d0, .k = k, .state = (uint8_t)state};
+	memcpy(b.t, r->t, sizeof b.t);
+	memcpy(b.h, r->h, sizeof b.h);
+	return b;
+}
 
 /* The two spheres of a bond. */
 typedef struct {
@@ -156,6 +180,9 @@ typedef struct law {
 	double (*energy)(const law_params *p, const law_pair *pair, const bond *b, double un);
 	/* Damage in tension and in shear, each in [0, 1]. */
 	void (*damage)(const law_params *p, const bond *b, double *dn, double *ds);
+	/* Whether init sets bond.k (a constant the engine then keeps per
+	 * bond); when 0, k is 0 in every call. */
+	int keeps_k;
 	/* The slot of h in which checkpoints written before h had LAW_NHIST
 	 * slots kept the last u_n: the rest are this layout's, in order. */
 	int h_dropped;

@@ -75,12 +75,13 @@ static void snapshot_rows(void *ctx, int f, size_t at, size_t m, void *buf)
 		return;
 	}
 	for (size_t k = 0; k < m; k++) {
-		const bond *bd = &B->rec[at + k];
+		const pair_rec *bd = &B->rec[at + k];
 		if (f == SNAP_STATE) {
-			((uint8_t *)buf)[k] = bd->state;
+			((uint8_t *)buf)[k] = B->state[at + k];
 		} else if (f == SNAP_DAMAGE_N || f == SNAP_DAMAGE_S) {
 			double dn, ds;
-			c->e->law->damage(c->e->lp, bd, &dn, &ds);
+			bond view = pairlist_bond(B, at + k);
+			c->e->law->damage(c->e->lp, &view, &dn, &ds);
 			dv[k] = f == SNAP_DAMAGE_N ? dn : ds;
 		} else {
 			const float *fo = B->fb + 3 * (at + k);

@@ -2,14 +2,25 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lib/err.h"
 #include "solve/pairlist.h"
 #include "solve/window.h"
 
 void pairlist_free(pairlist *l)
 {
-	free(l->rec), free(l->f), free(l->fb), free(l->ref);
+	free(l->rec), free(l->state), free(l->k), free(l->f), free(l->fb), free(l->ref);
 	window_array_free(l->off, l->off0, sizeof *l->off);
 	memset(l, 0, sizeof *l);
+}
+
+pair_rec *pairlist_records(pair_rec *rec, size_t n, size_t cap)
+{
+	pair_rec *to = xaligned(64, (cap + 1) * sizeof *to);
+	if (n)
+		memcpy(to, rec, n * sizeof *to);
+	memset(to + n, 0, (cap + 1 - n) * sizeof *to);
+	free(rec);
+	return to;
 }
 
 /* The gather index: for each particle the pairs it belongs to, in pair

@@ -10,26 +10,50 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "solve/kinematics.h"
 #include "solve/law.h"
 
 typedef struct {
 	size_t n, cap;
-	bond *rec;    /* a contact keeps its K_n, K_s, C_n in h[0..2] */
-	double *f;    /* contacts: [n][6] force on i (N) then the torque per unit
-	                 radius (N): the torque on i is r_i times it, on j r_j
-	                 times it. NULL for the bonds. */
-	float *fb;    /* bonds: [n][3] force on i (N) of the last step, for the
-	                 output only (snapshots, crack records, checkpoints, the
-	                 diagnosis), so single precision: each bond adds its force
-	                 and torque to its particles as it is computed (bonds.h). */
-	int32_t *off; /* [off0, own1 + 1]: this rank's particles' (contacts
-	                 only: bonds add their forces as they are computed,
-	                 bonds.h); its memory starts at off0 */
+	pair_rec *rec;  /* a contact keeps its K_n, K_s, C_n in h[0..2]; 64-byte
+	                   aligned, one record more than cap (pairlist_records) */
+	uint8_t *state; /* bonds: [n] their states (law.h); NULL for the contacts */
+	double *k;      /* bonds: [n] the law's constant of each (bond.k), or NULL
+	                   when the law keeps none (law.keeps_k) */
+	double *f;      /* contacts: [n][6] force on i (N) then the torque per unit
+	                   radius (N): the torque on i is r_i times it, on j r_j
+	                   times it. NULL for the bonds. */
+	float *fb;      /* bonds: [n][3] force on i (N) of the last step, for the
+	                   output only (snapshots, crack records, checkpoints, the
+	                   diagnosis), so single precision: each bond adds its force
+	                   and torque to its particles as it is computed (bonds.h). */
+	int32_t *off;   /* [off0, own1 + 1]: this rank's particles' (contacts
+	                   only: bonds add their forces as they are computed,
+	                   bonds.h); its memory starts at off0 */
 	size_t off0;
 	int32_t *ref; /* [2n] pair index * 2 + 1 if the particle is its j */
 } pairlist;
+
+/* The law's view of bond b of the bonds l, and back (its state and k into
+ * their arrays; k only where the law keeps it). */
+static inline bond pairlist_bond(const pairlist *l, size_t b)
+{
+	return pair_bond(&l->rec[b], l->state[b], l->k ? l->k[b] : 0);
+}
+static inline void pairlist_put(pairlist *l, size_t b, const bond *bd)
+{
+	pair_rec *r = &l->rec[b];
+	r->i = bd->i;
+	r->j = bd->j;
+	r->d0 = bd->d0;
+	memcpy(r->t, bd->t, sizeof r->t);
+	memcpy(r->h, bd->h, sizeof r->h);
+	l->state[b] = bd->state;
+	if (l->k)
+		l->k[b] = bd->k;
+}
 
 /* Sums over one block of pairs. */
 typedef struct {
@@ -40,6 +64,10 @@ typedef struct {
 } pair_sums;
 
 void pairlist_free(pairlist *l);
+/* Records for cap pairs, the first n of rec kept (rec may be NULL when n is
+ * 0): 64-byte aligned, each in a cache line of its own, and one record
+ * more, which law_pairs_load may read past the last one. */
+pair_rec *pairlist_records(pair_rec *rec, size_t n, size_t cap);
 /* Build the gather index of the l->n pairs, sorted by (i, j), for the
  * particles [lo, hi) (l->off, for every particle, and l->ref allocated by
  * the caller). */

@@ -71,7 +71,7 @@ static int cmp_size(const void *a, const void *b)
  * order (so the sender's list and the receiver's match). */
 static void halo_links(const engine *e, const rank_links *b, const rank_links *c, rank_links *h)
 {
-	const bond *crec = e->pairs.contacts.rec;
+	const pair_rec *crec = e->pairs.contacts.rec;
 	const int32_t *cj = e->pairs.split.cj;
 	links_clear(h);
 	for (int k = 0; k < b->n; k++)
@@ -140,7 +140,7 @@ size_t ranks_incoming(const engine *e, int64_t **in)
 	return m;
 }
 
-size_t ranks_share_pairs(const engine *e, const bond *rec, size_t n, bond **in)
+size_t ranks_share_pairs(const engine *e, const pair_rec *rec, size_t n, pair_rec **in)
 {
 	const rank_split *R = &e->ranks;
 	int *to = xmalloc((n + 1) * sizeof *to);

@@ -131,7 +131,7 @@ size_t ranks_incoming(const engine *e, int64_t **in);
  * each i this rank's own), those whose j is another rank's sent to that
  * rank; the pairs other ranks send this rank, in the order of their
  * ranks, into *in (the caller's to free): their number. Collective. */
-size_t ranks_share_pairs(const engine *e, const bond *rec, size_t n, bond **in);
+size_t ranks_share_pairs(const engine *e, const pair_rec *rec, size_t n, pair_rec **in);
 /* The crossing contacts (after each contact rebuild). */
 void ranks_contacts(engine *e);
 /* Inside the step's parallel region, by one thread: the forces of the

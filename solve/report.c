@@ -28,11 +28,14 @@ size_t engine_bytes(const engine *e)
 	               (p1 - p0) * 9 * sizeof(double);
 	const bond_split *S = &e->pairs.split;
 	bytes += S->cfirst ? S->cfirst[S->n] * (sizeof(int32_t) + sizeof(bond_part)) : 0;
-	/* bonds: record, force (single precision); contacts: record (with the
-	 * constants), force, gather index */
-	bytes += e->pairs.bonds.cap * (sizeof(bond) + 3 * sizeof(float));
-	bytes += e->pairs.contacts.cap * (sizeof(bond) + 6 * sizeof(double) + 2 * sizeof(int32_t)) +
-	         (p1 - p0 + 1) * sizeof(int32_t);
+	/* bonds: record, state, the law's constant where it keeps one, force
+	 * (single precision); contacts: record (with the constants), force,
+	 * gather index */
+	bytes += e->pairs.bonds.cap * (sizeof(pair_rec) + sizeof(uint8_t) +
+	                               (e->pairs.bonds.k ? sizeof(double) : 0) + 3 * sizeof(float));
+	bytes +=
+	    e->pairs.contacts.cap * (sizeof(pair_rec) + 6 * sizeof(double) + 2 * sizeof(int32_t)) +
+	    (p1 - p0 + 1) * sizeof(int32_t);
 	for (int k = 0; k < 2; k++)
 		bytes += e->bc.pl.cap[k] * (2 * sizeof(platen_contact) + sizeof(int32_t));
 	return bytes;

@@ -40,7 +40,7 @@ double damping_factor(double xi) { return sqrt(1 + xi * xi) - xi; }
 static double contact_lambda(const engine *e, size_t c)
 {
 	const particles *P = &e->p;
-	const bond *b = &e->pairs.contacts.rec[c];
+	const pair_rec *b = &e->pairs.contacts.rec[c];
 	double d2 = 0;
 	for (int k = 0; k < 3; k++) {
 		double dx = P->x[3 * b->j + k] - P->x[3 * b->i + k];
@@ -80,7 +80,7 @@ static double contact_omega2(const engine *e, const double *lam, size_t i)
 static double bond_omega2(const engine *e, size_t b)
 {
 	const particles *P = &e->p;
-	const bond *bd = &e->pairs.bonds.rec[b];
+	const pair_rec *bd = &e->pairs.bonds.rec[b];
 	int32_t i = bd->i, j = bd->j;
 	law_pair q = {.ri = P->r[i], .rj = P->r[j], .mi = P->m[i], .mj = P->m[j], .d0 = bd->d0};
 	law_const c;

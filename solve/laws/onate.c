@@ -386,5 +386,6 @@ const law law_onate = {
     .force_pairs = onate_pairs,
     .energy = onate_energy,
     .damage = dh_damage,
+    .keeps_k = 1,
     .h_dropped = 3,
 };

@@ -1,25 +1,47 @@
 /* law_pairs_load (kinematics.h): a batch's inputs lane by lane. */
 #include <stddef.h>
 
+#include "lib/states.h"
 #include "solve/kinematics.h"
 
-/* The record's fields from d0 to h are eight doubles in a row: read as two
- * vectors of four, [d0 k t0 t1] and [t2 h0 h1 h2]. */
-_Static_assert(offsetof(bond, k) == offsetof(bond, d0) + 8 &&
-                   offsetof(bond, t) == offsetof(bond, d0) + 16 &&
-                   offsetof(bond, h) == offsetof(bond, d0) + 40 && LAW_NHIST == 3,
-               "bond: d0, k, t, h are eight doubles in a row");
+/* The record's fields from d0 to h are seven doubles in a row: read as two
+ * vectors of four, [d0 t0 t1 t2] and [h0 h1 h2 -], the last value the next
+ * record's (pairlist_records keeps one after the last). */
+_Static_assert(offsetof(pair_rec, t) == offsetof(pair_rec, d0) + 8 &&
+                   offsetof(pair_rec, h) == offsetof(pair_rec, d0) + 32 && LAW_NHIST == 3,
+               "pair_rec: d0, t, h are seven doubles in a row");
 
-/* The record of lane q. */
-static inline const bond *lane_bond(const law_pairs *in, int q)
+/* The states and constants of lanes q0 <= q < in->n, a loop for each
+ * case, so that none tests a lane (those of records in a row are
+ * vectorised). */
+static void load_state_k(const law_pairs *restrict in, law_lanes *restrict L, int q0)
 {
-	return &in->rec[in->idx ? in->idx[q] : q];
+	const int32_t *idx = in->idx;
+	if (!in->state)
+		for (int q = q0; q < in->n; q++)
+			L->state[q] = BOND_BROKEN_TENSION;
+	else if (idx)
+		for (int q = q0; q < in->n; q++)
+			L->state[q] = in->state[idx[q]];
+	else
+		for (int q = q0; q < in->n; q++)
+			L->state[q] = in->state[q];
+	if (!in->k)
+		for (int q = q0; q < in->n; q++)
+			L->k[q] = 0;
+	else if (idx)
+		for (int q = q0; q < in->n; q++)
+			L->k[q] = in->k[idx[q]];
+	else
+		for (int q = q0; q < in->n; q++)
+			L->k[q] = in->k[q];
 }
 
-void law_pairs_load_lanes(const law_pairs *restrict in, law_lanes *restrict L, int q0)
+/* The lanes' fields but the states and constants. */
+static void load_lanes(const law_pairs *restrict in, law_lanes *restrict L, int q0)
 {
 	for (int q = q0; q < in->n; q++) {
-		const bond *b = lane_bond(in, q);
+		const pair_rec *b = &in->rec[in->idx ? in->idx[q] : q];
 		int32_t i = b->i, j = b->j;
 		for (int c = 0; c < 3; c++) {
 			L->dx[c][q] = in->x[3 * j + c] - in->x[3 * i + c];
@@ -31,11 +53,15 @@ void law_pairs_load_lanes(const law_pairs *restrict in, law_lanes *restrict L, i
 		L->ri[q] = in->r[i];
 		L->rj[q] = in->r[j];
 		L->d0[q] = b->d0;
-		L->k[q] = b->k;
 		for (int c = 0; c < LAW_NHIST; c++)
 			L->h[c][q] = b->h[c];
-		L->state[q] = b->state;
 	}
+}
+
+void law_pairs_load_lanes(const law_pairs *restrict in, law_lanes *restrict L, int q0)
+{
+	load_lanes(in, L, q0);
+	load_state_k(in, L, q0);
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -73,7 +99,7 @@ load_avx2_body(const law_pairs *restrict in, law_lanes *restrict L, int listed)
 {
 	int q = 0;
 	for (; q + 4 <= in->n; q += 4) {
-		const bond *b[4];
+		const pair_rec *b[4];
 		int32_t i[4], j[4];
 		for (int l = 0; l < 4; l++) {
 			b[l] = &in->rec[listed ? in->idx[q + l] : q + l];
@@ -81,7 +107,6 @@ load_avx2_body(const law_pairs *restrict in, law_lanes *restrict L, int listed)
 			j[l] = b[l]->j;
 			L->ri[q + l] = in->r[i[l]];
 			L->rj[q + l] = in->r[j[l]];
-			L->state[q + l] = b[l]->state;
 		}
 		vec4 pi[4], pj[4];
 		particles3_diff(in->x, i, j, pi);
@@ -101,15 +126,15 @@ load_avx2_body(const law_pairs *restrict in, law_lanes *restrict L, int listed)
 			row[l] = *(const vec4 *)&b[l]->d0;
 		vec4_transpose(row, lo);
 		for (int l = 0; l < 4; l++)
-			row[l] = *(const vec4 *)&b[l]->t[2];
+			row[l] = *(const vec4 *)&b[l]->h[0];
 		vec4_transpose(row, hi);
-		double *to[8] = {L->d0, L->k, L->t[0], L->t[1], L->t[2], L->h[0], L->h[1], L->h[2]};
-		for (int c = 0; c < 4; c++) {
+		double *to[7] = {L->d0, L->t[0], L->t[1], L->t[2], L->h[0], L->h[1], L->h[2]};
+		for (int c = 0; c < 4; c++)
 			*(vec4 *)(to[c] + q) = lo[c];
+		for (int c = 0; c < 3; c++)
 			*(vec4 *)(to[4 + c] + q) = hi[c];
-		}
 	}
-	law_pairs_load_lanes(in, L, q);
+	load_lanes(in, L, q);
 }
 
 AVX2 static void load_avx2(const law_pairs *restrict in, law_lanes *restrict L)
@@ -125,7 +150,8 @@ void law_pairs_load(const law_pairs *restrict in, law_lanes *restrict L)
 	if (__builtin_cpu_supports("avx2"))
 		load_avx2(in, L);
 	else
-		law_pairs_load_lanes(in, L, 0);
+		load_lanes(in, L, 0);
+	load_state_k(in, L, 0);
 }
 #else
 void law_pairs_load(const law_pairs *restrict in, law_lanes *restrict L)

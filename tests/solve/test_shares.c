@@ -76,7 +76,7 @@ int main(void)
 	CHECK(many.pairs.split.cfirst[7] > 0);
 	size_t broken = 0;
 	for (size_t b = 0; b < one.pairs.bonds.n; b++)
-		broken += one.pairs.bonds.rec[b].state >= BOND_BROKEN_TENSION;
+		broken += one.pairs.bonds.state[b] >= BOND_BROKEN_TENSION;
 	CHECK(broken > 0);
 	const engine *other[2] = {&many, &most};
 	size_t n = one.p.n, nb = one.pairs.bonds.n;
@@ -89,9 +89,10 @@ int main(void)
 		           3 * nb * sizeof *one.pairs.bonds.fb));
 		int records = 1;
 		for (size_t b = 0; b < nb; b++) {
-			const bond *p = &one.pairs.bonds.rec[b], *q = &e->pairs.bonds.rec[b];
-			records &= same(p->t, q->t, sizeof p->t) && same(p->h, q->h, sizeof p->h) &&
-			           same(&p->k, &q->k, sizeof p->k) && p->state == q->state;
+			bond p = pairlist_bond(&one.pairs.bonds, b),
+			     q = pairlist_bond(&e->pairs.bonds, b);
+			records &= same(p.t, q.t, sizeof p.t) && same(p.h, q.h, sizeof p.h) &&
+			           same(&p.k, &q.k, sizeof p.k) && p.state == q.state;
 		}
 		CHECK(records);
 		CHECK(same(&one.sums.bonds, &e->sums.bonds, sizeof one.sums.bonds));

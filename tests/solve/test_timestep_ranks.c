@@ -68,7 +68,7 @@ int main(int argc, char **argv)
 			e.p.m[i] = m0[i] * draw(e.p.orig[i], -1, 3 * round);
 		pairlist *L = &e.pairs.contacts;
 		for (size_t q = 0; q < L->n; q++) {
-			bond *b = &L->rec[q];
+			pair_rec *b = &L->rec[q];
 			b->h[0] = 1e6 * draw(b->i, b->j, 3 * round + 1);
 			b->h[1] = 1e6 * draw(b->i, b->j, 3 * round + 2);
 		}
