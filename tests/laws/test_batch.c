@@ -11,6 +11,7 @@
 
 #include "lib/rng.h"
 #include "solve/kinematics.h"
+#include "solve/pairlist.h"
 
 enum { NB = 64, NSTEP = 300 };
 
@@ -170,15 +171,17 @@ typedef struct {
 	double k[NB];
 } stored;
 
+/* s as the engine's bond list, for pairlist_put and pairlist_bond. */
+static pairlist stored_list(stored *s)
+{
+	return (pairlist){.rec = s->rec, .state = s->state, .k = s->k};
+}
+
 static void store(const bond *b, int n, stored *s)
 {
-	for (int q = 0; q < n; q++) {
-		s->rec[q] = (pair_rec){.i = b[q].i, .j = b[q].j, .d0 = b[q].d0};
-		memcpy(s->rec[q].t, b[q].t, sizeof b[q].t);
-		memcpy(s->rec[q].h, b[q].h, sizeof b[q].h);
-		s->state[q] = b[q].state;
-		s->k[q] = b[q].k;
-	}
+	pairlist l = stored_list(s);
+	for (int q = 0; q < n; q++)
+		pairlist_put(&l, (size_t)q, &b[q]);
 }
 
 /* force_pairs against the staged path along random motions of NB pairs of
@@ -254,9 +257,9 @@ static void run_pairs(const char *name, const char *json)
 			                 dt, &B, &geo);
 			L->force_batch(p, &B);
 			batch_history_store(staged.rec, staged.state, ix, &B);
+			pairlist back = stored_list(&staged);
 			for (int q = 0; q < nq; q++)
-				rec[ix[q]] = pair_bond(&staged.rec[ix[q]], staged.state[ix[q]],
-				                       staged.k[ix[q]]);
+				rec[ix[q]] = pairlist_bond(&back, (size_t)ix[q]);
 			law_pairs in = {.x = x,
 			                .v = v,
 			                .w = w,
@@ -374,16 +377,9 @@ static void check_load(void)
 			CHECK(same);
 		}
 		/* Without indices: the records rec[0..n). */
-		law_pairs in0 = {
-		    .x = x, .v = v, .w = w, .r = r, .rec = rec, .state = state, .n = n};
-		law_pairs in1 = {.x = x,
-		                 .v = v,
-		                 .w = w,
-		                 .r = r,
-		                 .rec = rec,
-		                 .state = state,
-		                 .idx = order,
-		                 .n = n};
+		law_pairs in0 = in, in1 = in;
+		in0.idx = NULL;
+		in1.idx = order;
 		memset(&a, 0, sizeof a);
 		memset(&d, 0, sizeof d);
 		law_pairs_load(&in0, &a);
