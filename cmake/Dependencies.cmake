@@ -12,6 +12,7 @@ endmacro()
 
 find_package(OpenMP COMPONENTS C CXX)
 dem_require(OpenMP_C_FOUND "OpenMP (C)" "gcc")
+find_package(Threads REQUIRED)
 
 find_package(HDF5 COMPONENTS C HL)
 dem_require(HDF5_FOUND "HDF5 C library and its high-level library" "libhdf5-dev")
