@@ -38,6 +38,7 @@
 #include "solve/step.h"
 #include "solve/surface.h"
 #include "solve/timers.h"
+#include "solve/vec4.h"
 
 static inline void gather(const pairlist *L, int32_t i, double ri, double F[3], double T[3])
 {
@@ -231,20 +232,6 @@ static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 	advance(e, i, vn, wn, ext, s);
 }
 
-/* Whether particle i moves freely under its forces alone and, unless the
- * step measures, the confining pressure (move_free, then advance, with
- * that pressure as its external force): no platen, end layer or radial
- * constraint acts on it. *confined: whether the pressure does. */
-static inline int moves_freely(const engine *e, size_t i, int measure, int *confined)
-{
-	const particles *P = &e->p;
-	uint8_t flag = P->flag[i];
-	*confined = P->surf[i] >= 0 && e->bc.loads.lateral == LATERAL_PRESSURE;
-	return P->pslot[0][i] < 0 && P->pslot[1][i] < 0 && !(*confined && measure) &&
-	       !(flag & PF_CONSTRAINED) &&
-	       !(e->bc.loads.layers && (flag & (PF_LAYER_BOTTOM | PF_LAYER_TOP)));
-}
-
 /* What move_free and advance compute for the particles of a block (with
  * the vector form of the damping), lane q for its particle q: the new
  * state and each particle's terms of the block's sums, added in particle
@@ -359,12 +346,53 @@ static inline void store_lane(particles *P, size_t i, const free_lanes *fl, int 
 }
 
 /* The lanes 0..nl) of the values a of particles i0, i0 + 1, ... into
- * their array A. */
+ * their array A: four particles' twelve values at a time, the lanes
+ * shuffled into three rows of A (values only moved). */
 static inline void store_run(double *restrict A, const double a[3][BLOCK], size_t i0, int nl)
 {
-	for (int q = 0; q < nl; q++)
+	double *to = A + 3 * i0;
+	int q = 0;
+	for (; q + 4 <= nl; q += 4, to += 12) {
+		vec4 c0 = *(const vec4 *)&a[0][q], c1 = *(const vec4 *)&a[1][q],
+		     c2 = *(const vec4 *)&a[2][q];
+		vec4 t = __builtin_shufflevector(c0, c1, 0, 4, 1, 5),
+		     u = __builtin_shufflevector(c1, c2, 1, 5, 2, 6),
+		     w = __builtin_shufflevector(c0, c1, 3, 7, 3, 7);
+		*(vec4 *)to = __builtin_shufflevector(t, c2, 0, 1, 4, 2);
+		*(vec4 *)(to + 4) = __builtin_shufflevector(u, c0, 0, 1, 6, 2);
+		*(vec4 *)(to + 8) = __builtin_shufflevector(c2, w, 2, 4, 5, 3);
+	}
+	for (; q < nl; q++, to += 3)
 		for (int c = 0; c < 3; c++)
-			A[3 * (i0 + (size_t)q) + c] = a[c][q];
+			to[c] = a[c][q];
+}
+
+/* The bonds' sums acc of particles 0..nl) of a block (force, then torque
+ * per unit radius: six values each) into the lanes F and T of fl: four
+ * particles at a time, as two transposes of four rows (values only
+ * moved). */
+static inline void lanes_from_sums(free_lanes *restrict fl, const double *restrict acc, int nl)
+{
+	int q = 0;
+	for (; q + 4 <= nl; q += 4) {
+		vec4 row[4], col[4];
+		for (int l = 0; l < 4; l++)
+			row[l] = *(const vec4 *)(acc + 6 * (q + l)); /* F0 F1 F2 T0 */
+		vec4_transpose(row, col);
+		for (int c = 0; c < 3; c++)
+			*(vec4 *)&fl->F[c][q] = col[c];
+		*(vec4 *)&fl->T[0][q] = col[3];
+		for (int l = 0; l < 4; l++)
+			row[l] = *(const vec4 *)(acc + 6 * (q + l) + 2); /* F2 T0 T1 T2 */
+		vec4_transpose(row, col);
+		*(vec4 *)&fl->T[1][q] = col[2];
+		*(vec4 *)&fl->T[2][q] = col[3];
+	}
+	for (; q < nl; q++)
+		for (int c = 0; c < 3; c++) {
+			fl->F[c][q] = acc[6 * q + c];
+			fl->T[c][q] = acc[6 * q + 3 + c];
+		}
 }
 
 DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
@@ -383,29 +411,47 @@ DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
 	 * one; every particle's terms added to the sums in particle order. */
 	particles *P = &e->p;
 	free_lanes fl;
-	int nl = (int)(hi - k * BLOCK), nf = 0;
+	size_t i0 = k * BLOCK;
+	int nl = (int)(hi - i0), nf = 0;
+	/* Which particles move freely under their forces alone and, unless
+	 * the step measures, the confining pressure (move_free, then advance,
+	 * with that pressure as their external force): no platen, end layer or
+	 * radial constraint acts on them; confined: the pressure does. Without
+	 * branches, so that the compiler vectorises it; the lanes that do not
+	 * move freely are computed by integrate_free too, and not used. */
+	const uint8_t *flag = P->flag + i0;
+	const int32_t *surf = P->surf + i0, *slot0 = P->pslot[0] + i0, *slot1 = P->pslot[1] + i0,
+	              *off = e->pairs.contacts.off + i0;
+	int pressure = e->bc.loads.lateral == LATERAL_PRESSURE, unmeasured = !measure, nc = 0;
+	uint8_t held = PF_CONSTRAINED | (e->bc.loads.layers ? PF_LAYER_BOTTOM | PF_LAYER_TOP : 0);
 	for (int q = 0; q < nl; q++) {
-		size_t i = k * BLOCK + (size_t)q;
-		int confined;
-		double F[3] = {0, 0, 0}, T[3] = {0, 0, 0}, ext[3] = {0, 0, 0};
-		fl.free[q] = (uint8_t)moves_freely(e, i, measure, &confined);
+		int confined = pressure & (surf[q] >= 0);
+		int free = (slot0[q] < 0) & (slot1[q] < 0) & ((confined ^ 1) | unmeasured) &
+		           ((flag[q] & held) == 0);
+		fl.free[q] = (uint8_t)free;
 		fl.confined[q] = (uint8_t)confined;
-		fl.lateral[q] = 0;
-		if (fl.free[q]) {
-			const double *acc = engine_acc(e, i);
-			for (int c = 0; c < 3; c++) {
-				F[c] = acc[c];
-				T[c] = acc[3 + c];
-			}
-			gather(&e->pairs.contacts, (int32_t)i, P->r[i], F, T);
-			nf++;
-			if (confined) { /* as integrate_one: its sum added below */
-				double er[3];
-				particle_sums lateral = {0};
-				radial_unit(e, P->x + 3 * i, er);
-				confine(e, (int32_t)i, P->surf[i], er, F, ext, &lateral, 0);
-				fl.lateral[q] = lateral.lateral_force;
-			}
+		nf += free;
+		nc += free & ((off[q + 1] != off[q]) | confined);
+	}
+	/* Their forces: the bonds' sums, then, where they act, the contacts
+	 * and the pressure (in that order, as integrate_one adds them). */
+	lanes_from_sums(&fl, engine_acc(e, i0), nl);
+	memset(fl.ext, 0, sizeof fl.ext);
+	memset(fl.lateral, 0, sizeof fl.lateral);
+	for (int q = 0; nc && q < nl; q++) {
+		if (!fl.free[q] || (off[q + 1] == off[q] && !fl.confined[q]))
+			continue;
+		nc--;
+		size_t i = i0 + (size_t)q;
+		double F[3] = {fl.F[0][q], fl.F[1][q], fl.F[2][q]},
+		       T[3] = {fl.T[0][q], fl.T[1][q], fl.T[2][q]}, ext[3] = {0, 0, 0};
+		gather(&e->pairs.contacts, (int32_t)i, P->r[i], F, T);
+		if (fl.confined[q]) { /* as integrate_one: its sum added below */
+			double er[3];
+			particle_sums lateral = {0};
+			radial_unit(e, P->x + 3 * i, er);
+			confine(e, (int32_t)i, P->surf[i], er, F, ext, &lateral, 0);
+			fl.lateral[q] = lateral.lateral_force;
 		}
 		for (int c = 0; c < 3; c++) {
 			fl.F[c][q] = F[c];
@@ -414,22 +460,22 @@ DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
 		}
 	}
 	integrate_free(P->x, P->v, P->w, P->r, P->m, P->x_ref, (int32_t)P->own0, e->clock.dt,
-	               e->cs->alpha_t, e->cs->alpha_r, &fl, (int32_t)(k * BLOCK), nl);
+	               e->cs->alpha_t, e->cs->alpha_r, &fl, (int32_t)i0, nl);
 	if (nf == nl) {
 		/* The sums in a local, which no store can alias (so they stay
 		 * in registers), and the state in loops of their own, which
 		 * the compiler vectorises. */
 		particle_sums sums = *s;
 		for (int q = 0; q < nl; q++)
-			add_lane(&sums, &fl, q, k * BLOCK + (size_t)q);
+			add_lane(&sums, &fl, q, i0 + (size_t)q);
 		*s = sums;
-		store_run(P->v, fl.v, k * BLOCK, nl);
-		store_run(P->w, fl.w, k * BLOCK, nl);
-		store_run(P->x, fl.x, k * BLOCK, nl);
+		store_run(P->v, fl.v, i0, nl);
+		store_run(P->w, fl.w, i0, nl);
+		store_run(P->x, fl.x, i0, nl);
 		return;
 	}
 	for (int q = 0; q < nl; q++) {
-		size_t i = k * BLOCK + (size_t)q;
+		size_t i = i0 + (size_t)q;
 		if (!fl.free[q]) {
 			integrate_one(e, (int32_t)i, measure, s);
 			continue;
