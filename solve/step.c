@@ -423,15 +423,18 @@ DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
 	const int32_t *surf = P->surf + i0, *slot0 = P->pslot[0] + i0, *slot1 = P->pslot[1] + i0,
 	              *off = e->pairs.contacts.off + i0;
 	int pressure = e->bc.loads.lateral == LATERAL_PRESSURE, unmeasured = !measure, nc = 0;
+	uint8_t added[BLOCK]; /* free, and contacts or the pressure act on it */
 	uint8_t held = PF_CONSTRAINED | (e->bc.loads.layers ? PF_LAYER_BOTTOM | PF_LAYER_TOP : 0);
 	for (int q = 0; q < nl; q++) {
 		int confined = pressure & (surf[q] >= 0);
 		int free = (slot0[q] < 0) & (slot1[q] < 0) & ((confined ^ 1) | unmeasured) &
 		           ((flag[q] & held) == 0);
+		int more = free & ((off[q + 1] != off[q]) | confined);
 		fl.free[q] = (uint8_t)free;
 		fl.confined[q] = (uint8_t)confined;
+		added[q] = (uint8_t)more;
 		nf += free;
-		nc += free & ((off[q + 1] != off[q]) | confined);
+		nc += more;
 	}
 	/* Their forces: the bonds' sums, then, where they act, the contacts
 	 * and the pressure (in that order, as integrate_one adds them). */
@@ -439,7 +442,7 @@ DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
 	memset(fl.ext, 0, sizeof fl.ext);
 	memset(fl.lateral, 0, sizeof fl.lateral);
 	for (int q = 0; nc && q < nl; q++) {
-		if (!fl.free[q] || (off[q + 1] == off[q] && !fl.confined[q]))
+		if (!added[q])
 			continue;
 		nc--;
 		size_t i = i0 + (size_t)q;
@@ -463,8 +466,7 @@ DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
 	               e->cs->alpha_t, e->cs->alpha_r, &fl, (int32_t)i0, nl);
 	if (nf == nl) {
 		/* The sums in a local, which no store can alias (so they stay
-		 * in registers), and the state in loops of their own, which
-		 * the compiler vectorises. */
+		 * in registers), and the state in loops of their own. */
 		particle_sums sums = *s;
 		for (int q = 0; q < nl; q++)
 			add_lane(&sums, &fl, q, i0 + (size_t)q);
