@@ -45,8 +45,8 @@ static inline void gather(const pairlist *L, int32_t i, double ri, double F[3], 
 	for (int32_t q = L->off[i]; q < L->off[i + 1]; q++) {
 		int32_t ref = L->ref[q];
 		const double *f = L->f + 6 * (ref >> 1);
-		/* -1 or 1 without a branch, which the ends of a list of
-		 * contacts would make the CPU guess at random */
+		/* 1 at the contact's end i, -1 at j, without a branch (which
+		 * the CPU would guess at random from contact to contact) */
 		double s = (double)(1 - 2 * (ref & 1));
 		F[0] += s * f[0];
 		F[1] += s * f[1];
