@@ -14,7 +14,7 @@
 
 #include "solve/clones.h"
 
-enum { BLOCK = 256, BATCH = 16 };
+enum { BLOCK = 256, BATCH = 32 };
 
 static inline size_t nblocks(size_t n) { return (n + BLOCK - 1) / BLOCK; }
 

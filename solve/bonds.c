@@ -575,8 +575,8 @@ static inline void bonds_prefetch(const engine *e, size_t b0)
 /* The steps a batch with more than a quarter of its lanes off the law's
  * elastic branch goes the staged way before it tries force_pairs again
  * (bond_split.staged): such lanes cost force_pairs' loop and then the
- * staged path's, which beyond about four lanes of sixteen is more than the
- * staged path's for the whole batch. */
+ * staged path's, which beyond about a quarter of the lanes is more than
+ * the staged path's for the whole batch. */
 enum { STAGED_STEPS = 64 };
 
 DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)

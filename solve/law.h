@@ -119,7 +119,7 @@ typedef struct {
  * q = 0 .. n - 1, so a law can compute many bonds at once in the vector
  * units. force_batch reads the pair, kinematics and history, and writes
  * the history and every output (the energies from zero). */
-enum { LAW_LANES = 16 };
+enum { LAW_LANES = 32 };
 typedef struct {
 	int n;
 	double ri[LAW_LANES], rj[LAW_LANES], mi[LAW_LANES], mj[LAW_LANES], d0[LAW_LANES];
