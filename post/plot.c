@@ -1,6 +1,7 @@
 #include <errno.h>
 #include <math.h>
-#include <signal.h>
+#include <spawn.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -10,6 +11,8 @@
 #include "lib/afile.h"
 #include "lib/err.h"
 #include "post/plot.h"
+
+extern char **environ;
 
 void plot_begin(plot_data *d)
 {
@@ -148,41 +151,74 @@ static void gnuplot_input(FILE *f, const plot_data *d, const char *body, const c
 	fprintf(f, "\n%s\nset output\n", body);
 }
 
-/* The figure's script beside it: gnuplot run in its directory draws it. */
-static int write_script(const plot_data *d, const char *body, const char *path, const char *ext,
-                        int width, int height)
+/* The name of the script of the figure path (of extension ext): the same
+ * with the extension "gp". */
+static char *script_name(const char *path, const char *ext)
 {
 	size_t n = strlen(path);
-	char *gp = xmalloc(n + 4), tmp[4096];
+	char *gp = xmalloc(n + 4);
 	memcpy(gp, path, n + 1);
 	strcpy(gp + (n - strlen(ext)), "gp");
-	const char *slash = strrchr(path, '/');
-	if (afile_begin(gp, tmp, sizeof tmp)) {
-		free(gp);
+	return gp;
+}
+
+/* gnuplot_input into the file name, written whole or not at all: its
+ * temporary name (afile.h) into tmp, removed again on failure; first, a
+ * comment line of head when not NULL. */
+static int write_input(const char *name, char *tmp, size_t n, const char *head, const plot_data *d,
+                       const char *body, const char *ext, const char *out, int width, int height)
+{
+	if (afile_begin(name, tmp, n))
 		return -1;
-	}
 	FILE *f = fopen(tmp, "w");
 	if (!f) {
 		afile_discard(tmp);
-		int rc = err_set("%s: cannot write: %s", gp, strerror(errno));
-		free(gp);
-		return rc;
+		return err_set("%s: cannot write: %s", name, strerror(errno));
 	}
-	fprintf(f,
-	        "# %s, drawn by post: run `gnuplot %s` in this directory to draw it again\n"
-	        "# (the style, the data and the plot commands are all below).\n",
-	        slash ? slash + 1 : path, strrchr(gp, '/') ? strrchr(gp, '/') + 1 : gp);
-	gnuplot_input(f, d, body, ext, slash ? slash + 1 : path, width, height);
+	if (head)
+		fputs(head, f);
+	gnuplot_input(f, d, body, ext, out, width, height);
 	int bad = ferror(f);
 	if (fclose(f) || bad) {
 		afile_discard(tmp);
-		int rc = err_set("%s: cannot write: %s", gp, strerror(errno));
-		free(gp);
-		return rc;
+		return err_set("%s: cannot write: %s", name, strerror(errno));
 	}
-	int rc = afile_commit(tmp, gp);
-	free(gp);
-	return rc;
+	return 0;
+}
+
+/* The figure's script beside it: gnuplot run in its directory draws it. */
+static int write_script(const plot_data *d, const char *body, const char *path, const char *ext,
+                        const char *gp, int width, int height)
+{
+	const char *slash = strrchr(path, '/'), *gslash = strrchr(gp, '/');
+	char head[8192], tmp[4096];
+	snprintf(head, sizeof head,
+	         "# %s, drawn by post: run `gnuplot %s` in this directory to draw it again\n"
+	         "# (the style, the data and the plot commands are all below).\n",
+	         slash ? slash + 1 : path, gslash ? gslash + 1 : gp);
+	if (write_input(gp, tmp, sizeof tmp, head, d, body, ext, slash ? slash + 1 : path, width,
+	                height))
+		return -1;
+	return afile_commit(tmp, gp);
+}
+
+/* gnuplot on the file in, its wait status (-1: it did not start). Given
+ * the file's name, not fed through a pipe: from a pipe gnuplot reads a
+ * byte at a time, one system call each (half a second for the half
+ * megabyte of data of a run's bond counts). */
+static int run_gnuplot(const char *in)
+{
+	char prog[] = "gnuplot", *arg = xmalloc(strlen(in) + 3);
+	/* not taken for an option */
+	sprintf(arg, "%s%s", in[0] == '-' ? "./" : "", in);
+	char *argv[] = {prog, arg, NULL};
+	pid_t pid;
+	int status = -1;
+	if (posix_spawnp(&pid, prog, NULL, NULL, argv, environ) == 0)
+		while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+			;
+	free(arg);
+	return status;
 }
 
 int plot_draw(plot_data *d, const char *script, const char *path, int width, int height)
@@ -190,7 +226,7 @@ int plot_draw(plot_data *d, const char *script, const char *path, int width, int
 	fclose(d->f);
 	const char *style = plot_script("style"), *body = plot_script(script);
 	const char *ext = extension(path);
-	char tmp[4096];
+	char tmp[4096], in[4096];
 	int rc = 0;
 	if (!body || !style)
 		rc = err_set("gnuplot script '%s' is not built into post", script);
@@ -206,27 +242,21 @@ int plot_draw(plot_data *d, const char *script, const char *path, int width, int
 		free(d->text);
 		return -1;
 	}
-	/* A gnuplot that dies early must not kill post with SIGPIPE. */
-	void (*old)(int) = signal(SIGPIPE, SIG_IGN);
-	FILE *gp = popen("gnuplot", "w");
-	if (!gp) {
-		signal(SIGPIPE, old);
-		free(d->text);
-		afile_discard(tmp);
-		return err_set("%s: cannot start gnuplot", path);
+	/* gnuplot's input (drawing the figure's temporary name) where the
+	 * script goes, under the script's temporary name until it is drawn. */
+	char *gp = script_name(path, ext);
+	rc = write_input(gp, in, sizeof in, NULL, d, body, ext, tmp, width, height);
+	if (!rc) {
+		int status = run_gnuplot(in);
+		afile_discard(in);
+		if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0 ||
+		    !figure_ok(tmp, ext))
+			rc = err_set("%s: gnuplot failed to draw the figure (script "
+			             "share/gnuplot/%s.gp; its message is above)",
+			             path, script);
 	}
-	gnuplot_input(gp, d, body, ext, tmp, width, height);
-	int status = pclose(gp);
-	signal(SIGPIPE, old);
-	if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0 ||
-	    !figure_ok(tmp, ext)) {
-		free(d->text);
-		afile_discard(tmp);
-		return err_set("%s: gnuplot failed to draw the figure (script share/gnuplot/%s.gp; "
-		               "its message is above)",
-		               path, script);
-	}
-	rc = write_script(d, body, path, ext, width, height);
+	rc = rc || write_script(d, body, path, ext, gp, width, height);
+	free(gp);
 	free(d->text);
 	if (rc) {
 		afile_discard(tmp);

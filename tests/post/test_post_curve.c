@@ -2,7 +2,9 @@
  * four figures are real images with the curves in their colours;
  * experimental points add black markers. Each figure's gnuplot script is
  * left beside it and draws it again; --format pdf and svg draw vector
- * figures, an unknown format is refused. */
+ * figures, an unknown format is refused. A gnuplot that fails, or draws
+ * nothing, is one message, and no figure, script or temporary is left. */
+#include <dirent.h>
 #include <math.h>
 #include <sys/stat.h>
 
@@ -23,6 +25,52 @@ static long pixels(const char *dir, const char *name, unsigned rgb)
 	    distinct < 20)
 		return -1;
 	return count;
+}
+
+/* post curve with the program gnuplot of a fresh directory first on the
+ * PATH: a shell script of body. Expects status 1, the message
+ * "figure: gnuplot failed to draw the figure", also says, and no file
+ * in the output directory. */
+static void failing_gnuplot(const char *dir, const char *run, const char *body, const char *says)
+{
+	char bin[1100], prog[1200], out[1100], cmd[4000], path[8192];
+	snprintf(bin, sizeof bin, "%s/fake", dir);
+	snprintf(out, sizeof out, "%s/failed", dir);
+	snprintf(prog, sizeof prog, "%s/gnuplot", bin);
+	snprintf(cmd, sizeof cmd, "rm -rf '%s' '%s' && mkdir -p '%s'", bin, out, bin);
+	CHECK(system(cmd) == 0);
+	FILE *f = fopen(prog, "w");
+	CHECK(f != NULL);
+	if (!f)
+		return;
+	fprintf(f, "#!/bin/sh\n%s\n", body);
+	fclose(f);
+	CHECK(chmod(prog, 0755) == 0);
+	char *old = strdup(getenv("PATH") ? getenv("PATH") : "/usr/bin:/bin");
+	snprintf(path, sizeof path, "%s:%s", bin, old);
+	setenv("PATH", path, 1);
+	post_result res = harness_post("curve --out %s %s", out, run);
+	setenv("PATH", old, 1);
+	free(old);
+	CHECK(res.status == 1);
+	CHECK(strstr(res.err, "gnuplot failed to draw the figure") != NULL);
+	CHECK(strstr(res.err, says) != NULL);
+	if (res.status != 1 || !strstr(res.err, says))
+		fprintf(stderr, "post curve with a failing gnuplot: status %d: %s\n", res.status,
+		        res.err);
+	harness_free(&res);
+	/* Only curve.csv, written before any figure. */
+	DIR *d = opendir(out);
+	int left = 0;
+	for (struct dirent *e; d && (e = readdir(d));)
+		if (e->d_name[0] != '.' || strlen(e->d_name) > 2)
+			if (strcmp(e->d_name, "curve.csv")) {
+				fprintf(stderr, "left behind: %s\n", e->d_name);
+				left++;
+			}
+	if (d)
+		closedir(d);
+	CHECK(d != NULL && left == 0);
 }
 
 int main(void)
@@ -107,6 +155,12 @@ int main(void)
 	res = harness_post("curve --format eps %s", run);
 	CHECK(res.status == 1 && strstr(res.err, "--format eps: expected png, pdf or svg"));
 	harness_free(&res);
+
+	/* gnuplot fails with a message of its own; draws nothing; is killed. */
+	failing_gnuplot(dir, run, "echo \"gnuplot: cannot open terminal\" >&2; exit 1",
+	                "gnuplot: cannot open terminal");
+	failing_gnuplot(dir, run, "exit 0", ".png: gnuplot failed");
+	failing_gnuplot(dir, run, "kill -9 $$", ".png: gnuplot failed");
 	run_free(&r);
 	return check_done();
 }
