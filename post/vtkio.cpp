@@ -96,6 +96,10 @@ void attach_arrays(vtkDataSet *ds, const vtkio_mesh *m)
 }
 
 // VTK's own messages are silenced: the C caller reports a failure.
+// zlib's fastest level: on a run's frames (the concrete UCS case, 9 frames
+// of 13 021 spheres and 55 779 bonds, 100 MB uncompressed) the files are 1 %
+// larger than at VTK's default level 5 (55.4 MB against 54.8) and take a
+// fifth less time to write.
 template <class Writer> int write(Writer *w, vtkDataObject *data, const char *path)
 {
 	vtkObject::GlobalWarningDisplayOff();
@@ -104,6 +108,7 @@ template <class Writer> int write(Writer *w, vtkDataObject *data, const char *pa
 	w->SetDataModeToAppended();
 	w->EncodeAppendedDataOff();
 	w->SetCompressorTypeToZLib();
+	w->SetCompressionLevel(1);
 	w->SetHeaderTypeToUInt64();
 	return w->Write() == 1 && w->GetErrorCode() == 0 ? 0 : -1;
 }
