@@ -1,6 +1,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <libgen.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,10 +12,12 @@
 #include "lib/err.h"
 
 /* Pending temporaries, kept in static storage so the signal handler can use
- * them without allocating. */
-enum { MAX_PENDING = 16, NAME_MAX_LEN = 4096 };
+ * them without allocating. Threads may write files at once (post vtk): a
+ * slot is taken and given back under the lock. */
+enum { MAX_PENDING = 64, NAME_MAX_LEN = 4096 };
 static char pending[MAX_PENDING][NAME_MAX_LEN];
 static volatile sig_atomic_t pending_used[MAX_PENDING];
+static pthread_mutex_t pending_lock = PTHREAD_MUTEX_INITIALIZER;
 
 const int afile_signals[AFILE_NSIGNALS] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGUSR2, SIGXCPU};
 
@@ -50,20 +53,25 @@ int afile_begin(const char *final, char *tmp, size_t n)
 	int len = snprintf(tmp, n, "%s.tmp", final);
 	if (len < 0 || (size_t)len >= n || (size_t)len >= NAME_MAX_LEN)
 		return err_set("%s: output file name too long", final);
-	for (int k = 0; k < MAX_PENDING; k++)
+	int rc = -1;
+	pthread_mutex_lock(&pending_lock);
+	for (int k = 0; k < MAX_PENDING && rc; k++)
 		if (!pending_used[k]) {
 			memcpy(pending[k], tmp, (size_t)len + 1);
 			pending_used[k] = 1;
-			return 0;
+			rc = 0;
 		}
-	return err_set("%s: too many output files open at once", final);
+	pthread_mutex_unlock(&pending_lock);
+	return rc ? err_set("%s: too many output files open at once", final) : 0;
 }
 
 static void unregister(const char *tmp)
 {
+	pthread_mutex_lock(&pending_lock);
 	for (int k = 0; k < MAX_PENDING; k++)
 		if (pending_used[k] && strcmp(pending[k], tmp) == 0)
 			pending_used[k] = 0;
+	pthread_mutex_unlock(&pending_lock);
 }
 
 static int fsync_path(const char *path, int flags)

@@ -164,6 +164,7 @@ int post_cracks(int argc, char **argv)
 	const char *out = NULL;
 	map_opts o = {0, 0, 0, 10};
 	int no_png = 0, no_vtk = 0;
+	long threads = 0;
 	const char *format = "png";
 	const cli_opt opts[] = {
 	    {"out", CLI_STR, &out, "DIR", "", "output directory (default: that of the run)", 0, 0},
@@ -179,6 +180,7 @@ int post_cracks(int argc, char **argv)
 	    {"no-vtk", CLI_FLAG, &no_vtk, NULL, "", "no VTK series", 0, 0},
 	    {"format", CLI_STR, &format, "png|pdf|svg", "",
 	     "figure format (each figure's gnuplot script is left beside it as NAME.gp)", 0, 0},
+	    POST_THREADS_OPT(threads),
 	};
 	const char *file = post_one_file(
 	    "post cracks [options] RUN.h5",
@@ -191,6 +193,7 @@ int post_cracks(int argc, char **argv)
 	    opts, (int)(sizeof opts / sizeof opts[0]), argc, argv);
 	if (plot_set_format(format))
 		fatal(NULL);
+	post_threads(threads);
 	dem_run r;
 	load_run("cracks", file, &r);
 	specimen sp;

@@ -99,6 +99,8 @@ void cracks_series(const char *dir, const dem_run *r, const double *times, size_
                    pvd_entry *e)
 {
 	pvd_entry *own = e ? e : xmalloc((nframes ? nframes : 1) * sizeof *own);
+	/* Each frame its own file, on the threads. */
+#pragma omp parallel for schedule(dynamic, 1)
 	for (size_t f = 0; f < nframes; f++) {
 		char name[64];
 		snprintf(name, sizeof name, "cracks_%06zu.vtp", f);

@@ -1,5 +1,6 @@
 /* post: what a run means. Dispatches `post COMMAND [options] FILE` to the
  * command's own parser; `post --help` lists the commands. */
+#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -8,6 +9,7 @@
 #include "lib/cli.h"
 #include "lib/err.h"
 #include "post/post.h"
+#include "post/vtkio.h"
 
 static const struct {
 	const char *name;
@@ -37,6 +39,13 @@ const char *post_one_file(const char *usage, const char *summary, const cli_opt 
 	char *pos[1];
 	cli_parse(&spec, argc, argv, pos);
 	return pos[0];
+}
+
+void post_threads(long threads)
+{
+	int n = threads ? (int)threads : omp_get_num_procs();
+	omp_set_num_threads(n < POST_THREADS ? n : POST_THREADS);
+	vtkio_threads();
 }
 
 char *post_run_label(const char *path)

@@ -19,6 +19,20 @@ int post_study(int argc, char **argv);
 const char *post_one_file(const char *usage, const char *summary, const cli_opt *opts, int nopts,
                           int argc, char **argv);
 
+/* The --threads option of the commands that write a VTK series (vtk,
+ * cracks), each frame's files on one thread; and its effect, OpenMP's
+ * threads: that many, or every core for 0, but at most POST_THREADS (a
+ * file each at once); and VTK ready for them (vtkio_threads). */
+enum { POST_THREADS = 32 };
+#define POST_THREADS_HELP                                                                 \
+	"OpenMP threads writing VTK frames at once (0: all cores; at most 32 are used); " \
+	"the files do not depend on it"
+#define POST_THREADS_OPT(var)                                                   \
+	{                                                                       \
+		"threads", CLI_INT, &(var), "N", "", POST_THREADS_HELP, 0, 4096 \
+	}
+void post_threads(long threads);
+
 /* The label of a run in legends and tables: the file name without .h5, or
  * the directory name for a file called run.h5 (runs/ucs/run.h5 -> ucs).
  * Caller frees. */

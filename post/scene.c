@@ -7,8 +7,9 @@
 #include "lib/vec3.h"
 #include "post/scene.h"
 
-static const vtkio_array *fields;
-static int nfields;
+/* Each thread's (post vtk writes frames on several). */
+static _Thread_local const vtkio_array *fields;
+static _Thread_local int nfields;
 
 void scene_fields(const vtkio_array *fd, int n)
 {

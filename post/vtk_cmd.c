@@ -67,6 +67,45 @@ static double history_at(const dem_run *r, const char *col, double t)
 	return v[best];
 }
 
+/* The files of frame k of the run r (its snapshot snaps[k] of file), their
+ * entries[part][k]. */
+static void frame_files(const char *file, const dem_run *r, const frame *f, const size_t *snaps,
+                        size_t k, const char *dir, pvd_entry *entries[NPARTS])
+{
+	dem_snapshot s;
+	/* The HDF5 library runs one call at a time. */
+#pragma omp critical(post_hdf5)
+	load_snapshot(file, r, snaps[k], &s);
+	/* The frame's state as field data of each of its files (ParaView shows
+	 * it with the Annotate tools). */
+	double pressure = history_at(r, "pressure", s.t);
+	const vtkio_array fields[] = {
+	    {"time", VTKIO_F64, 1, &s.t},
+	    {"step", VTKIO_I64, 1, &s.step},
+	    {"strain_axial", VTKIO_F64, 1, &s.strain_axial},
+	    {"stress_axial", VTKIO_F64, 1, &s.stress_axial},
+	    {"confining_pressure", VTKIO_F64, 1, &pressure},
+	};
+	scene_fields(fields, (int)(sizeof fields / sizeof fields[0]));
+	for (int p = 0; p < PART_CRACKS; p++) {
+		if (p == PART_BONDS && r->bonds.n == 0)
+			continue;
+		char name[64];
+		snprintf(name, sizeof name, "%s_%06zu.%s", part_name[p], k, part_ext[p]);
+		char *path = out_path(dir, name);
+		if (p == PART_PARTICLES)
+			scene_particles(path, &r->assembly, &r->bonds, &s);
+		else if (p == PART_BONDS)
+			scene_bonds(path, &r->bonds, &s);
+		else
+			scene_platens(path, f, &r->assembly, &s);
+		free(path);
+		entries[p][k] = (pvd_entry){s.t, p, xstrdup(name)};
+	}
+	scene_fields(NULL, 0);
+	snapshot_free(&s);
+}
+
 static void run_files(const char *file, const char *dir, long every)
 {
 	dem_run r;
@@ -84,38 +123,14 @@ static void run_files(const char *file, const char *dir, long every)
 		entries[p] = xcalloc(nframes + 1, sizeof *entries[p]);
 	progress pr;
 	progress_start(&pr, "snapshots", (double)nframes);
+	/* The frames on the threads, each its own files (the same whatever the
+	 * threads), the snapshots read one at a time. */
+	size_t done = 0;
+#pragma omp parallel for schedule(dynamic, 1)
 	for (size_t k = 0; k < nframes; k++) {
-		dem_snapshot s;
-		load_snapshot(file, &r, snaps[k], &s);
-		/* The frame's state as field data of each of its files (ParaView
-		 * shows it with the Annotate tools). */
-		double pressure = history_at(&r, "pressure", s.t);
-		const vtkio_array fields[] = {
-		    {"time", VTKIO_F64, 1, &s.t},
-		    {"step", VTKIO_I64, 1, &s.step},
-		    {"strain_axial", VTKIO_F64, 1, &s.strain_axial},
-		    {"stress_axial", VTKIO_F64, 1, &s.stress_axial},
-		    {"confining_pressure", VTKIO_F64, 1, &pressure},
-		};
-		scene_fields(fields, (int)(sizeof fields / sizeof fields[0]));
-		for (int p = 0; p < PART_CRACKS; p++) {
-			if (p == PART_BONDS && r.bonds.n == 0)
-				continue;
-			char name[64];
-			snprintf(name, sizeof name, "%s_%06zu.%s", part_name[p], k, part_ext[p]);
-			char *path = out_path(dir, name);
-			if (p == PART_PARTICLES)
-				scene_particles(path, &r.assembly, &r.bonds, &s);
-			else if (p == PART_BONDS)
-				scene_bonds(path, &r.bonds, &s);
-			else
-				scene_platens(path, &f, &r.assembly, &s);
-			free(path);
-			entries[p][k] = (pvd_entry){s.t, p, xstrdup(name)};
-		}
-		scene_fields(NULL, 0);
-		snapshot_free(&s);
-		progress_update(&pr, (double)(k + 1), NULL);
+		frame_files(file, &r, &f, snaps, k, dir, entries);
+#pragma omp critical(post_progress)
+		progress_update(&pr, (double)++done, NULL);
 	}
 	progress_end(&pr);
 	double *times = xmalloc((nframes + 1) * sizeof *times);
@@ -160,11 +175,12 @@ static void run_files(const char *file, const char *dir, long every)
 int post_vtk(int argc, char **argv)
 {
 	const char *out = NULL;
-	long every = 1;
+	long every = 1, threads = 0;
 	const cli_opt opts[] = {
 	    {"out", CLI_STR, &out, "DIR", "", "output directory (default: vtk/ beside the file)", 0,
 	     0},
 	    {"every", CLI_INT, &every, "N", "", "every N-th snapshot (the last always)", 1, 1e9},
+	    POST_THREADS_OPT(threads),
 	};
 	const char *file = post_one_file(
 	    "post vtk [options] RUN.h5|ASSEMBLY.h5",
@@ -175,6 +191,7 @@ int post_vtk(int argc, char **argv)
 	    "with all of them, and geometry.vtp. From an assembly: particles.vtu and\n"
 	    "geometry.vtp. share/paraview/show_run.py renders a run.",
 	    opts, (int)(sizeof opts / sizeof opts[0]), argc, argv);
+	post_threads(threads);
 	file_kind kind = load_kind("vtk", file);
 	char *dir;
 	if (out) {

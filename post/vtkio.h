@@ -40,6 +40,11 @@ typedef struct {
 	int nfdata;
 } vtkio_mesh;
 
+/* Ready for files written on several threads at once: VTK sets up its
+ * object factory at the first object it makes, and not under a lock, so
+ * one of each kind is made here first, on the calling thread. */
+void vtkio_threads(void);
+
 /* Write m to path as an unstructured grid (.vtu) or polygonal data (.vtp).
  * path is written as given (callers pass a temporary name). Returns 0, or
  * -1 when the file cannot be written (the caller reports it). */
