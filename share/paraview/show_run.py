@@ -44,6 +44,9 @@ from paraview.simple import (
 DAMAGE_MAP = "Inferno (matplotlib)"  # inverted: intact pale, broken dark
 STRAIN_MAP = "Viridis (matplotlib)"  # inverted: first cracks yellow, last dark blue
 DEFAULT_SIZE = (1280, 640)
+# Text sizes at the default size; a narrower view (--size) shrinks them in
+# proportion, so that the two-line titles still fit (set in main).
+font_scale = 1.0
 TENSION = [0.839, 0.153, 0.157]  # share/gnuplot/style.gp colours
 SHEAR = [0.122, 0.306, 0.620]
 
@@ -203,14 +206,19 @@ def colour_map(name, preset, lo, hi, invert):
     return lut
 
 
+def font(points):
+    """A text size of the default view's, scaled to this one's width."""
+    return max(6, int(round(points * font_scale)))
+
+
 def legend(bar, title, fmt):
     """A horizontal colour legend inside the bottom of its view."""
     bar.Title = title
     bar.ComponentTitle = ""
     bar.TitleColor = [0, 0, 0]
     bar.LabelColor = [0, 0, 0]
-    bar.TitleFontSize = 11
-    bar.LabelFontSize = 10
+    bar.TitleFontSize = font(11)
+    bar.LabelFontSize = font(10)
     bar.TitleBold = 0
     bar.Orientation = "Horizontal"
     bar.WindowLocation = "Lower Center"
@@ -234,7 +242,7 @@ def show_platens(platens, view):
 def label(view, text):
     t = Text(Text=text)
     d = Show(t, view)
-    d.FontSize = 11
+    d.FontSize = font(11)
     d.Color = [0, 0, 0]
     d.WindowLocation = "Upper Center"
     d.Justification = "Center"
@@ -278,7 +286,10 @@ def bond_view(path, t, platens, centre, axis, towards, length):
 
 
 def main(argv):
+    global font_scale
     args = parse(argv)
+    views = 3 if args["bonds"] else 2
+    font_scale = min(1.0, args["size"][0] / views / (DEFAULT_SIZE[0] / 2))
     path = lambda name: os.path.join(args["dir"], name)
     particles = PVDReader(FileName=path("particles.pvd"))
     cracks = PVDReader(FileName=path("cracks.pvd"))

@@ -4,7 +4,8 @@
 # share/paraview/show_run.py (default size) -> paraview_check.py (size, not
 # blank, each crack disc in the colour of the strain at which it formed and
 # each sphere behind the cut in the colour of its damage, where they are),
-# then again with --bonds (each broken bond in the colour of its mode too);
+# then again with --bonds (each broken bond in the colour of its mode too)
+# and at 640 x 480 (each view's title within it at every size);
 # then tools/render-series --every 4: one numbered picture per frame kept
 # (of the run's five, the first and the last: each is a pvbatch start of
 # seconds), the first and the last different; with ffmpeg, the video of
@@ -63,6 +64,9 @@ fi
 /usr/bin/python3 "$src/tests/post/paraview_check.py" "$tmp/show.png" "$tmp/vtk" 1280 640
 (cd "$src" && run_pvbatch share/paraview/show_run.py "$tmp/vtk" "$tmp/bonds.png" --bonds)
 /usr/bin/python3 "$src/tests/post/paraview_check.py" "$tmp/bonds.png" "$tmp/vtk" 1920 640 --bonds
+# A narrower picture: the text shrinks with the views.
+(cd "$src" && run_pvbatch share/paraview/show_run.py "$tmp/vtk" "$tmp/small.png" --size 640 480)
+/usr/bin/python3 "$src/tests/post/paraview_check.py" "$tmp/small.png" "$tmp/vtk" 640 480
 
 # The series: every fourth frame and the last, numbered from 0.
 every=4

@@ -13,8 +13,9 @@ them must, and clearly more than with another crack's strain. Left view:
 likewise each sphere behind the cut in sight at its centre, with inverted
 Inferno at its damage (0 to the 99th percentile). With --bonds (a picture
 of show_run.py --bonds: three views, each W/3 x H), the third view too:
-each broken bond's midpoint in the colour of its mode. Prints what it measured;
-exits 1 with the reason on the first check that fails.
+each broken bond's midpoint in the colour of its mode. Also that each
+view's title fits in it. Prints what it measured; exits 1 with the reason
+on the first check that fails.
 """
 import math
 import os
@@ -116,6 +117,17 @@ def main(argv):
             fail("the %s view is (nearly) blank" % name)
     if nc not in (3, 4):
         fail("%s has %d components" % (png, nc))
+
+    # Each view's title inside it: nothing drawn in the top eighth of the
+    # picture within 3 to 13 pixels of a view's sides (a title too wide for
+    # its view runs into them).
+    for name, x0 in (("left", 0), ("right", vw), ("bonds", 2 * vw))[:3 if bonds else 2]:
+        inked = 0
+        for y in range(h - h // 8, h):
+            for x in list(range(x0 + 3, x0 + 13)) + list(range(x0 + vw - 13, x0 + vw - 3)):
+                inked += max(abs(v - b) for v, b in zip(pixel(x, y), BACKGROUND)) > 60
+        if inked:
+            fail("the %s view's title runs into its sides (%d pixels)" % (name, inked))
 
     # The camera of show_run.py's camera(), from the platens.
     def platens(name):
