@@ -202,23 +202,25 @@ static int write_script(const plot_data *d, const char *body, const char *path, 
 	return afile_commit(tmp, gp);
 }
 
-/* gnuplot on the file in, its wait status (-1: it did not start). Given
- * the file's name, not fed through a pipe: from a pipe gnuplot reads a
- * byte at a time, one system call each (half a second for the half
- * megabyte of data of a run's bond counts). */
-static int run_gnuplot(const char *in)
+/* gnuplot on the file in: 0 and its wait status in *status (-1 when it
+ * could not be waited for), or the error number when it did not start.
+ * Given the file's name, not fed through a pipe: from a pipe gnuplot
+ * reads a byte at a time, one system call each (half a second for the
+ * half megabyte of data of a run's bond counts). */
+static int run_gnuplot(const char *in, int *status)
 {
 	char prog[] = "gnuplot", *arg = xmalloc(strlen(in) + 3);
 	/* not taken for an option */
 	sprintf(arg, "%s%s", in[0] == '-' ? "./" : "", in);
 	char *argv[] = {prog, arg, NULL};
 	pid_t pid;
-	int status = -1;
-	if (posix_spawnp(&pid, prog, NULL, NULL, argv, environ) == 0)
-		while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+	*status = -1;
+	int rc = posix_spawnp(&pid, prog, NULL, NULL, argv, environ);
+	if (!rc)
+		while (waitpid(pid, status, 0) < 0 && errno == EINTR)
 			;
 	free(arg);
-	return status;
+	return rc;
 }
 
 int plot_draw(plot_data *d, const char *script, const char *path, int width, int height)
@@ -247,10 +249,12 @@ int plot_draw(plot_data *d, const char *script, const char *path, int width, int
 	char *gp = script_name(path, ext);
 	rc = write_input(gp, in, sizeof in, NULL, d, body, ext, tmp, width, height);
 	if (!rc) {
-		int status = run_gnuplot(in);
+		int status, start = run_gnuplot(in, &status);
 		afile_discard(in);
-		if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0 ||
-		    !figure_ok(tmp, ext))
+		if (start)
+			rc = err_set("%s: cannot start gnuplot: %s", path, strerror(start));
+		else if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0 ||
+		         !figure_ok(tmp, ext))
 			rc = err_set("%s: gnuplot failed to draw the figure (script "
 			             "share/gnuplot/%s.gp; its message is above)",
 			             path, script);
