@@ -340,7 +340,7 @@ static inline __attribute__((always_inline)) int bonds_fused(engine *e, size_t b
 	                .idx = idx,
 	                .n = nq};
 	law_pairs_load(&in, L);
-	o->damage = 0;
+	o->damage = o->friction = 0;
 	int elastic = e->law->force_pairs(e->lp, L, nq, e->clock.dt, o);
 	if (keep && elastic == nq)
 		return elastic;
@@ -387,7 +387,7 @@ static void bonds_compute(engine *e, const int32_t *idx, int nq, int measure, cr
 			for (int c = 0; c < 6; c++)
 				d->f[c] = o.f[c][q];
 			d->e_damage = o.damage ? o.e_damage[q] : 0;
-			d->e_friction = 0;
+			d->e_friction = o.friction ? o.e_friction[q] : 0;
 			d->e_viscous = o.e_viscous[q];
 		}
 }
@@ -456,15 +456,15 @@ static inline void bond_add_lane(engine *e, size_t b, const law_fused *o, int q)
 }
 
 /* bond_add for lane q of force_pairs' output, a bond of the share: it
- * dissipates nothing but its viscous energy and any plastic work (adding
- * the zeros would leave the sums as they are: started at +0, a sum is
- * never -0), which damage says o holds (o->damage, or 0 where the caller
- * knows it does not). */
-static inline void bond_add_fused(engine *e, size_t b, const law_fused *o, int q, pair_sums *s,
-                                  int damage)
+ * dissipates nothing but its viscous energy and any plastic work or work
+ * of sliding, where o holds them (o->damage, o->friction; adding the zeros
+ * would leave the sums as they are: started at +0, a sum is never -0). */
+static inline void bond_add_fused(engine *e, size_t b, const law_fused *o, int q, pair_sums *s)
 {
-	if (damage)
+	if (o->damage)
 		s->e_damage += o->e_damage[q];
+	if (o->friction)
+		s->e_friction += o->e_friction[q];
 	s->e_viscous += o->e_viscous[q];
 	bond_add_lane(e, b, o, q);
 }
@@ -500,9 +500,9 @@ static inline void acc_add_rows(double *a, vec4 head, acc_v2 tail)
 
 /* The bonds b0 + q of lanes q < nq of force_pairs' output, all on the
  * law's elastic branch: each record updated and each bond added.
- * full: whether o's history and plastic work may be set (else only t and
- * the viscous energy are); a constant in each inlined copy, so that the
- * loop tests neither. Four lanes at a time, their forces and torques
+ * full: whether o's history, plastic work and work of sliding may be set
+ * (else only t and the viscous energy are); a constant in each inlined
+ * copy, so that the loop tests none. Four lanes at a time, their forces and torques
  * (times the radii of L) are transposed into one row per lane and end
  * instead of being read value by value: the same values added in the same
  * order as bond_add_fused adds them. */
@@ -517,6 +517,8 @@ static inline __attribute__((always_inline)) void bonds_add_elastic(engine *e, s
 		fused_history(&B->rec[b0 + (size_t)q], o, q, history);
 		if (full && o->damage)
 			s->e_damage += o->e_damage[q];
+		if (full && o->friction)
+			s->e_friction += o->e_friction[q];
 		s->e_viscous += o->e_viscous[q];
 	}
 	for (int q = 0; history && q < nq; q++)
@@ -640,7 +642,7 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 			if (fused && own && elastic == nq) {
 				/* The whole batch is the share's own and on the
 				 * law's elastic branch: no lane to tell apart. */
-				if (o.history || o.damage)
+				if (o.history || o.damage || o.friction)
 					bonds_add_elastic(e, b0, &L, &o, nq, s, 1);
 				else
 					bonds_add_elastic(e, b0, &L, &o, nq, s, 0);
@@ -651,7 +653,7 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 				if ((size_t)rec[b].j >= p1)
 					bond_add(e, b, &S->part[slot++], measure, s, 0);
 				else if (fused && o.elastic[q])
-					bond_add_fused(e, b, &o, q++, s, o.damage);
+					bond_add_fused(e, b, &o, q++, s);
 				else
 					bond_add(e, b, &part[q++], measure, s, 1);
 			}

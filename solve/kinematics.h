@@ -227,18 +227,23 @@ static inline void batch_force(const law_batch *B, const batch_geom *g, int q, d
 }
 
 /* What law.force_pairs gives for each lane q that stays on the law's
- * elastic branch (elastic[q] != 0; nothing for the others): the force on i
+ * elastic branch, or that its loop also computes (the broken bonds of
+ * onate and jcfpm), elastic[q] != 0; nothing for the others: the force on i
  * and the torque per unit radius (pair_force), the viscous energy
  * u̇_n f_viscous Δt, and the bond's new history. A law whose lanes may also
  * flow plastically there (no damage, no failure) sets damage, which the
- * caller sets to 0 first, and gives their plastic work in e_damage. */
+ * caller sets to 0 first, and gives their plastic work in e_damage; one
+ * whose lanes may be friction contacts (broken bonds) sets friction (the
+ * same) and gives the work of their sliding in e_friction. */
 struct law_fused {
-	int history; /* whether h and state may have changed (else only t) */
-	int damage;  /* whether e_damage holds the lanes' plastic work (else 0) */
+	int history;  /* whether h and state may have changed (else only t) */
+	int damage;   /* whether e_damage holds the lanes' plastic work (else 0) */
+	int friction; /* whether e_friction holds their sliding work (else 0) */
 	int32_t elastic[LAW_LANES];
 	double f[6][LAW_LANES];
 	double e_viscous[LAW_LANES];
-	double e_damage[LAW_LANES]; /* J, as law_out.e_damage */
+	double e_damage[LAW_LANES];   /* J, as law_out.e_damage */
+	double e_friction[LAW_LANES]; /* J, as law_out.e_friction */
 	double t[3][LAW_LANES], h[LAW_NHIST][LAW_LANES];
 	int32_t state[LAW_LANES];
 };
@@ -254,6 +259,17 @@ struct law_fused {
 #define LAW_PAIRS_VERSIONS(NAME, BODY)                                             \
 	DEM_VERSIONS(int, return, NAME, (LAW_PAIRS_PARAMS, law_fused *restrict o), \
 	             (lp, L, n, dt, o), BODY)
+
+/* A force_pairs NAME from BODY, an always-inline function with NAME's
+ * parameters and then constants that select a variant of its loop, given
+ * here (...): LAW_PAIRS_VERSIONS of BODY with them. */
+#define LAW_PAIRS_VARIANT(NAME, BODY, ...)                                                  \
+	static inline __attribute__((always_inline)) int NAME##_body(LAW_PAIRS_PARAMS,      \
+	                                                             law_fused *restrict o) \
+	{                                                                                   \
+		return BODY(lp, L, n, dt, o, __VA_ARGS__);                                  \
+	}                                                                                   \
+	LAW_PAIRS_VERSIONS(NAME, NAME##_body)
 
 /* Lane q of a law_fused from the law's forces fn (its viscous part fv) and
  * fs on the pair k, and the bond's new history: t, and h and state unless h

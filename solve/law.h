@@ -168,11 +168,12 @@ typedef struct law {
 	void (*force_batch)(const law_params *p, law_batch *b);
 	/* Optional (NULL when the law has none): the n lanes of a batch of
 	 * bonds (L, from law_pairs_load) to the forces on them in one loop,
-	 * for the lanes that stay on the law's elastic branch
-	 * (out->elastic[q] != 0), to the bit what batch_kinematics,
+	 * for the lanes that stay on the law's elastic branch, and any
+	 * others it chooses to compute (broken bonds; out->elastic[q] != 0
+	 * for all those), to the bit what batch_kinematics,
 	 * force_batch and batch_force give (kinematics.h); the other lanes are
 	 * left to those, and their bonds as they were. Returns the count of
-	 * elastic lanes. */
+	 * lanes it computed. */
 	int (*force_pairs)(const law_params *p, const law_lanes *L, int n, double dt,
 	                   law_fused *out);
 	/* Elastic energy stored in the bond (J) after the force() call whose

@@ -128,18 +128,20 @@ static inline double dh_normal(const dh_params *q, dh_curve curve, const void *l
  * state, for the vector loops of the laws: on the loading curve's first
  * part (compressive strain up to eps_max, where it is E0 c, now and at
  * the largest compression so far, so the permanent indentation is 0), and
- * in tension up to the limit strain (the tension damage stays h0). The
+ * in tension up to the limit strain (the tension damage stays h0), or at
+ * any opening when the bond is broken (broken != 0: no tension). The
  * normal stress at compressive strain c with dh_normal's expressions, the
  * opening strain *e, h[2] in *h2 (c when loading) and whether the bond
  * is on that branch (*elastic; else dh_normal must compute it). */
 static inline double dh_normal_first(const dh_params *q, double eps_max, double c, double h0,
-                                     double *h2, double *e, int32_t *elastic)
+                                     int32_t broken, double *h2, double *e, int32_t *elastic)
 {
 	double c_max = *h2, open = 0.0 - c;
 	int32_t loading = c > c_max;
-	double tension = q->E0 * open * dh_secant(h0, q->delta_n);
+	double tension = law_sel(broken, 0, q->E0 * open * dh_secant(h0, q->delta_n));
 	double sigma = loading ? -(q->E0 * c) : open <= 0 ? q->E0 * open : tension;
-	int32_t load_ok = !(c > eps_max), unload_ok = !(c_max > eps_max) & (open <= q->eps_t);
+	int32_t load_ok = !(c > eps_max), first = !(c_max > eps_max);
+	int32_t unload_ok = first & ((open <= q->eps_t) | broken);
 	int32_t ok = (loading & load_ok) | ((1 - loading) & unload_ok);
 	*h2 = (ok & loading) ? c : c_max;
 	*e = open;
@@ -151,7 +153,8 @@ static inline double dh_normal_first(const dh_params *q, double eps_max, double 
  * the vector loops of laws with a hardening curve: loading past the
  * largest compression so far on any part of the curve (with its plastic
  * work), unloading and reloading about the permanent indentation, tension
- * up to the limit strain. s, cp: the curve's stress and permanent strain
+ * up to the limit strain, any opening of a broken bond (broken != 0: no
+ * tension). s, cp: the curve's stress and permanent strain
  * at the compressive strain c; s0, cp0 at the largest so far, *h2. The
  * normal stress, as dh_normal gives it, with the opening strain *e, the
  * new *h2 (c when loading), the dissipated energy per unit volume *w (0
@@ -159,16 +162,16 @@ static inline double dh_normal_first(const dh_params *q, double eps_max, double 
  * the bond is on that branch (*elastic; else dh_normal must compute it).
  * The same expressions as dh_normal, chosen by law_sel. */
 static inline double dh_normal_curve(const dh_params *q, double c, double s, double cp, double s0,
-                                     double cp0, double h0, double *h2, double *e, double *w,
-                                     int32_t *elastic)
+                                     double cp0, double h0, int32_t broken, double *h2, double *e,
+                                     double *w, int32_t *elastic)
 {
 	double c_max = *h2;
 	int64_t loading = c > c_max;
 	double open = law_sel(loading, cp - c, cp0 - c);
-	double tension = q->E0 * open * dh_secant(h0, q->delta_n);
+	double tension = law_sel(broken, 0, q->E0 * open * dh_secant(h0, q->delta_n));
 	double sigma = law_sel(loading, -s, law_sel(open <= 0, q->E0 * open, tension));
 	double work = 0.5 * (s0 + s) * (c - c_max) - 0.5 * (s * s - s0 * s0) / q->E0;
-	int32_t ok = (int32_t)loading | (open <= q->eps_t);
+	int32_t ok = (int32_t)loading | (open <= q->eps_t) | broken;
 	*w = law_sel(loading & (cp > 0), 0.0 + work, 0);
 	*h2 = law_sel(ok & loading, c, c_max);
 	*e = open;

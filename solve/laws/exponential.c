@@ -177,8 +177,8 @@ static inline __attribute__((always_inline)) int exp_pairs_loop(LAW_PAIRS_PARAMS
 		double ks = kn * p->ks_over_kn;
 		double e;
 		int32_t elastic;
-		double fn = A * dh_normal_first(&p->q, p->eps_max, -(k.un * inv_d), h[0], &h[2], &e,
-		                                &elastic);
+		double fn = A * dh_normal_first(&p->q, p->eps_max, -(k.un * inv_d), h[0], 0, &h[2],
+		                                &e, &elastic);
 		/* shear: shear_mohr_coulomb within its limit */
 		double t[3] = {k.t[0] + k.dus[0], k.t[1] + k.dus[1], k.t[2] + k.dus[2]};
 		double limit = p->cohesion * A + -fn * p->tan_i,

@@ -214,12 +214,18 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void jcfpm_batch(const law_par
 }
 
 /* force_pairs: jcfpm_batch's vector loop, from the batch's lanes
- * (law_pairs_load) to the forces in one pass (kinematics.h). */
-static inline __attribute__((always_inline)) int jcfpm_pairs_loop(LAW_PAIRS_PARAMS,
-                                                                  law_fused *restrict o)
+ * (law_pairs_load) to the forces in one pass (kinematics.h). With
+ * `broken`, also the lanes of broken bonds, as jcfpm_force computes them:
+ * a pair apart or ended (no force; its reference distance or end moved,
+ * apart), one in contact sliding under Coulomb friction (shear_slip, its
+ * work in o->e_friction); without it (no broken bond in the batch) none of
+ * that is computed and the history stays as it is. */
+static inline __attribute__((always_inline)) int jcfpm_pairs_body(LAW_PAIRS_PARAMS,
+                                                                  law_fused *restrict o, int broken)
 {
 	const jcfpm_params *p = (const jcfpm_params *)lp;
-	o->history = 0;
+	o->history = broken;
+	o->friction = broken;
 	int count = 0;
 	for (int q = 0; q < n; q++) {
 		pair_motion k = law_lanes_motion(L, q, dt);
@@ -234,12 +240,47 @@ static inline __attribute__((always_inline)) int jcfpm_pairs_loop(LAW_PAIRS_PARA
 		int32_t ok =
 		    (L->state[q] == BOND_INTACT) & !(u > p->sigma_t * A / kn) & (f <= limit);
 		double fs[3] = {t[0] * ks, t[1] * ks, t[2] * ks};
-		law_fused_put(o, q, ok, &k, fn, 0, fs, dt, t, NULL, 0);
+		if (broken) {
+			int32_t gone = L->state[q] != BOND_INTACT, ended = gone & (h[1] != 0);
+			int32_t starts = ended & (k.un + L->d0[q] - (ri + rj) < 0);
+			int32_t away = gone & !ended & (u > 0), touch = gone & !ended & !(u > 0);
+			/* apart; an ended pair that overlaps starts again */
+			double from = law_min(k.un, ri + rj - L->d0[q]);
+			h[0] = law_sel(starts, k.un, law_sel(away & !p->yade, from, h[0]));
+			h[1] = law_sel(starts, 0, law_sel(away & p->yade, 1, h[1]));
+			/* in contact: shear_slip, shear_scale, limit F_nc tan(phi_c) */
+			double fc = -fn * p->tan_c;
+			int64_t slide = touch & (f > fc);
+			double sc = law_sel(fc > 0, fc / f, 0);
+			double a[3] = {k.t[0] + t[0] * sc, k.t[1] + t[1] * sc, k.t[2] + t[2] * sc};
+			double work =
+			    0.5 * ks * (1 - sc) * (a[0] * t[0] + a[1] * t[1] + a[2] * t[2]);
+			o->e_friction[q] = law_sel(slide, 0.0 + work, 0);
+			int64_t none = gone & !touch; /* no_force */
+			for (int i = 0; i < 3; i++) {
+				t[i] = law_sel(none, 0, law_sel(slide, t[i] * sc, t[i]));
+				fs[i] = law_sel(none, 0, t[i] * ks);
+			}
+			fn = law_sel(none, 0, fn);
+			ok |= gone;
+		}
+		law_fused_put(o, q, ok, &k, fn, 0, fs, dt, t, broken ? h : NULL, L->state[q]);
 		count += ok;
 	}
 	return count;
 }
-LAW_PAIRS_VERSIONS(jcfpm_pairs, jcfpm_pairs_loop)
+
+LAW_PAIRS_VARIANT(jcfpm_pairs_intact, jcfpm_pairs_body, 0)
+LAW_PAIRS_VARIANT(jcfpm_pairs_broken, jcfpm_pairs_body, 1)
+
+/* The broken bonds' branch where the batch has one. */
+static int jcfpm_pairs(LAW_PAIRS_PARAMS, law_fused *restrict o)
+{
+	int broken = 0;
+	for (int q = 0; q < n; q++)
+		broken |= L->state[q] != BOND_INTACT;
+	return broken ? jcfpm_pairs_broken(lp, L, n, dt, o) : jcfpm_pairs_intact(lp, L, n, dt, o);
+}
 
 static double jcfpm_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)
 {

@@ -248,7 +248,7 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void onate_batch(const law_par
 		double A = area_of_radii(p->area.alpha, B->ri[q], B->rj[q]), inv_d = 1 / B->d0[q];
 		double c = -(B->un[q] * inv_d), h2 = B->h[2][q];
 		double sigma =
-		    dh_normal_first(&p->q, p->eps[0], c, B->h[0][q], &h2, &open[q], &elastic[q]);
+		    dh_normal_first(&p->q, p->eps[0], c, B->h[0][q], 0, &h2, &open[q], &elastic[q]);
 		fnq[q] = A * sigma;
 		area[q] = A;
 		B->h[2][q] = h2;
@@ -286,19 +286,25 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void onate_batch(const law_par
 /* force_pairs: onate_batch's vector loops as one, from the batch's lanes
  * (law_pairs_load) to the forces in one pass (kinematics.h). With `curve`,
  * the normal force on every part of the loading curve (dh_normal_curve):
- * loading past the largest compression with its plastic work
+ * loading past the largest compression so far with its plastic work
  * (o->e_damage), unloading and reloading about the permanent indentation;
- * else on its first part only (dh_normal_first), which costs less. */
-static inline __attribute__((always_inline)) int onate_pairs_body(LAW_PAIRS_PARAMS,
-                                                                  law_fused *restrict o, int curve)
+ * else on its first part only (dh_normal_first), which costs less. With
+ * `broken`, also the lanes of broken bonds, as onate_force computes them:
+ * the normal force without tension, Coulomb friction (shear_slip) with its
+ * work (o->e_friction), the viscous force only in compression; without it
+ * (no broken bond in the batch) none of that is computed. */
+static inline __attribute__((always_inline)) int
+onate_pairs_body(LAW_PAIRS_PARAMS, law_fused *restrict o, int curve, int broken)
 {
 	const onate_params *p = (const onate_params *)lp;
 	o->history = 1;
 	o->damage = curve;
+	o->friction = broken;
 	int count = 0;
 	for (int q = 0; q < n; q++) {
 		pair_motion k = law_lanes_motion(L, q, dt);
 		double h[LAW_NHIST] = {L->h[0][q], L->h[1][q], L->h[2][q]}, d0 = L->d0[q];
+		int32_t gone = broken & (L->state[q] >= BOND_BROKEN_TENSION);
 		/* normal: dh_normal */
 		double A = area_of_radii(p->area.alpha, L->ri[q], L->rj[q]), inv_d = 1 / d0;
 		double c = -(k.un * inv_d), e, fn;
@@ -306,11 +312,12 @@ static inline __attribute__((always_inline)) int onate_pairs_body(LAW_PAIRS_PARA
 		if (curve) {
 			double cp, cp0, w;
 			double s = onate_curve_sel(p, c, &cp), s0 = onate_curve_sel(p, h[2], &cp0);
-			fn = A * dh_normal_curve(&p->q, c, s, cp, s0, cp0, h[0], &h[2], &e, &w,
-			                         &elastic);
+			fn = A * dh_normal_curve(&p->q, c, s, cp, s0, cp0, h[0], gone, &h[2], &e,
+			                         &w, &elastic);
 			o->e_damage[q] = 0.0 + A * d0 * w;
 		} else {
-			fn = A * dh_normal_first(&p->q, p->eps[0], c, h[0], &h[2], &e, &elastic);
+			fn = A *
+			     dh_normal_first(&p->q, p->eps[0], c, h[0], gone, &h[2], &e, &elastic);
 		}
 		/* shear, viscous force */
 		double kn = A * p->q.E0 * (1 / d0), ks = kn * p->ks_over_kn;
@@ -321,40 +328,52 @@ static inline __attribute__((always_inline)) int onate_pairs_body(LAW_PAIRS_PARA
 		strength = ((p->coupled != 0) & (e > 0)) ? coupled : strength;
 		double us = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
 		double h1 = h[1];
-		int32_t ok = elastic & (L->state[q] < BOND_BROKEN_TENSION) & !(ks * us > strength);
+		int32_t ok = elastic &
+		             (gone | ((L->state[q] < BOND_BROKEN_TENSION) & !(ks * us > strength)));
 		double ss = ks * dh_secant(h1, p->delta_s);
-		double fs[3] = {t[0] * ss, t[1] * ss, t[2] * ss};
 		double fv = L->k[q] * k.vn;
 		int32_t st = (h[0] > 0) | (h[1] > 0) ? BOND_DAMAGED : BOND_INTACT;
+		if (broken) { /* shear_slip, shear_scale; onate_force's ss = 1 */
+			double limit = p->mu2 * fnc, f = ks * us;
+			int64_t slide = gone & (f > limit);
+			double sc = law_sel(limit > 0, limit / f, 0);
+			double a[3] = {k.t[0] + t[0] * sc, k.t[1] + t[1] * sc, k.t[2] + t[2] * sc};
+			double work =
+			    0.5 * ks * (1 - sc) * (a[0] * t[0] + a[1] * t[1] + a[2] * t[2]);
+			o->e_friction[q] = law_sel(slide, 0.0 + work, 0);
+			for (int i = 0; i < 3; i++)
+				t[i] = law_sel(slide, t[i] * sc, t[i]);
+			ss = law_sel(gone, ks, ss);
+			fv = law_sel(gone & !(fnc > 0), 0, fv);
+			st = gone ? L->state[q] : st;
+		}
+		double fs[3] = {t[0] * ss, t[1] * ss, t[2] * ss};
 		law_fused_put(o, q, ok, &k, fn + fv, fv, fs, dt, t, h, st);
 		count += ok;
 	}
 	return count;
 }
 
-static inline __attribute__((always_inline)) int onate_first_body(LAW_PAIRS_PARAMS,
-                                                                  law_fused *restrict o)
-{
-	return onate_pairs_body(lp, L, n, dt, o, 0);
-}
-LAW_PAIRS_VERSIONS(onate_pairs_first, onate_first_body)
-
-static inline __attribute__((always_inline)) int onate_curve_body(LAW_PAIRS_PARAMS,
-                                                                  law_fused *restrict o)
-{
-	return onate_pairs_body(lp, L, n, dt, o, 1);
-}
-LAW_PAIRS_VERSIONS(onate_pairs_curve, onate_curve_body)
+LAW_PAIRS_VARIANT(onate_pairs_first, onate_pairs_body, 0, 0)
+LAW_PAIRS_VARIANT(onate_pairs_curve, onate_pairs_body, 1, 0)
+LAW_PAIRS_VARIANT(onate_pairs_first_broken, onate_pairs_body, 0, 1)
+LAW_PAIRS_VARIANT(onate_pairs_curve_broken, onate_pairs_body, 1, 1)
 
 /* The whole curve where a bond of the batch has been compressed past its
  * first part (LCS1); else the first part, whose lanes that now load past
- * it go the staged way, this once. */
-static int onate_pairs(LAW_PAIRS_PARAMS, law_fused *restrict o)
+ * it go the staged way, this once. The broken bonds' branch where the
+ * batch has one. */
+DEM_VECTOR_CLONES static int onate_pairs(LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
 	const onate_params *p = (const onate_params *)lp;
-	int hardened = 0;
-	for (int q = 0; q < n; q++)
+	int hardened = 0, broken = 0;
+	for (int q = 0; q < n; q++) /* apart, so that each is vectorised */
 		hardened |= L->h[2][q] > p->eps[0];
+	for (int q = 0; q < n; q++)
+		broken |= L->state[q] >= BOND_BROKEN_TENSION;
+	if (broken)
+		return hardened ? onate_pairs_curve_broken(lp, L, n, dt, o)
+		                : onate_pairs_first_broken(lp, L, n, dt, o);
 	return hardened ? onate_pairs_curve(lp, L, n, dt, o) : onate_pairs_first(lp, L, n, dt, o);
 }
 
