@@ -161,38 +161,68 @@ LAW_BATCH(exp, exp_force)
  * tension below the limit strain, a shear force within the Mohr-Coulomb
  * limit) from the batch's lanes (law_pairs_load) to the forces in one
  * vectorised pass (kinematics.h), with exp_force's expressions, so the
- * same to the bit; every other lane goes through exp_force. */
-static inline __attribute__((always_inline)) int exp_pairs_loop(LAW_PAIRS_PARAMS,
-                                                                law_fused *restrict o)
+ * same to the bit; every other lane goes through exp_force. With `broken`,
+ * also the lanes of broken bonds on that part of the curve: no tension,
+ * Coulomb friction with the contact angle (shear_slip, its work in
+ * o->e_friction), the viscous force only in compression; without it (no
+ * broken bond in the batch) none of that is computed. */
+static inline __attribute__((always_inline)) int exp_pairs_body(LAW_PAIRS_PARAMS,
+                                                                law_fused *restrict o, int broken)
 {
 	const exp_params *p = (const exp_params *)lp;
 	o->history = 1;
+	o->friction = broken;
 	int count = 0;
 	for (int q = 0; q < n; q++) {
 		pair_motion k = law_lanes_motion(L, q, dt);
 		double h[LAW_NHIST] = {L->h[0][q], L->h[1][q], L->h[2][q]};
+		int32_t gone = broken & (L->state[q] >= BOND_BROKEN_TENSION);
 		/* normal: dh_normal on the curve's first part */
 		double inv_d = 1 / L->d0[q], A = area_of_radii(1, L->ri[q], L->rj[q]),
 		       kn = A * p->q.E0 * inv_d;
 		double ks = kn * p->ks_over_kn;
 		double e;
 		int32_t elastic;
-		double fn = A * dh_normal_first(&p->q, p->eps_max, -(k.un * inv_d), h[0], 0, &h[2],
-		                                &e, &elastic);
+		double fn = A * dh_normal_first(&p->q, p->eps_max, -(k.un * inv_d), h[0], gone,
+		                                &h[2], &e, &elastic);
 		/* shear: shear_mohr_coulomb within its limit */
 		double t[3] = {k.t[0] + k.dus[0], k.t[1] + k.dus[1], k.t[2] + k.dus[2]};
 		double limit = p->cohesion * A + -fn * p->tan_i,
 		       f = ks * sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-		int32_t ok = elastic & (L->state[q] < BOND_BROKEN_TENSION) & (f <= limit);
-		double fs[3] = {t[0] * ks, t[1] * ks, t[2] * ks};
+		int32_t ok =
+		    elastic & (gone | ((L->state[q] < BOND_BROKEN_TENSION) & (f <= limit)));
 		double fv = h[1] * k.vn;
 		int32_t st = h[0] > 0 ? BOND_DAMAGED : BOND_INTACT;
+		if (broken) { /* shear_slip, shear_scale with F_nc tan(phi_c) */
+			double fc = -fn * p->tan_c;
+			int64_t slide = gone & (f > fc);
+			double sc = law_sel(fc > 0, fc / f, 0);
+			double a[3] = {k.t[0] + t[0] * sc, k.t[1] + t[1] * sc, k.t[2] + t[2] * sc};
+			double work =
+			    0.5 * ks * (1 - sc) * (a[0] * t[0] + a[1] * t[1] + a[2] * t[2]);
+			o->e_friction[q] = law_sel(slide, 0.0 + work, 0);
+			for (int c = 0; c < 3; c++)
+				t[c] = law_sel(slide, t[c] * sc, t[c]);
+			fv = law_sel(gone & !(fn < 0), 0, fv);
+			st = gone ? L->state[q] : st;
+		}
+		double fs[3] = {t[0] * ks, t[1] * ks, t[2] * ks};
 		law_fused_put(o, q, ok, &k, fn + fv, fv, fs, dt, t, h, st);
 		count += ok;
 	}
 	return count;
 }
-LAW_PAIRS_VERSIONS(exp_pairs, exp_pairs_loop)
+LAW_PAIRS_VARIANT(exp_pairs_intact, exp_pairs_body, 0)
+LAW_PAIRS_VARIANT(exp_pairs_broken, exp_pairs_body, 1)
+
+/* The broken bonds' branch where the batch has one. */
+static int exp_pairs(LAW_PAIRS_PARAMS, law_fused *restrict o)
+{
+	int broken = 0;
+	for (int q = 0; q < n; q++)
+		broken |= L->state[q] >= BOND_BROKEN_TENSION;
+	return broken ? exp_pairs_broken(lp, L, n, dt, o) : exp_pairs_intact(lp, L, n, dt, o);
+}
 
 static double exp_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)
 {

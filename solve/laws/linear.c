@@ -193,13 +193,18 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void linear_batch(const law_pa
 }
 
 /* force_pairs: linear_batch's vector loop, from the batch's lanes
- * (law_pairs_load) to the forces in one pass (kinematics.h). */
-static inline __attribute__((always_inline)) int linear_pairs_loop(LAW_PAIRS_PARAMS,
-                                                                   law_fused *restrict o)
+ * (law_pairs_load) to the forces in one pass (kinematics.h). With
+ * `broken`, also the lanes of broken bonds, as cundall_force computes
+ * them (a contact in compression, Coulomb friction with its work in
+ * o->e_friction); without it (no broken bond in the batch) none of that
+ * is computed. */
+static inline __attribute__((always_inline)) int
+linear_pairs_body(LAW_PAIRS_PARAMS, law_fused *restrict o, int broken)
 {
 	const law_params *p = lp;
 	double alpha = p->area.alpha, tau = p->tau, mu1 = p->mu1, sigma_t = p->sigma_t;
 	o->history = 0;
+	o->friction = broken;
 	int count = 0;
 	for (int q = 0; q < n; q++) {
 		pair_motion k = law_lanes_motion(L, q, dt);
@@ -213,13 +218,44 @@ static inline __attribute__((always_inline)) int linear_pairs_loop(LAW_PAIRS_PAR
 		double shear_limit = tau * area + mu1 * (fe < 0 ? -fe : 0);
 		int32_t ok = (L->state[q] < BOND_BROKEN_TENSION) & !(fe > sigma_t * area) &
 		             !(ff > shear_limit * shear_limit);
-		double fv = cn * k.vn;
-		law_fused_put(o, q, ok, &k, fe + fv, fv, fs, dt, t, NULL, 0);
+		double fv = cn * k.vn, fn = fe + fv;
+		if (broken) { /* cundall_force; t is the shear force */
+			int32_t gone = L->state[q] >= BOND_BROKEN_TENSION;
+			double touch = un < 0 ? 1.0 : 0.0;
+			double fc = fe + cn * k.vn;
+			fc = (fc < 0 ? fc : 0) * touch;
+			double lim = -p->mu * fc, tr[3];
+			for (int c = 0; c < 3; c++)
+				tr[c] = (k.t[c] + ks * k.dus[c]) * touch;
+			double tt = sqrt(tr[0] * tr[0] + tr[1] * tr[1] + tr[2] * tr[2]);
+			double slide = law_sel(tt > lim, 1.0, 0.0);
+			double scale = law_sel(tt > lim, lim / tt, 1.0);
+			o->e_friction[q] = law_sel(gone, 0.0 + slide * (tt - lim) * lim / ks, 0);
+			for (int c = 0; c < 3; c++) {
+				double tc = tr[c] * scale;
+				t[c] = law_sel(gone, tc, t[c]);
+				fs[c] = law_sel(gone, tc, fs[c]);
+			}
+			fn = law_sel(gone, fc, fn);
+			fv = law_sel(gone, (fc - fe) * touch, fv);
+			ok |= gone;
+		}
+		law_fused_put(o, q, ok, &k, fn, fv, fs, dt, t, NULL, 0);
 		count += ok;
 	}
 	return count;
 }
-LAW_PAIRS_VERSIONS(linear_pairs, linear_pairs_loop)
+LAW_PAIRS_VARIANT(linear_pairs_intact, linear_pairs_body, 0)
+LAW_PAIRS_VARIANT(linear_pairs_broken, linear_pairs_body, 1)
+
+/* The broken bonds' branch where the batch has one. */
+static int linear_pairs(LAW_PAIRS_PARAMS, law_fused *restrict o)
+{
+	int broken = 0;
+	for (int q = 0; q < n; q++)
+		broken |= L->state[q] >= BOND_BROKEN_TENSION;
+	return broken ? linear_pairs_broken(lp, L, n, dt, o) : linear_pairs_intact(lp, L, n, dt, o);
+}
 
 static double linear_energy(const law_params *p, const law_pair *q, const bond *b, double un)
 {
