@@ -23,6 +23,7 @@
 #include <math.h>
 #include <stdint.h>
 
+#include "lib/states.h"
 #include "solve/blocks.h"
 #include "solve/law.h"
 
@@ -119,6 +120,17 @@ void law_pairs_load(const law_pairs *restrict in, law_lanes *restrict L);
 /* Its lanes q0 <= q < in->n one value at a time: law_pairs_load without
  * AVX2, and for the lanes after the last group of four. */
 void law_pairs_load_lanes(const law_pairs *restrict in, law_lanes *restrict L, int q0);
+
+/* Whether any of the n lanes of L is a broken bond (a loop the compiler
+ * vectorises, for the laws to choose the version of their force_pairs
+ * loop). */
+static inline int law_lanes_broken(const law_lanes *restrict L, int n)
+{
+	int broken = 0;
+	for (int q = 0; q < n; q++)
+		broken |= L->state[q] >= BOND_BROKEN_TENSION;
+	return broken;
+}
 
 /* The motion of the pair of lane q (pair_motion_of). */
 static inline pair_motion law_lanes_motion(const law_lanes *restrict L, int q, double dt)

@@ -193,16 +193,8 @@ static inline __attribute__((always_inline)) int exp_pairs_body(LAW_PAIRS_PARAMS
 		    elastic & (gone | ((L->state[q] < BOND_BROKEN_TENSION) & (f <= limit)));
 		double fv = h[1] * k.vn;
 		int32_t st = h[0] > 0 ? BOND_DAMAGED : BOND_INTACT;
-		if (broken) { /* shear_slip, shear_scale with F_nc tan(phi_c) */
-			double fc = -fn * p->tan_c;
-			int64_t slide = gone & (f > fc);
-			double sc = law_sel(fc > 0, fc / f, 0);
-			double a[3] = {k.t[0] + t[0] * sc, k.t[1] + t[1] * sc, k.t[2] + t[2] * sc};
-			double work =
-			    0.5 * ks * (1 - sc) * (a[0] * t[0] + a[1] * t[1] + a[2] * t[2]);
-			o->e_friction[q] = law_sel(slide, 0.0 + work, 0);
-			for (int c = 0; c < 3; c++)
-				t[c] = law_sel(slide, t[c] * sc, t[c]);
+		if (broken) { /* shear_slip with the limit F_nc tan(phi_c) */
+			o->e_friction[q] = shear_slip_lane(t, k.t, ks, f, -fn * p->tan_c, gone);
 			fv = law_sel(gone & !(fn < 0), 0, fv);
 			st = gone ? L->state[q] : st;
 		}
@@ -218,10 +210,8 @@ LAW_PAIRS_VARIANT(exp_pairs_broken, exp_pairs_body, 1)
 /* The broken bonds' branch where the batch has one. */
 static int exp_pairs(LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
-	int broken = 0;
-	for (int q = 0; q < n; q++)
-		broken |= L->state[q] >= BOND_BROKEN_TENSION;
-	return broken ? exp_pairs_broken(lp, L, n, dt, o) : exp_pairs_intact(lp, L, n, dt, o);
+	return law_lanes_broken(L, n) ? exp_pairs_broken(lp, L, n, dt, o)
+	                              : exp_pairs_intact(lp, L, n, dt, o);
 }
 
 static double exp_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)

@@ -248,17 +248,11 @@ static inline __attribute__((always_inline)) int jcfpm_pairs_body(LAW_PAIRS_PARA
 			double from = law_min(k.un, ri + rj - L->d0[q]);
 			h[0] = law_sel(starts, k.un, law_sel(away & !p->yade, from, h[0]));
 			h[1] = law_sel(starts, 0, law_sel(away & p->yade, 1, h[1]));
-			/* in contact: shear_slip, shear_scale, limit F_nc tan(phi_c) */
-			double fc = -fn * p->tan_c;
-			int64_t slide = touch & (f > fc);
-			double sc = law_sel(fc > 0, fc / f, 0);
-			double a[3] = {k.t[0] + t[0] * sc, k.t[1] + t[1] * sc, k.t[2] + t[2] * sc};
-			double work =
-			    0.5 * ks * (1 - sc) * (a[0] * t[0] + a[1] * t[1] + a[2] * t[2]);
-			o->e_friction[q] = law_sel(slide, 0.0 + work, 0);
+			/* in contact: shear_slip with the limit F_nc tan(phi_c) */
+			o->e_friction[q] = shear_slip_lane(t, k.t, ks, f, -fn * p->tan_c, touch);
 			int64_t none = gone & !touch; /* no_force */
 			for (int i = 0; i < 3; i++) {
-				t[i] = law_sel(none, 0, law_sel(slide, t[i] * sc, t[i]));
+				t[i] = law_sel(none, 0, t[i]);
 				fs[i] = law_sel(none, 0, t[i] * ks);
 			}
 			fn = law_sel(none, 0, fn);
@@ -273,13 +267,12 @@ static inline __attribute__((always_inline)) int jcfpm_pairs_body(LAW_PAIRS_PARA
 LAW_PAIRS_VARIANT(jcfpm_pairs_intact, jcfpm_pairs_body, 0)
 LAW_PAIRS_VARIANT(jcfpm_pairs_broken, jcfpm_pairs_body, 1)
 
-/* The broken bonds' branch where the batch has one. */
+/* The broken bonds' branch where the batch has one (a JCFPM bond is
+ * never BOND_DAMAGED). */
 static int jcfpm_pairs(LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
-	int broken = 0;
-	for (int q = 0; q < n; q++)
-		broken |= L->state[q] != BOND_INTACT;
-	return broken ? jcfpm_pairs_broken(lp, L, n, dt, o) : jcfpm_pairs_intact(lp, L, n, dt, o);
+	return law_lanes_broken(L, n) ? jcfpm_pairs_broken(lp, L, n, dt, o)
+	                              : jcfpm_pairs_intact(lp, L, n, dt, o);
 }
 
 static double jcfpm_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)

@@ -251,10 +251,8 @@ LAW_PAIRS_VARIANT(linear_pairs_broken, linear_pairs_body, 1)
 /* The broken bonds' branch where the batch has one. */
 static int linear_pairs(LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
-	int broken = 0;
-	for (int q = 0; q < n; q++)
-		broken |= L->state[q] >= BOND_BROKEN_TENSION;
-	return broken ? linear_pairs_broken(lp, L, n, dt, o) : linear_pairs_intact(lp, L, n, dt, o);
+	return law_lanes_broken(L, n) ? linear_pairs_broken(lp, L, n, dt, o)
+	                              : linear_pairs_intact(lp, L, n, dt, o);
 }
 
 static double linear_energy(const law_params *p, const law_pair *q, const bond *b, double un)

@@ -333,16 +333,8 @@ onate_pairs_body(LAW_PAIRS_PARAMS, law_fused *restrict o, int curve, int broken)
 		double ss = ks * dh_secant(h1, p->delta_s);
 		double fv = L->k[q] * k.vn;
 		int32_t st = (h[0] > 0) | (h[1] > 0) ? BOND_DAMAGED : BOND_INTACT;
-		if (broken) { /* shear_slip, shear_scale; onate_force's ss = 1 */
-			double limit = p->mu2 * fnc, f = ks * us;
-			int64_t slide = gone & (f > limit);
-			double sc = law_sel(limit > 0, limit / f, 0);
-			double a[3] = {k.t[0] + t[0] * sc, k.t[1] + t[1] * sc, k.t[2] + t[2] * sc};
-			double work =
-			    0.5 * ks * (1 - sc) * (a[0] * t[0] + a[1] * t[1] + a[2] * t[2]);
-			o->e_friction[q] = law_sel(slide, 0.0 + work, 0);
-			for (int i = 0; i < 3; i++)
-				t[i] = law_sel(slide, t[i] * sc, t[i]);
+		if (broken) { /* shear_slip; onate_force's ss = 1 */
+			o->e_friction[q] = shear_slip_lane(t, k.t, ks, ks * us, p->mu2 * fnc, gone);
 			ss = law_sel(gone, ks, ss);
 			fv = law_sel(gone & !(fnc > 0), 0, fv);
 			st = gone ? L->state[q] : st;
@@ -366,12 +358,10 @@ LAW_PAIRS_VARIANT(onate_pairs_curve_broken, onate_pairs_body, 1, 1)
 DEM_VECTOR_CLONES static int onate_pairs(LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
 	const onate_params *p = (const onate_params *)lp;
-	int hardened = 0, broken = 0;
-	for (int q = 0; q < n; q++) /* apart, so that each is vectorised */
-		hardened |= L->h[2][q] > p->eps[0];
+	int hardened = 0;
 	for (int q = 0; q < n; q++)
-		broken |= L->state[q] >= BOND_BROKEN_TENSION;
-	if (broken)
+		hardened |= L->h[2][q] > p->eps[0];
+	if (law_lanes_broken(L, n))
 		return hardened ? onate_pairs_curve_broken(lp, L, n, dt, o)
 		                : onate_pairs_first_broken(lp, L, n, dt, o);
 	return hardened ? onate_pairs_curve(lp, L, n, dt, o) : onate_pairs_first(lp, L, n, dt, o);

@@ -72,6 +72,24 @@ static inline void shear_slip(double t[3], const double dus[3], double ks, doubl
 		out->e_friction += shear_scale(t, old, ks, limit > 0 ? limit / f : 0);
 }
 
+/* shear_slip without branches, for the laws' vector loops (force_pairs)
+ * that compute friction contacts (broken bonds) among other lanes: t the
+ * trial displacement (the rotated history old plus the increment), f =
+ * k_s |t|. Where lane is set and f exceeds the limit, t is scaled back as
+ * shear_slip does and the work shear_scale books is returned; else t is
+ * left and 0 returned. The same expressions, chosen by law_sel. */
+static inline double shear_slip_lane(double t[3], const double old[3], double ks, double f,
+                                     double limit, int64_t lane)
+{
+	int64_t slide = lane & (f > limit);
+	double s = law_sel(limit > 0, limit / f, 0);
+	double a[3] = {old[0] + t[0] * s, old[1] + t[1] * s, old[2] + t[2] * s};
+	double work = 0.5 * ks * (1 - s) * (a[0] * t[0] + a[1] * t[1] + a[2] * t[2]);
+	for (int c = 0; c < 3; c++)
+		t[c] = law_sel(slide, t[c] * s, t[c]);
+	return law_sel(slide, 0.0 + work, 0);
+}
+
 /* Adds dus to t and applies the Mohr-Coulomb limits above; fnc is the
  * compressive normal force (negative in tension), cA the cohesive strength
  * c A. Returns 1 when an intact bond ruptures in this call, booking what the
