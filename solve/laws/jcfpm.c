@@ -216,10 +216,11 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void jcfpm_batch(const law_par
 /* force_pairs: jcfpm_batch's vector loop, from the batch's lanes
  * (law_pairs_load) to the forces in one pass (kinematics.h). With
  * `broken`, also the lanes of broken bonds, as jcfpm_force computes them:
- * a pair apart or ended (no force; its reference distance or end moved,
- * apart), one in contact sliding under Coulomb friction (shear_slip, its
- * work in o->e_friction); without it (no broken bond in the batch) none of
- * that is computed and the history stays as it is. */
+ * a pair apart (no force; its reference distance moved, or its end
+ * marked), ended (no force; started again where it overlaps), or in
+ * contact under Coulomb friction (shear_slip, its work in
+ * o->e_friction); without it (no broken bond in the batch) none of that is
+ * computed and the history stays as it is. */
 static inline __attribute__((always_inline)) int jcfpm_pairs_body(LAW_PAIRS_PARAMS,
                                                                   law_fused *restrict o, int broken)
 {
