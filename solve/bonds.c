@@ -469,8 +469,36 @@ static inline void bond_add_fused(engine *e, size_t b, const law_fused *o, int q
 	bond_add_lane(e, b, o, q);
 }
 
+/* Eight states as int32, read at any 4-byte boundary, and as bytes. */
+typedef int32_t state_v8 __attribute__((vector_size(32), aligned(4)));
+typedef uint8_t state_b8 __attribute__((vector_size(8), aligned(1)));
+
+/* The states s[0..n) as bytes into to[0..n), eight at a time where they
+ * can be: a byte store may alias anything, so the compiler keeps a loop
+ * of them scalar, reading each state again after each store. */
+static inline void states_store(uint8_t *to, const int32_t *s, int n)
+{
+	int q = 0;
+	for (; q + 8 <= n; q += 8)
+		*(state_b8 *)(to + q) =
+		    __builtin_convertvector(*(const state_v8 *)(s + q), state_b8);
+	for (; q < n; q++)
+		to[q] = (uint8_t)s[q];
+}
+
 /* Four floats, written at any 4-byte boundary. */
 typedef float fb_v4 __attribute__((vector_size(16), aligned(4)));
+
+/* The lanes of u and w paired: out[l] = (u[l], w[l]). */
+static inline void vec4_pairs(vec4 u, vec4 w, acc_v2 out[4])
+{
+	vec4 t0 = __builtin_shufflevector(u, w, 0, 4, 2, 6),
+	     t1 = __builtin_shufflevector(u, w, 1, 5, 3, 7);
+	out[0] = __builtin_shufflevector(t0, t0, 0, 1);
+	out[1] = __builtin_shufflevector(t1, t1, 0, 1);
+	out[2] = __builtin_shufflevector(t0, t0, 2, 3);
+	out[3] = __builtin_shufflevector(t1, t1, 2, 3);
+}
 
 /* The sums a particle gets from lanes q..q+3 of o, r the radii of that end
  * of each lane and sign -1 for the ends j: head[l] the force and the first
@@ -482,13 +510,25 @@ static inline void lanes_sums(const law_fused *o, int q, const double *r, double
 	vec4 col[4] = {sign * *(const vec4 *)(o->f[0] + q), sign * *(const vec4 *)(o->f[1] + q),
 	               sign * *(const vec4 *)(o->f[2] + q), rv * *(const vec4 *)(o->f[3] + q)};
 	vec4_transpose(col, head);
-	vec4 u = rv * *(const vec4 *)(o->f[4] + q), w = rv * *(const vec4 *)(o->f[5] + q);
-	vec4 t0 = __builtin_shufflevector(u, w, 0, 4, 2, 6),
-	     t1 = __builtin_shufflevector(u, w, 1, 5, 3, 7);
-	tail[0] = __builtin_shufflevector(t0, t0, 0, 1);
-	tail[1] = __builtin_shufflevector(t1, t1, 0, 1);
-	tail[2] = __builtin_shufflevector(t0, t0, 2, 3);
-	tail[3] = __builtin_shufflevector(t1, t1, 2, 3);
+	vec4_pairs(rv * *(const vec4 *)(o->f[4] + q), rv * *(const vec4 *)(o->f[5] + q), tail);
+}
+
+/* The new histories of lanes q..q+3 of o into the records r[0..4), as
+ * fused_history stores them when history is set: t and h are six doubles
+ * in a row in a record (pairs.c), so t and h[0] of each lane are
+ * transposed into one row, h[1] and h[2] into a pair. */
+static inline void records_store(pair_rec *r, const law_fused *o, int q)
+{
+	vec4 col[4] = {*(const vec4 *)(o->t[0] + q), *(const vec4 *)(o->t[1] + q),
+	               *(const vec4 *)(o->t[2] + q), *(const vec4 *)(o->h[0] + q)},
+	     row[4];
+	acc_v2 tail[4];
+	vec4_transpose(col, row);
+	vec4_pairs(*(const vec4 *)(o->h[1] + q), *(const vec4 *)(o->h[2] + q), tail);
+	for (int l = 0; l < 4; l++) {
+		*(vec4 *)r[l].t = row[l];
+		*(acc_v2 *)(r[l].h + 1) = tail[l];
+	}
 }
 
 /* head and tail added to the sums a of a particle. */
@@ -502,10 +542,11 @@ static inline void acc_add_rows(double *a, vec4 head, acc_v2 tail)
  * law's elastic branch: each record updated and each bond added.
  * full: whether o's history, plastic work and work of sliding may be set
  * (else only t and the viscous energy are); a constant in each inlined
- * copy, so that the loop tests none. Four lanes at a time, their forces and torques
- * (times the radii of L) are transposed into one row per lane and end
- * instead of being read value by value: the same values added in the same
- * order as bond_add_fused adds them. */
+ * copy, so that the loop tests none. Four lanes at a time, their forces
+ * and torques (times the radii of L) are transposed into one row per lane
+ * and end instead of being read value by value: the same values added in
+ * the same order as bond_add_fused adds them; and their histories into
+ * the records (records_store). */
 static inline __attribute__((always_inline)) void bonds_add_elastic(engine *e, size_t b0,
                                                                     const law_lanes *L,
                                                                     const law_fused *o, int nq,
@@ -513,18 +554,21 @@ static inline __attribute__((always_inline)) void bonds_add_elastic(engine *e, s
 {
 	pairlist *B = &e->pairs.bonds;
 	int history = full && o->history;
-	for (int q = 0; q < nq; q++) {
+	int q = 0;
+	for (; history && q + 4 <= nq; q += 4)
+		records_store(&B->rec[b0 + (size_t)q], o, q);
+	for (; q < nq; q++)
 		fused_history(&B->rec[b0 + (size_t)q], o, q, history);
+	for (q = 0; q < nq; q++) {
 		if (full && o->damage)
 			s->e_damage += o->e_damage[q];
 		if (full && o->friction)
 			s->e_friction += o->e_friction[q];
 		s->e_viscous += o->e_viscous[q];
 	}
-	for (int q = 0; history && q < nq; q++)
-		B->state[b0 + (size_t)q] = (uint8_t)o->state[q];
-	int q = 0;
-	for (; q + 4 <= nq; q += 4) {
+	if (history)
+		states_store(B->state + b0, o->state, nq);
+	for (q = 0; q + 4 <= nq; q += 4) {
 		vec4 hi[4], hj[4];
 		acc_v2 ti[4], tj[4];
 		lanes_sums(o, q, L->ri, 1, hi, ti);
