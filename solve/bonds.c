@@ -603,12 +603,30 @@ DEM_VECTOR_CLONES void bonds_cross(engine *e, int k, int measure)
 
 /* Ahead of the batch at bond b0: the records of the batch PREFETCH_RECORDS
  * batches on into the cache (their first read otherwise waits for memory,
- * a tenth of a step). Only the speed depends on it. The lines of a whole
- * batch, a record each (pairlist_records), unrolled: past the last record
- * they fetch what follows, and prefetching never faults. */
-enum { PREFETCH_RECORDS = 4, PREFETCH_LINES = BATCH * sizeof(pair_rec) / 64 };
+ * a tenth of a step), and the positions, velocities and spins of the
+ * particles j of the batch PREFETCH_PARTICLES batches on, whose records
+ * came in two batches ago (the particles i follow the bond order, which
+ * the CPU's own prefetcher sees; those j are scattered). Only the speed
+ * depends on it. The lines of a whole batch, a record each
+ * (pairlist_records), unrolled: past the last record they fetch what
+ * follows, and prefetching never faults. */
+enum {
+	PREFETCH_RECORDS = 4,
+	PREFETCH_PARTICLES = 2,
+	PREFETCH_LINES = BATCH * sizeof(pair_rec) / 64
+};
 static inline void bonds_prefetch(const engine *e, size_t b0)
 {
+	size_t r1 = b0 + PREFETCH_PARTICLES * BATCH;
+	if (r1 + BATCH <= e->pairs.bonds.n) {
+		const pair_rec *rec = e->pairs.bonds.rec + r1;
+		for (int l = 0; l < BATCH; l++) {
+			size_t j = 3 * (size_t)rec[l].j;
+			__builtin_prefetch(e->p.x + j);
+			__builtin_prefetch(e->p.v + j);
+			__builtin_prefetch(e->p.w + j);
+		}
+	}
 	size_t r0 = b0 + PREFETCH_RECORDS * BATCH;
 	if (r0 >= e->pairs.bonds.n)
 		return;
