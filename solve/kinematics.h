@@ -239,9 +239,9 @@ static inline void batch_force(const law_batch *B, const batch_geom *g, int q, d
 }
 
 /* What law.force_pairs gives for each lane q that stays on the law's
- * elastic branch, or that its loop also computes (the broken bonds of
- * onate and jcfpm), elastic[q] != 0; nothing for the others: the force on i
- * and the torque per unit radius (pair_force), the viscous energy
+ * elastic branch, or that its loop also computes (broken bonds),
+ * elastic[q] != 0; nothing for the others: the force on i and the torque
+ * per unit radius (pair_force), the viscous energy
  * u̇_n f_viscous Δt, and the bond's new history. A law whose lanes may also
  * flow plastically there (no damage, no failure) sets damage, which the
  * caller sets to 0 first, and gives their plastic work in e_damage; one
