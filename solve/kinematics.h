@@ -283,6 +283,19 @@ struct law_fused {
 	}                                                                                   \
 	LAW_PAIRS_VERSIONS(NAME, NAME##_body)
 
+/* A force_pairs NAME from BODY, whose last parameter `broken` says whether
+ * its loop also computes the lanes of broken bonds: its variants without
+ * them (NAME_intact) and with them (NAME_broken), and NAME, which runs the
+ * second where the batch has a broken bond (law_lanes_broken). */
+#define LAW_PAIRS_BROKEN(NAME, BODY)                                            \
+	LAW_PAIRS_VARIANT(NAME##_intact, BODY, 0)                               \
+	LAW_PAIRS_VARIANT(NAME##_broken, BODY, 1)                               \
+	static int NAME(LAW_PAIRS_PARAMS, law_fused *restrict o)                \
+	{                                                                       \
+		return law_lanes_broken(L, n) ? NAME##_broken(lp, L, n, dt, o)  \
+		                              : NAME##_intact(lp, L, n, dt, o); \
+	}
+
 /* Lane q of a law_fused from the law's forces fn (its viscous part fv) and
  * fs on the pair k, and the bond's new history: t, and h and state unless h
  * is NULL (a law whose force_pairs sets o->history to 0: nothing reads

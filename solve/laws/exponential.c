@@ -204,15 +204,7 @@ static inline __attribute__((always_inline)) int exp_pairs_body(LAW_PAIRS_PARAMS
 	}
 	return count;
 }
-LAW_PAIRS_VARIANT(exp_pairs_intact, exp_pairs_body, 0)
-LAW_PAIRS_VARIANT(exp_pairs_broken, exp_pairs_body, 1)
-
-/* The broken bonds' branch where the batch has one. */
-static int exp_pairs(LAW_PAIRS_PARAMS, law_fused *restrict o)
-{
-	return law_lanes_broken(L, n) ? exp_pairs_broken(lp, L, n, dt, o)
-	                              : exp_pairs_intact(lp, L, n, dt, o);
-}
+LAW_PAIRS_BROKEN(exp_pairs, exp_pairs_body)
 
 static double exp_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)
 {

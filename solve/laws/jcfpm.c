@@ -265,16 +265,9 @@ static inline __attribute__((always_inline)) int jcfpm_pairs_body(LAW_PAIRS_PARA
 	return count;
 }
 
-LAW_PAIRS_VARIANT(jcfpm_pairs_intact, jcfpm_pairs_body, 0)
-LAW_PAIRS_VARIANT(jcfpm_pairs_broken, jcfpm_pairs_body, 1)
-
-/* The broken bonds' branch where the batch has one (a JCFPM bond is
- * never BOND_DAMAGED). */
-static int jcfpm_pairs(LAW_PAIRS_PARAMS, law_fused *restrict o)
-{
-	return law_lanes_broken(L, n) ? jcfpm_pairs_broken(lp, L, n, dt, o)
-	                              : jcfpm_pairs_intact(lp, L, n, dt, o);
-}
+/* law_lanes_broken's states from BOND_BROKEN_TENSION on are those other
+ * than BOND_INTACT here: a JCFPM bond is never BOND_DAMAGED. */
+LAW_PAIRS_BROKEN(jcfpm_pairs, jcfpm_pairs_body)
 
 static double jcfpm_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)
 {

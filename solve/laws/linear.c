@@ -222,8 +222,7 @@ linear_pairs_body(LAW_PAIRS_PARAMS, law_fused *restrict o, int broken)
 		if (broken) { /* cundall_force; t is the shear force */
 			int32_t gone = L->state[q] >= BOND_BROKEN_TENSION;
 			double touch = un < 0 ? 1.0 : 0.0;
-			double fc = fe + cn * k.vn;
-			fc = (fc < 0 ? fc : 0) * touch;
+			double fc = (fn < 0 ? fn : 0) * touch; /* fn: its fe + c_n vn */
 			double lim = -p->mu * fc, tr[3];
 			for (int c = 0; c < 3; c++)
 				tr[c] = (k.t[c] + ks * k.dus[c]) * touch;
@@ -245,15 +244,7 @@ linear_pairs_body(LAW_PAIRS_PARAMS, law_fused *restrict o, int broken)
 	}
 	return count;
 }
-LAW_PAIRS_VARIANT(linear_pairs_intact, linear_pairs_body, 0)
-LAW_PAIRS_VARIANT(linear_pairs_broken, linear_pairs_body, 1)
-
-/* The broken bonds' branch where the batch has one. */
-static int linear_pairs(LAW_PAIRS_PARAMS, law_fused *restrict o)
-{
-	return law_lanes_broken(L, n) ? linear_pairs_broken(lp, L, n, dt, o)
-	                              : linear_pairs_intact(lp, L, n, dt, o);
-}
+LAW_PAIRS_BROKEN(linear_pairs, linear_pairs_body)
 
 static double linear_energy(const law_params *p, const law_pair *q, const bond *b, double un)
 {
