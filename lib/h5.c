@@ -483,13 +483,20 @@ static size_t chunk_rows(size_t cols) { return H5_PIECE_ELEMENTS / (cols ? cols 
 /* The deflate level of every compressed dataset. */
 enum { DEFLATE_LEVEL = 1 };
 
+/* The values of a chunk of an extendible dataset (the history, the crack
+ * log): each append reads its last chunk, adds the rows and compresses
+ * the chunk again, so a small chunk keeps that cheap. With chunks of a
+ * whole piece, a run file's flush took tens of milliseconds (about 30
+ * history columns, each a 512 kB chunk for a few hundred rows). */
+enum { EXT_CHUNK_ELEMENTS = 4096 };
+
 /* Chunked, deflate-compressed creation properties for a dataset of the
  * given shape (rank 1 or 2); extendible along rows when ext. */
 static hid_t chunked_plist(size_t rows, size_t cols, int ext)
 {
 	hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
 	hsize_t chunk[2] = {rows, cols ? cols : 1};
-	hsize_t target = chunk_rows(cols);
+	hsize_t target = ext ? EXT_CHUNK_ELEMENTS / chunk[1] : chunk_rows(cols);
 	if (ext || chunk[0] > target)
 		chunk[0] = target ? target : 1;
 	if (chunk[0] == 0)
@@ -719,55 +726,112 @@ static size_t chunk_compress(unsigned char *raw, unsigned char *shuf, unsigned c
 	return ok ? (size_t)zn : bytes;
 }
 
-/* Rows [at, at + m) of r from fill, one chunk of piece rows per step, the
- * steps shared by the threads; each chunk shuffled and deflated as the
- * filters of chunked_plist would (chunk_compress), then written as it
- * stands, in chunk order. */
-static int fill_chunks(h5_rows *r, h5_fill fill, void *ctx, size_t piece)
+/* One chunk of h5_rows_fill_all: rows [at, at + m) of dataset d, in a
+ * chunk of piece rows (or, d being too small to be chunked, as they are). */
+typedef struct {
+	int d;
+	size_t at, m, piece, size; /* size: bytes of a value (no HDF5 call on the threads) */
+} chunk_task;
+
+/* Chunk k's rows filled and, when chunked, compressed (chunk_compress)
+ * into the thread's buffers; its bytes and filter mask, or (not chunked)
+ * the raw rows. */
+static size_t chunk_make(h5_rows *r, const chunk_task *t, h5_fill fill, void *ctx,
+                         unsigned char *raw, unsigned char *shuf, unsigned char *z, unsigned *mask,
+                         const unsigned char **data)
 {
-	size_t size = H5Tget_size(r->type), width = r->cols ? r->cols : 1;
-	size_t bytes = piece * width * size, zcap = chunk_zcap(bytes);
-	size_t at0 = r->at, n = (r->rows - at0 + piece - 1) / piece;
-	int failed = 0, werrno = 0, team = threads_ < (int)n ? threads_ : (int)n;
-#pragma omp parallel num_threads(team)
+	size_t width = r->cols ? r->cols : 1;
+	fill(ctx, t->at, t->m, raw);
+	*mask = 0;
+	*data = raw;
+	if (!r->chunked)
+		return t->m * width * t->size;
+	return chunk_compress(raw, shuf, z, t->piece, t->m, width, t->size, mask, data);
+}
+
+static int chunk_write(h5_rows *r, const chunk_task *t, size_t zn, unsigned mask,
+                       const unsigned char *data)
+{
+	if (!r->chunked)
+		return write_rows(r->d, r->type, t->at, t->m, r->cols, data, 1);
+	hsize_t offset[2] = {t->at, 0};
+	return H5Dwrite_chunk(r->d, H5P_DEFAULT, mask, offset, zn, data) < 0 ? -1 : 0;
+}
+
+/* Whether the rows left of r are whole chunks of one process's file
+ * (h5_rows_fill_all). */
+static int whole_chunks(const h5_rows *r)
+{
+	return !h5_shared(r->d) && (r->chunked ? r->at % chunk_rows(r->cols) == 0 : r->at == 0);
+}
+
+int h5_rows_fill_all(h5_rows *const *r, int n, const h5_fill *fill, void *const *ctx)
+{
+	for (int d = 0; d < n; d++)
+		if (r[d]->failed)
+			return -1;
+	for (int d = 0; d < n; d++)
+		if (!whole_chunks(r[d])) {
+			int rc = 0;
+			for (int k = 0; !rc && k < n; k++)
+				rc = h5_rows_fill(r[k], fill[k], ctx[k]);
+			return rc;
+		}
+	size_t ntask = 0, cap = 0, bytes = 0;
+	chunk_task *task = NULL;
+	for (int d = 0; d < n; d++) {
+		size_t piece = chunk_rows(r[d]->cols), size = H5Tget_size(r[d]->type);
+		if (!r[d]->chunked || r[d]->rows <= piece)
+			piece = r[d]->rows; /* one chunk (chunked_plist), or none */
+		for (size_t at = r[d]->at; at < r[d]->rows; at += piece) {
+			if (ntask == cap)
+				task = xrealloc(task, (cap = cap ? 2 * cap : 16) * sizeof *task);
+			size_t m = r[d]->rows - at < piece ? r[d]->rows - at : piece;
+			task[ntask++] = (chunk_task){d, at, m, piece, size};
+		}
+		size_t b = piece * (r[d]->cols ? r[d]->cols : 1) * size;
+		bytes = b > bytes ? b : bytes;
+	}
+	size_t zcap = chunk_zcap(bytes);
+	int failed = -1, werrno = 0, team = threads_ < (int)ntask ? threads_ : (int)ntask;
+#pragma omp parallel num_threads(team > 0 ? team : 1)
 	{
 		unsigned char *raw = xmalloc(bytes), *shuf = xmalloc(bytes), *z = xmalloc(zcap);
 #pragma omp for ordered schedule(dynamic, 1)
-		for (size_t k = 0; k < n; k++) {
+		for (size_t k = 0; k < ntask; k++) {
 			int stop;
 #pragma omp atomic read
 			stop = failed;
-			size_t at = at0 + k * piece,
-			       m = r->rows - at < piece ? r->rows - at : piece;
+			h5_rows *q = r[task[k].d];
 			unsigned mask = 0;
 			const unsigned char *data = NULL;
 			size_t zn = 0;
-			if (!stop) {
-				fill(ctx, at, m, raw);
-				zn = chunk_compress(raw, shuf, z, piece, m, width, size, &mask,
-				                    &data);
-			}
+			if (stop < 0)
+				zn = chunk_make(q, &task[k], fill[task[k].d], ctx[task[k].d], raw,
+				                shuf, z, &mask, &data);
 #pragma omp ordered
-			if (!stop) {
-				hsize_t offset[2] = {at, 0};
-				herr_t w;
+			if (stop < 0) {
+				int w;
 #pragma omp critical(dem_hdf5) /* fill may read another file (assembly.c) */
-				w = H5Dwrite_chunk(r->d, H5P_DEFAULT, mask, offset, zn, data);
+				w = chunk_write(q, &task[k], zn, mask, data);
 				if (w < 0) {
 					werrno = errno;
 #pragma omp atomic write
-					failed = 1;
+					failed = task[k].d;
 				}
 			}
 		}
 		free(raw), free(shuf), free(z);
 	}
-	if (failed) {
-		r->failed = 1;
-		errno = werrno; /* for the message: the write failed on another thread */
-		return h5_write_dataset_error(r->loc, r->name);
+	free(task);
+	for (int d = 0; d < n; d++) {
+		r[d]->failed = failed >= 0;
+		r[d]->at = failed >= 0 ? r[d]->at : r[d]->rows;
 	}
-	r->at = r->rows;
+	if (failed >= 0) {
+		errno = werrno; /* for the message: the write failed on another thread */
+		return h5_write_dataset_error(r[failed]->loc, r[failed]->name);
+	}
 	return 0;
 }
 
@@ -806,10 +870,10 @@ int h5_rows_fill(h5_rows *r, h5_fill fill, void *ctx)
 	size_t piece = chunk_rows(r->cols);
 	if (r->chunked && r->at % piece == 0 && h5_shared(r->d))
 		return fill_shared(r, fill, ctx, piece);
-	/* Several chunks: compressed here. */
-	if (r->chunked && r->at % piece == 0 && r->rows - r->at > piece)
-		return fill_chunks(r, fill, ctx, piece);
-	/* What fits in a chunk: through HDF5's filters. */
+	/* Whole chunks from the first: compressed here. */
+	if (whole_chunks(r))
+		return h5_rows_fill_all(&r, 1, &fill, &ctx);
+	/* The rest of a chunk begun by h5_rows_put: through HDF5's filters. */
 	void *buf = xmalloc(piece * (r->cols ? r->cols : 1) * H5Tget_size(r->type));
 	int rc = 0;
 	for (size_t m; !rc && (m = h5_rows_piece(r)) > 0;) {

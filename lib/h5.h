@@ -130,6 +130,13 @@ int h5_rows_close(h5_rows *r);
  * `#pragma omp critical(dem_hdf5)`, as the chunks' writes are. */
 typedef void (*h5_fill)(void *ctx, size_t at, size_t m, void *buf);
 int h5_rows_fill(h5_rows *r, h5_fill fill, void *ctx);
+/* h5_rows_fill of n datasets at once, r[d] from fill[d](ctx[d], ...), in
+ * one process's file, each begun at a chunk's first row (or at its first
+ * row, if too small to be chunked): the chunks of all are shared by the
+ * threads, so that a dataset of one chunk compresses beside the others,
+ * and written in order, dataset by dataset (the file is the same whatever
+ * the thread count). On a failed write every dataset is marked failed. */
+int h5_rows_fill_all(h5_rows *const *r, int n, const h5_fill *fill, void *const *ctx);
 /* The rows of each chunk of a dataset of rows x cols that has several (0
  * for one chunk, or a dataset too small to be chunked): where the rows are
  * not all in one place (solve's ranks), each chunk's rows are gathered

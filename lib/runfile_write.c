@@ -349,36 +349,50 @@ static void fill_field(void *ctx, size_t at, size_t m, void *buf)
 	ff->fill(ff->ctx, ff->f, at, m, buf);
 }
 
-/* A run_put from a run_fill. */
-typedef struct {
-	run_fill fill;
-	void *ctx;
-} filled;
+enum { MAX_FIELDS = 8 };
+_Static_assert((int)SNAP_NFIELDS <= MAX_FIELDS && (int)BTAB_NFIELDS <= MAX_FIELDS, "fields");
 
-static int put_filled(void *ctx, int f, h5_rows *r)
+/* The fields of a bond table or a snapshot, open in rs, from fill (when
+ * not NULL: every field's chunks compressed together, h5_rows_fill_all)
+ * or each by put. */
+static int put_fields(h5_rows *rs, int nf, run_put put, run_fill fill, void *ctx)
 {
-	const filled *fl = ctx;
-	field_fill ff = {fl->fill, fl->ctx, f};
-	return h5_rows_fill(r, fill_field, &ff);
+	if (!fill) {
+		int rc = 0;
+		for (int f = 0; !rc && f < nf; f++)
+			rc = put(ctx, f, &rs[f]);
+		return rc;
+	}
+	field_fill ff[MAX_FIELDS];
+	h5_rows *r[MAX_FIELDS];
+	h5_fill fills[MAX_FIELDS];
+	void *ctxs[MAX_FIELDS];
+	for (int f = 0; f < nf; f++) {
+		ff[f] = (field_fill){fill, ctx, f};
+		r[f] = &rs[f], fills[f] = fill_field, ctxs[f] = &ff[f];
+	}
+	return h5_rows_fill_all(r, nf, fills, ctxs);
 }
 
-/* Each field a piece at a time (a piece per thread that compresses):
- * memory is a few pieces, not the whole arrays. */
+/* Every field opened, then written (put_fields), then closed. */
 static int write_fields(hid_t g, const rec_field *fs, int nf, size_t np, size_t nb, run_put put,
-                        void *ctx, const char *dim_particle, const char *dim_bond,
+                        run_fill fill, void *ctx, const char *dim_particle, const char *dim_bond,
                         const char *dim_xyz)
 {
-	int rc = 0;
-	for (int f = 0; !rc && f < nf; f++) {
-		h5_rows r;
-		rc = h5_rows_open(&r, g, fs[f].name, native(fs[f].type), fs[f].per_bond ? nb : np,
-		                  fs[f].cols, fs[f].unit);
-		rc = rc || put(ctx, f, &r);
-		rc = h5_rows_close(&r) || rc;
-		/* The rows' and the components' dimension scales, of the group
-		 * or of its parent (a snapshot's are those of /snapshots). */
+	h5_rows rs[MAX_FIELDS];
+	int rc = 0, f = 0;
+	for (; !rc && f < nf; f++)
+		rc = h5_rows_open(&rs[f], g, fs[f].name, native(fs[f].type),
+		                  fs[f].per_bond ? nb : np, fs[f].cols, fs[f].unit);
+	int open = f; /* a failed open is closed too (h5_rows_close) */
+	rc = rc || put_fields(rs, nf, put, fill, ctx);
+	for (f = 0; f < open; f++)
+		rc = h5_rows_close(&rs[f]) || rc;
+	/* The rows' and the components' dimension scales, of the group or of
+	 * its parent (a snapshot's are those of /snapshots). */
+	for (f = 0; !rc && f < nf; f++) {
 		const char *dims[2] = {fs[f].per_bond ? dim_bond : dim_particle, dim_xyz};
-		rc = rc || h5_attach(g, fs[f].name, dims, fs[f].cols ? 2 : 1);
+		rc = h5_attach(g, fs[f].name, dims, fs[f].cols ? 2 : 1);
 	}
 	return rc ? -1 : 0;
 }
@@ -396,21 +410,26 @@ static void from_arrays(void *ctx, int f, size_t at, size_t m, void *buf)
 	memcpy(buf, (const unsigned char *)a->src[f] + at * row, m * row);
 }
 
-int run_write_bonds_put(run_writer *w, size_t n, run_put put, void *ctx)
+/* The bond table from put or fill (write_fields). */
+static int write_bonds(run_writer *w, size_t n, run_put put, run_fill fill, void *ctx)
 {
 	hid_t g = h5_group(w->file, "bonds");
 	if (g < 0)
 		return -1;
-	int rc = h5_index(g, "bond", n, 0) ||
-	         write_fields(g, bond_fields, BTAB_NFIELDS, 0, n, put, ctx, NULL, "bond", "xyz");
+	int rc = h5_index(g, "bond", n, 0) || write_fields(g, bond_fields, BTAB_NFIELDS, 0, n, put,
+	                                                   fill, ctx, NULL, "bond", "xyz");
 	H5Gclose(g);
 	return rc;
 }
 
+int run_write_bonds_put(run_writer *w, size_t n, run_put put, void *ctx)
+{
+	return write_bonds(w, n, put, NULL, ctx);
+}
+
 int run_write_bonds_fill(run_writer *w, size_t n, run_fill fill, void *ctx)
 {
-	filled fl = {fill, ctx};
-	return run_write_bonds_put(w, n, put_filled, &fl);
+	return write_bonds(w, n, NULL, fill, ctx);
 }
 
 int run_write_bonds(run_writer *w, const dem_bonds *b)
@@ -459,7 +478,9 @@ int run_history(run_writer *w, const double *row)
 	return 0;
 }
 
-int run_snapshot_put(run_writer *w, const dem_snapshot *s, run_put put, void *ctx)
+/* A snapshot from put or fill (write_fields). */
+static int write_snapshot(run_writer *w, const dem_snapshot *s, run_put put, run_fill fill,
+                          void *ctx)
 {
 	char name[64];
 	/* The snapshots' dimensions, shared by all, made with the first. */
@@ -477,16 +498,20 @@ int run_snapshot_put(run_writer *w, const dem_snapshot *s, run_put put, void *ct
 	rc = h5_attr_i64(g, "step", s->step) || h5_attr_f64(g, "t", s->t) ||
 	     h5_attr_f64(g, "strain_axial", s->strain_axial) ||
 	     h5_attr_f64(g, "stress_axial", s->stress_axial) ||
-	     write_fields(g, snap_fields, SNAP_NFIELDS, s->n, s->nbonds, put, ctx,
+	     write_fields(g, snap_fields, SNAP_NFIELDS, s->n, s->nbonds, put, fill, ctx,
 	                  "/snapshots/particle", "/snapshots/bond", "/snapshots/xyz");
 	H5Gclose(g);
 	return rc ? -1 : 0;
 }
 
+int run_snapshot_put(run_writer *w, const dem_snapshot *s, run_put put, void *ctx)
+{
+	return write_snapshot(w, s, put, NULL, ctx);
+}
+
 int run_snapshot_fill(run_writer *w, const dem_snapshot *s, run_fill fill, void *ctx)
 {
-	filled fl = {fill, ctx};
-	return run_snapshot_put(w, s, put_filled, &fl);
+	return write_snapshot(w, s, NULL, fill, ctx);
 }
 
 int run_snapshot(run_writer *w, const dem_snapshot *s)
