@@ -727,35 +727,71 @@ static size_t chunk_compress(unsigned char *raw, unsigned char *shuf, unsigned c
 }
 
 /* One chunk of h5_rows_fill_all: rows [at, at + m) of dataset d, in a
- * chunk of piece rows (or, d being too small to be chunked, as they are). */
+ * chunk of piece rows (or, d being too small to be chunked, as they are),
+ * and once made, the bytes to write and their filter mask. */
 typedef struct {
-	int d;
+	int d, made;
 	size_t at, m, piece, size; /* size: bytes of a value (no HDF5 call on the threads) */
+	unsigned char *out;
+	size_t n;
+	unsigned mask;
 } chunk_task;
 
-/* Chunk k's rows filled and, when chunked, compressed (chunk_compress)
- * into the thread's buffers; its bytes and filter mask, or (not chunked)
- * the raw rows. */
-static size_t chunk_make(h5_rows *r, const chunk_task *t, h5_fill fill, void *ctx,
-                         unsigned char *raw, unsigned char *shuf, unsigned char *z, unsigned *mask,
-                         const unsigned char **data)
+/* Chunk t's rows filled and, when chunked, compressed (chunk_compress,
+ * with the thread's buffers raw and shuf) into t->out, of cap bytes. */
+static void chunk_make(const h5_rows *r, chunk_task *t, h5_fill fill, void *ctx, unsigned char *raw,
+                       unsigned char *shuf, size_t cap)
 {
 	size_t width = r->cols ? r->cols : 1;
+	const unsigned char *data = raw;
+	t->out = xmalloc(cap);
+	t->mask = 0;
+	t->n = t->m * width * t->size;
 	fill(ctx, t->at, t->m, raw);
-	*mask = 0;
-	*data = raw;
-	if (!r->chunked)
-		return t->m * width * t->size;
-	return chunk_compress(raw, shuf, z, t->piece, t->m, width, t->size, mask, data);
+	if (r->chunked)
+		t->n = chunk_compress(raw, shuf, t->out, t->piece, t->m, width, t->size, &t->mask,
+		                      &data);
+	if (data != t->out)
+		memcpy(t->out, data, t->n);
 }
 
-static int chunk_write(h5_rows *r, const chunk_task *t, size_t zn, unsigned mask,
-                       const unsigned char *data)
+static int chunk_write(h5_rows *r, const chunk_task *t)
 {
 	if (!r->chunked)
-		return write_rows(r->d, r->type, t->at, t->m, r->cols, data, 1);
+		return write_rows(r->d, r->type, t->at, t->m, r->cols, t->out, 1);
 	hsize_t offset[2] = {t->at, 0};
-	return H5Dwrite_chunk(r->d, H5P_DEFAULT, mask, offset, zn, data) < 0 ? -1 : 0;
+	return H5Dwrite_chunk(r->d, H5P_DEFAULT, t->mask, offset, t->n, t->out) < 0 ? -1 : 0;
+}
+
+/* The state of an h5_rows_fill_all shared by its threads. */
+typedef struct {
+	h5_rows *const *r;
+	chunk_task *task;
+	size_t ntask, written; /* tasks written (in order), under chunks_order */
+	int failed, werrno;    /* the dataset whose write failed, or -1 */
+} chunk_order;
+
+/* Inside critical(chunks_order): the chunks made from the first not yet
+ * written on, written in order (by whichever thread made the one that
+ * was next), and their bytes freed. */
+static void chunks_write(chunk_order *o)
+{
+	for (chunk_task *t; o->written < o->ntask && (t = &o->task[o->written])->made;) {
+		if (o->failed < 0) {
+			int w;
+#pragma omp critical(dem_hdf5) /* fill may read another file (assembly.c) */
+			w = chunk_write(o->r[t->d], t);
+			if (w < 0) {
+				o->werrno = errno;
+#pragma omp atomic write
+				o->failed = t->d;
+			}
+		}
+		free(t->out);
+		t->out = NULL;
+#pragma omp atomic write
+		o->written = o->written + 1;
+	}
 }
 
 /* Whether the rows left of r are whole chunks of one process's file
@@ -787,50 +823,53 @@ int h5_rows_fill_all(h5_rows *const *r, int n, const h5_fill *fill, void *const 
 			if (ntask == cap)
 				task = xrealloc(task, (cap = cap ? 2 * cap : 16) * sizeof *task);
 			size_t m = r[d]->rows - at < piece ? r[d]->rows - at : piece;
-			task[ntask++] = (chunk_task){d, at, m, piece, size};
+			task[ntask++] =
+			    (chunk_task){.d = d, .at = at, .m = m, .piece = piece, .size = size};
 		}
 		size_t b = piece * (r[d]->cols ? r[d]->cols : 1) * size;
 		bytes = b > bytes ? b : bytes;
 	}
-	size_t zcap = chunk_zcap(bytes);
-	int failed = -1, werrno = 0, team = threads_ < (int)ntask ? threads_ : (int)ntask;
+	/* Each thread makes the next chunk of the list and writes what is made
+	 * in order, so none waits for another's chunk to be written; at most
+	 * WINDOW chunks are made ahead of the writes. */
+	int team = threads_ < (int)ntask ? threads_ : (int)ntask;
+	size_t zcap = chunk_zcap(bytes), next = 0, window = 4 * (size_t)(team > 0 ? team : 1);
+	chunk_order o = {r, task, ntask, 0, -1, 0};
 #pragma omp parallel num_threads(team > 0 ? team : 1)
 	{
-		unsigned char *raw = xmalloc(bytes), *shuf = xmalloc(bytes), *z = xmalloc(zcap);
-#pragma omp for ordered schedule(dynamic, 1)
-		for (size_t k = 0; k < ntask; k++) {
+		unsigned char *raw = xmalloc(bytes), *shuf = xmalloc(bytes);
+		for (;;) {
+			size_t k, written;
 			int stop;
+#pragma omp atomic capture
+			k = next++;
+			if (k >= ntask)
+				break;
+			do {
 #pragma omp atomic read
-			stop = failed;
-			h5_rows *q = r[task[k].d];
-			unsigned mask = 0;
-			const unsigned char *data = NULL;
-			size_t zn = 0;
+				written = o.written;
+			} while (k >= written + window);
+#pragma omp atomic read
+			stop = o.failed;
+			chunk_task *t = &task[k];
 			if (stop < 0)
-				zn = chunk_make(q, &task[k], fill[task[k].d], ctx[task[k].d], raw,
-				                shuf, z, &mask, &data);
-#pragma omp ordered
-			if (stop < 0) {
-				int w;
-#pragma omp critical(dem_hdf5) /* fill may read another file (assembly.c) */
-				w = chunk_write(q, &task[k], zn, mask, data);
-				if (w < 0) {
-					werrno = errno;
-#pragma omp atomic write
-					failed = task[k].d;
-				}
+				chunk_make(r[t->d], t, fill[t->d], ctx[t->d], raw, shuf, zcap);
+#pragma omp critical(chunks_order)
+			{
+				t->made = 1;
+				chunks_write(&o);
 			}
 		}
-		free(raw), free(shuf), free(z);
+		free(raw), free(shuf);
 	}
 	free(task);
 	for (int d = 0; d < n; d++) {
-		r[d]->failed = failed >= 0;
-		r[d]->at = failed >= 0 ? r[d]->at : r[d]->rows;
+		r[d]->failed = o.failed >= 0;
+		r[d]->at = o.failed >= 0 ? r[d]->at : r[d]->rows;
 	}
-	if (failed >= 0) {
-		errno = werrno; /* for the message: the write failed on another thread */
-		return h5_write_dataset_error(r[failed]->loc, r[failed]->name);
+	if (o.failed >= 0) {
+		errno = o.werrno; /* for the message: the write failed on another thread */
+		return h5_write_dataset_error(r[o.failed]->loc, r[o.failed]->name);
 	}
 	return 0;
 }
