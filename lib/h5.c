@@ -831,7 +831,8 @@ int h5_rows_fill_all(h5_rows *const *r, int n, const h5_fill *fill, void *const 
 	}
 	/* Each thread makes the next chunk of the list and writes what is made
 	 * in order, so none waits for another's chunk to be written; at most
-	 * WINDOW chunks are made ahead of the writes. */
+	 * window chunks are made ahead of the writes (a thread that would go
+	 * further spins until the next write: memory stays a few chunks). */
 	int team = threads_ < (int)ntask ? threads_ : (int)ntask;
 	size_t zcap = chunk_zcap(bytes), next = 0, window = 4 * (size_t)(team > 0 ? team : 1);
 	chunk_order o = {r, task, ntask, 0, -1, 0};
@@ -912,7 +913,8 @@ int h5_rows_fill(h5_rows *r, h5_fill fill, void *ctx)
 	/* Whole chunks from the first: compressed here. */
 	if (whole_chunks(r))
 		return h5_rows_fill_all(&r, 1, &fill, &ctx);
-	/* The rest of a chunk begun by h5_rows_put: through HDF5's filters. */
+	/* What is left (the rest of a chunk begun by h5_rows_put, or a shared
+	 * file's dataset too small to be chunked): through HDF5. */
 	void *buf = xmalloc(piece * (r->cols ? r->cols : 1) * H5Tget_size(r->type));
 	int rc = 0;
 	for (size_t m; !rc && (m = h5_rows_piece(r)) > 0;) {

@@ -121,11 +121,11 @@ int h5_rows_write_at(h5_rows *r, size_t at, size_t m, const void *buf);
 int h5_rows_close(h5_rows *r);
 /* Put all the rows not yet written, a piece at a time from fill(ctx, at, m,
  * buf), which writes rows [at, at + m) (at most one piece) into buf in the
- * dataset's type. A dataset of several chunks is compressed on the
+ * dataset's type. A chunked dataset's chunks are compressed on the
  * threads h5_set_threads sets, one chunk each at a time, with the shuffle and
  * deflate filters its creation properties declare (exactly what HDF5 would
- * write), and its chunks written in order: the file is the same whatever
- * the thread count. fill is then called on several threads at once, each
+ * write), and written in order: the file is the same whatever the thread
+ * count. fill is then called on several threads at once, each
  * with its own rows and buffer; a fill that calls HDF5 does it inside
  * `#pragma omp critical(dem_hdf5)`, as the chunks' writes are. */
 typedef void (*h5_fill)(void *ctx, size_t at, size_t m, void *buf);
