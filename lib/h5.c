@@ -925,25 +925,19 @@ int h5_rows_fill(h5_rows *r, h5_fill fill, void *ctx)
 	return rc;
 }
 
-/* A fill from a whole array of rows of row bytes each. */
-typedef struct {
-	const unsigned char *data;
-	size_t row;
-} whole;
-
-static void from_whole(void *ctx, size_t at, size_t m, void *buf)
+void h5_from_whole(void *ctx, size_t at, size_t m, void *buf)
 {
-	const whole *w = ctx;
-	memcpy(buf, w->data + at * w->row, m * w->row);
+	const h5_whole *w = ctx;
+	memcpy(buf, (const unsigned char *)w->data + at * w->row, m * w->row);
 }
 
 int h5_write(hid_t loc, const char *name, hid_t type, const void *data, size_t rows, size_t cols,
              const char *unit)
 {
 	h5_rows r;
-	whole w = {data, (cols ? cols : 1) * H5Tget_size(type)};
+	h5_whole w = {data, (cols ? cols : 1) * H5Tget_size(type)};
 	int rc = h5_rows_open(&r, loc, name, type, rows, cols, unit);
-	rc = rc || h5_rows_fill(&r, from_whole, &w);
+	rc = rc || h5_rows_fill(&r, h5_from_whole, &w);
 	return h5_rows_close(&r) || rc ? -1 : 0;
 }
 

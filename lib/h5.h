@@ -137,6 +137,12 @@ int h5_rows_fill(h5_rows *r, h5_fill fill, void *ctx);
  * and written in order, dataset by dataset (the file is the same whatever
  * the thread count). On a failed write every dataset is marked failed. */
 int h5_rows_fill_all(h5_rows *const *r, int n, const h5_fill *fill, void *const *ctx);
+/* A fill (ctx an h5_whole) from a whole array of rows of row bytes each. */
+typedef struct {
+	const void *data;
+	size_t row;
+} h5_whole;
+void h5_from_whole(void *ctx, size_t at, size_t m, void *buf);
 /* The rows of each chunk of a dataset of rows x cols that has several (0
  * for one chunk, or a dataset too small to be chunked): where the rows are
  * not all in one place (solve's ranks), each chunk's rows are gathered

@@ -57,31 +57,19 @@ static void *values(int s)
 	return v;
 }
 
-/* A fill from a set's whole array. */
-typedef struct {
-	const unsigned char *data;
-	size_t row;
-} set_rows;
-
-static void from_set(void *ctx, size_t at, size_t m, void *buf)
-{
-	const set_rows *c = ctx;
-	memcpy(buf, c->data + at * c->row, m * c->row);
-}
-
 /* Every set opened, then all written by one h5_rows_fill_all. */
 static void fill_all(hid_t f, void *const *data)
 {
 	h5_rows rs[NSETS], *r[NSETS];
-	set_rows c[NSETS];
+	h5_whole c[NSETS];
 	h5_fill fill[NSETS];
 	void *ctx[NSETS];
 	for (int s = 0; s < NSETS; s++) {
 		hid_t t = type_of(sets[s].type);
 		CHECK(h5_rows_open(&rs[s], f, sets[s].name, t, sets[s].rows, sets[s].cols, NULL) ==
 		      0);
-		c[s] = (set_rows){data[s], (sets[s].cols ? sets[s].cols : 1) * H5Tget_size(t)};
-		r[s] = &rs[s], fill[s] = from_set, ctx[s] = &c[s];
+		c[s] = (h5_whole){data[s], (sets[s].cols ? sets[s].cols : 1) * H5Tget_size(t)};
+		r[s] = &rs[s], fill[s] = h5_from_whole, ctx[s] = &c[s];
 	}
 	CHECK(h5_rows_fill_all(r, NSETS, fill, ctx) == 0);
 	for (int s = 0; s < NSETS; s++)
