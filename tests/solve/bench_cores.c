@@ -4,9 +4,15 @@
  * shared machine the second core is not always a whole core (two virtual
  * cores may be the two threads of one physical core, for a while or for
  * good; the neighbours share the cache and memory): tools/bench-solve reads
- * its two-thread speed-ups beside these, measured in the same round. */
+ * its two-thread speed-ups beside these, measured in the same round.
+ *
+ * With --latency, instead: how long one core waits for a read at a random
+ * place of an array of each size, which tells how much of the last-level
+ * cache a core of a shared machine has (what a specimen's scattered reads
+ * see, beside the cache size the machine reports). */
 #include <math.h>
 #include <pthread.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
@@ -49,6 +55,46 @@ static double kernel_sweep(double *buf, size_t n, long sweeps)
 		for (size_t i = 0; i < n; i++)
 			buf[i] = buf[i] * 0.999999 + 1e-9;
 	return buf[n / 2];
+}
+
+/* Nanoseconds per read of a chain of dependent reads, each at a random
+ * line of an array of bytes bytes: one cycle through every line (Sattolo's
+ * shuffle), followed reads times. */
+static double chase_ns(size_t bytes, long reads, uint64_t seed)
+{
+	enum { LINE = 64 / sizeof(size_t) };
+	size_t lines = bytes / 64, *a = xmalloc(lines * 64),
+	       *order = xmalloc(lines * sizeof *order);
+	for (size_t k = 0; k < lines; k++)
+		order[k] = k;
+	for (size_t k = lines - 1; k > 0; k--) {
+		seed ^= seed << 13, seed ^= seed >> 7, seed ^= seed << 17;
+		size_t m = (size_t)(seed % k), t = order[k];
+		order[k] = order[m], order[m] = t;
+	}
+	for (size_t k = 0; k < lines; k++)
+		a[LINE * order[k]] = LINE * order[(k + 1) % lines];
+	size_t p = 0;
+	for (size_t k = 0; k < lines; k++) /* once through: the pages touched */
+		p = a[p];
+	double t0 = now();
+	for (long k = 0; k < reads; k++)
+		p = a[p];
+	double ns = (now() - t0) / (double)reads * 1e9;
+	free(a), free(order);
+	return p == (size_t)-1 ? 0 : ns; /* p used: the chain is not optimised away */
+}
+
+/* The latency line: ns per random read for arrays of 1 to max_mb MB. */
+static void latency(double max_mb, long reads)
+{
+	printf("{\"bench\": \"cores\", \"kernel\": \"latency\", \"ns_per_read\": {");
+	for (double mb = 1; mb <= max_mb; mb *= 2)
+		printf("%s\"%g\": %.1f", mb > 1 ? ", " : "", mb,
+		       chase_ns((size_t)(mb * 1048576), reads, 88172645463325252u));
+	printf("}, \"reads\": %ld, \"note\": \"one thread; each read waits for the one before, at "
+	       "a random line of an array of that many MB (2^20 bytes)\"}\n",
+	       reads);
 }
 
 enum { KERNEL_COMPUTE, KERNEL_CACHE, KERNEL_MEMORY, NKERNELS };
@@ -141,8 +187,9 @@ static void measure(int k, double *const buf[2], size_t n, long rounds, double s
 
 int main(int argc, char **argv)
 {
-	long rounds = 3;
-	double seconds = 0.1, megabytes = 16, kilobytes = 24;
+	long rounds = 3, reads = 2000000;
+	int lat = 0;
+	double seconds = 0.1, megabytes = 16, kilobytes = 24, lat_mb = 128;
 	const cli_opt opts[] = {
 	    {"rounds", CLI_INT, &rounds, "N", "", "turns of alone and together per kernel", 1, 100},
 	    {"seconds", CLI_NUM, &seconds, "S", "s", "about how long one copy of a kernel runs",
@@ -151,6 +198,11 @@ int main(int argc, char **argv)
 	     "array of each copy of the cache kernel (within the first-level cache)", 1, 1e5},
 	    {"megabytes", CLI_NUM, &megabytes, "M", "MB",
 	     "array of each copy of the memory kernel (beyond the caches)", 0.1, 4096},
+	    {"latency", CLI_FLAG, &lat, NULL, "",
+	     "instead of the kernels: ns per random read for arrays of 1, 2, 4, ... MB", 0, 0},
+	    {"latency-megabytes", CLI_NUM, &lat_mb, "M", "MB", "largest array of --latency", 1,
+	     4096},
+	    {"reads", CLI_INT, &reads, "N", "", "reads timed per array of --latency", 1000, 1e9},
 	};
 	const cli_spec spec = {
 	    .usage = "bench-cores [options]",
@@ -159,10 +211,16 @@ int main(int argc, char **argv)
 	        "sharing nothing), in turns: vector multiply-adds in registers (compute), sweeps "
 	        "over a small array (cache) and over a large one (memory). Per kernel one JSON "
 	        "line: the median seconds and speed-up 2 x alone / together, 2 for two whole "
-	        "cores; about 1 for the cache kernel when the two are threads of one core.",
+	        "cores; about 1 for the cache kernel when the two are threads of one core. "
+	        "With --latency, one line instead: the ns one core waits per random read of "
+	        "arrays of 1, 2, 4, ... MB (where it rises, the core's share of the caches ends).",
 	    .opts = opts,
 	    .nopts = (int)(sizeof opts / sizeof opts[0])};
 	cli_parse(&spec, argc, argv, NULL);
+	if (lat) {
+		latency(lat_mb, reads);
+		return 0;
+	}
 	size_t n_cache = (size_t)(kilobytes * 1e3 / sizeof(double)),
 	       n_memory = (size_t)(megabytes * 1e6 / sizeof(double));
 	double *buf[2];
