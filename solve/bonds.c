@@ -643,7 +643,7 @@ static inline void bonds_prefetch(const engine *e, size_t b0)
  * the staged path's for the whole batch. */
 enum { STAGED_STEPS = 64 };
 
-DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
+DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure, block_done done, void *ctx)
 {
 	bond_split *S = &e->pairs.split;
 	const pair_rec *rec = e->pairs.bonds.rec;
@@ -721,6 +721,8 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure)
 			}
 		}
 		e->scratch.bblock[blk] = sums;
+		if (done)
+			done(e, blk, ctx);
 	}
 }
 

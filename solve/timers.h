@@ -44,6 +44,16 @@ static inline void phase_switch(phase_timers *t, int from, int to)
 	t->cpu_start[to] = cpu;
 }
 
+/* seconds of phase from, timed inside it, counted in phase to (wall and
+ * CPU alike: what the timing thread spent on to's work within from). */
+static inline void phase_move(phase_timers *t, int from, int to, double seconds)
+{
+	t->total[from] -= seconds;
+	t->cpu[from] -= seconds;
+	t->total[to] += seconds;
+	t->cpu[to] += seconds;
+}
+
 /* The first phase of a step starts, and the last ends: from and to the
  * phase between steps, if one runs, reading the clocks once. */
 static inline void phase_enter(phase_timers *t, int k)
