@@ -651,7 +651,6 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure, block_done don
 	size_t p0 = S->pfirst[k], p1 = S->pfirst[k + 1], base = e->pairs.bond0;
 	if (p0 == p1)
 		return;
-	memset(engine_acc(e, p0), 0, 6 * (p1 - p0) * sizeof *e->scratch.acc);
 	/* The crossing bonds of earlier shares that reach this one come first
 	 * in bond order: they add to their particle j here. */
 	for (size_t q = S->infirst[k]; q < S->infirst[k + 1]; q++) {
@@ -721,8 +720,12 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure, block_done don
 			}
 		}
 		e->scratch.bblock[blk] = sums;
-		if (done)
-			done(e, blk, ctx);
+		done(e, blk, ctx);
+		/* The block's sums used: zero again for the next step, while
+		 * in the cache (rather than all the share's before its bonds). */
+		size_t lo = blk * BLOCK > p0 ? blk * BLOCK : p0,
+		       end = (blk + 1) * BLOCK < p1 ? (blk + 1) * BLOCK : p1;
+		memset(engine_acc(e, lo), 0, 6 * (end - lo) * sizeof *e->scratch.acc);
 	}
 }
 

@@ -136,9 +136,10 @@ void bonds_cross(engine *e, int k, int measure);
 /* This step's forces of share k's other bonds, and every bond force on
  * share k's particles summed into e->scratch.acc (after the barrier).
  * After the bonds of each particle block blk (those whose i is in it),
- * done(e, blk, ctx) unless done is NULL: the block's sums are then whole
- * (every bond of one of its particles has its i there or before), and no
- * later bond of the share reads its particles (their j lie beyond). */
+ * done(e, blk, ctx): the block's sums are then whole (every bond of one of
+ * its particles has its i there or before), and no later bond of the
+ * share reads its particles (their j lie beyond). The block's sums are
+ * zeroed after done returns: they are zero between steps. */
 typedef void (*block_done)(engine *e, size_t blk, void *ctx);
 void bonds_share(engine *e, int k, int measure, block_done done, void *ctx);
 /* Move this step's failures to e->out.cracks, in bond order. */

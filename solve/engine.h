@@ -189,7 +189,8 @@ typedef struct {
 	step_part *parts; /* [threads] each thread's part of the step's sums */
 	int nparts;       /* the threads of the last step */
 	double *acc;      /* [own][6] sum of the bond forces and torques per unit
-	                     radius, particle i's at 6 (i - p.own0) (engine_acc) */
+	                     radius, particle i's at 6 (i - p.own0) (engine_acc);
+	                     zero between steps (bonds_share) */
 } engine_scratch;
 
 typedef struct engine engine;
