@@ -484,19 +484,24 @@ static size_t chunk_rows(size_t cols) { return H5_PIECE_ELEMENTS / (cols ? cols 
 enum { DEFLATE_LEVEL = 1 };
 
 /* The values of a chunk of an extendible dataset (the history, the crack
- * log): each append reads its last chunk, adds the rows and compresses
- * the chunk again, so a small chunk keeps that cheap. With chunks of a
- * whole piece, a run file's flush took tens of milliseconds (about 30
- * history columns, each a 512 kB chunk for a few hundred rows). */
+ * log) in one process's file: each append reads its last chunk, adds the
+ * rows and compresses the chunk again, so a small chunk keeps that cheap.
+ * With chunks of a whole piece, a run file's flush took tens of
+ * milliseconds (about 30 history columns, each a 512 kB chunk for a few
+ * hundred rows). A file that several processes write (parallel HDF5
+ * 1.10) keeps chunks of a piece: with small ones, a run on 2 ranks with a
+ * rank killed left, about one time in two, a recovery copy whose
+ * checkpoint did not match its checksum (test_ranks_failures). */
 enum { EXT_CHUNK_ELEMENTS = 4096 };
 
 /* Chunked, deflate-compressed creation properties for a dataset of the
- * given shape (rank 1 or 2); extendible along rows when ext. */
-static hid_t chunked_plist(size_t rows, size_t cols, int ext)
+ * given shape (rank 1 or 2); extendible along rows, in chunks of about
+ * ext values, when ext > 0. */
+static hid_t chunked_plist(size_t rows, size_t cols, size_t ext)
 {
 	hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
 	hsize_t chunk[2] = {rows, cols ? cols : 1};
-	hsize_t target = ext ? EXT_CHUNK_ELEMENTS / chunk[1] : chunk_rows(cols);
+	hsize_t target = ext ? ext / chunk[1] : chunk_rows(cols);
 	if (ext || chunk[0] > target)
 		chunk[0] = target ? target : 1;
 	if (chunk[0] == 0)
@@ -1039,7 +1044,8 @@ int h5_create_ext(hid_t loc, const char *name, hid_t type, size_t cols, const ch
 {
 	hsize_t dims[2] = {0, cols}, maxdims[2] = {H5S_UNLIMITED, cols};
 	hid_t space = H5Screate_simple(cols ? 2 : 1, dims, maxdims);
-	hid_t dcpl = chunked_plist(0, cols, 1);
+	hid_t dcpl =
+	    chunked_plist(0, cols, h5_shared(loc) ? H5_PIECE_ELEMENTS : EXT_CHUNK_ELEMENTS);
 	errno = 0;
 	hid_t d = H5Dcreate2(loc, name, type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
 	int rc = d < 0 ? -1 : 0;
