@@ -484,14 +484,10 @@ static size_t chunk_rows(size_t cols) { return H5_PIECE_ELEMENTS / (cols ? cols 
 enum { DEFLATE_LEVEL = 1 };
 
 /* The values of a chunk of an extendible dataset (the history, the crack
- * log) in one process's file: each append reads its last chunk, adds the
- * rows and compresses the chunk again, so a small chunk keeps that cheap.
- * With chunks of a whole piece, a run file's flush took tens of
- * milliseconds (about 30 history columns, each a 512 kB chunk for a few
- * hundred rows). A file that several processes write (parallel HDF5
- * 1.10) keeps chunks of a piece: with small ones, a run on 2 ranks with a
- * rank killed left, about one time in two, a recovery copy whose
- * checkpoint did not match its checksum (test_ranks_failures). */
+ * log): each append reads its last chunk, adds the rows and compresses
+ * the chunk again, so a small chunk keeps that cheap. With chunks of a
+ * whole piece, a run file's flush took tens of milliseconds (about 30
+ * history columns, each a 512 kB chunk for a few hundred rows). */
 enum { EXT_CHUNK_ELEMENTS = 4096 };
 
 /* Chunked, deflate-compressed creation properties for a dataset of the
@@ -1044,8 +1040,7 @@ int h5_create_ext(hid_t loc, const char *name, hid_t type, size_t cols, const ch
 {
 	hsize_t dims[2] = {0, cols}, maxdims[2] = {H5S_UNLIMITED, cols};
 	hid_t space = H5Screate_simple(cols ? 2 : 1, dims, maxdims);
-	hid_t dcpl =
-	    chunked_plist(0, cols, h5_shared(loc) ? H5_PIECE_ELEMENTS : EXT_CHUNK_ELEMENTS);
+	hid_t dcpl = chunked_plist(0, cols, EXT_CHUNK_ELEMENTS);
 	errno = 0;
 	hid_t d = H5Dcreate2(loc, name, type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
 	int rc = d < 0 ? -1 : 0;

@@ -296,30 +296,46 @@ static void gather_parts(const crc_parts *mine, crc_parts *all)
 	ranks_gather_u64((const uint64_t *)mine, sizeof *mine / sizeof(uint64_t), (uint64_t *)all);
 }
 
-/* Open a dataset of rows x cols (cols 0: rank 1) for overwriting, creating
- * it (chunked, extendible) the first time. */
+/* Whether dataset d has exactly n rows of cols columns (0: one-dimensional). */
+static int shape_is(hid_t d, size_t n, size_t cols)
+{
+	hid_t sp = H5Dget_space(d);
+	hsize_t dims[2] = {0, 0};
+	int rank = H5Sget_simple_extent_ndims(sp);
+	if (rank == (cols ? 2 : 1)) /* dims holds no more */
+		H5Sget_simple_extent_dims(sp, dims, NULL);
+	H5Sclose(sp);
+	return rank == (cols ? 2 : 1) && dims[0] == n && (!cols || dims[1] == cols);
+}
+
+/* Open a dataset of rows x cols (cols 0: rank 1) for overwriting: the one
+ * there if of that shape, else a new one (chunked), never one resized: in
+ * a file several ranks write (parallel HDF5 1.10.8), shrinking a dataset
+ * that rank 0 alone then writes (the surface list) made the other ranks
+ * put its former rows back, so that a recovery copy held the previous
+ * checkpoint's list and failed its checksum. */
 static hid_t open_put(hid_t g, const char *name, hid_t type, size_t rows, size_t cols)
 {
+	if (h5_exists(g, name)) {
+		hid_t d = H5Dopen2(g, name, H5P_DEFAULT);
+		if (d >= 0 && shape_is(d, rows, cols))
+			return d;
+		if (d >= 0)
+			H5Dclose(d);
+		if (d < 0 || H5Ldelete(g, name, H5P_DEFAULT) < 0)
+			return h5_write_dataset_error(g, name);
+	}
 	int rank = cols ? 2 : 1;
 	hsize_t dims[2] = {rows, cols}, maxd[2] = {H5S_UNLIMITED, cols};
-	hid_t d;
-	if (h5_exists(g, name)) {
-		d = H5Dopen2(g, name, H5P_DEFAULT);
-		if (d >= 0 && H5Dset_extent(d, dims) < 0) {
-			H5Dclose(d);
-			d = -1;
-		}
-	} else {
-		hid_t sp = H5Screate_simple(rank, dims, maxd);
-		hid_t pl = H5Pcreate(H5P_DATASET_CREATE);
-		/* Chunks of at most one piece: HDF5 buffers a whole chunk. */
-		size_t most = H5_PIECE_ELEMENTS / (cols ? cols : 1);
-		hsize_t chunk[2] = {rows > most ? most : rows ? rows : 1, cols ? cols : 1};
-		H5Pset_chunk(pl, rank, chunk);
-		d = H5Dcreate2(g, name, type, sp, H5P_DEFAULT, pl, H5P_DEFAULT);
-		H5Pclose(pl);
-		H5Sclose(sp);
-	}
+	hid_t sp = H5Screate_simple(rank, dims, maxd);
+	hid_t pl = H5Pcreate(H5P_DATASET_CREATE);
+	/* Chunks of at most one piece: HDF5 buffers a whole chunk. */
+	size_t most = H5_PIECE_ELEMENTS / (cols ? cols : 1);
+	hsize_t chunk[2] = {rows > most ? most : rows ? rows : 1, cols ? cols : 1};
+	H5Pset_chunk(pl, rank, chunk);
+	hid_t d = H5Dcreate2(g, name, type, sp, H5P_DEFAULT, pl, H5P_DEFAULT);
+	H5Pclose(pl);
+	H5Sclose(sp);
 	if (d < 0)
 		h5_write_dataset_error(g, name);
 	return d;
@@ -360,13 +376,7 @@ static hid_t open_rows(hid_t g, const char *name, size_t n, size_t cols)
 	if (!h5_exists(g, name))
 		return err_set("%s: checkpoint dataset '%s': missing", h5_name(g), name);
 	hid_t d = H5Dopen2(g, name, H5P_DEFAULT);
-	hid_t sp = H5Dget_space(d);
-	hsize_t dims[2] = {0, 0};
-	int rank = H5Sget_simple_extent_ndims(sp);
-	if (rank == (cols ? 2 : 1)) /* dims holds no more */
-		H5Sget_simple_extent_dims(sp, dims, NULL);
-	H5Sclose(sp);
-	if (rank != (cols ? 2 : 1) || dims[0] != n || (cols && dims[1] != cols)) {
+	if (!shape_is(d, n, cols)) {
 		H5Dclose(d);
 		return err_set("%s: checkpoint dataset '%s': wrong shape (expected %zu rows)",
 		               h5_name(g), name, n);
