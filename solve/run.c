@@ -113,6 +113,21 @@ static int checkpoint(loop_state *L)
 	return write_cracks(L) || run_flush(L->w) || checkpoint_write(e, run_hid(L->w)) ? -1 : 0;
 }
 
+/* A checkpoint and the recovery copy of the run file with it. A check of
+ * that copy (tests/solve/ranks_failures.sh): with DEM_TEST_KILL=S in the
+ * environment, every process kills itself (SIGKILL) once it has saved the
+ * copy of a checkpoint at step S or later, as a lost node ends a run, so
+ * that the copy of a given step can be compared with another run's. */
+static int recovery_point(loop_state *L)
+{
+	if (checkpoint(L) || run_save_recovery(L->w))
+		return -1;
+	const char *s = getenv("DEM_TEST_KILL");
+	if (s && *s && L->e->clock.step >= atoll(s))
+		raise(SIGKILL);
+	return 0;
+}
+
 /* Whether a checkpoint is due by the step count (agreed) or by rank 0's
  * wall clock (agreed after the step, with the signals). */
 static int checkpoint_due_by_step(const loop_state *L)
@@ -283,7 +298,7 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 	const double *agreed = e->sums.agree;
 	if (snapshot_due(L) && snapshot(L))
 		fatal(NULL);
-	if ((checkpoint_due_by_step(L) || agreed[2]) && (checkpoint(L) || run_save_recovery(L->w)))
+	if ((checkpoint_due_by_step(L) || agreed[2]) && recovery_point(L))
 		fatal(NULL);
 	if (e->out.cracks.all >= 4096 && (write_cracks(L) || flush_now_and_then(L)))
 		fatal(NULL);

@@ -3,11 +3,12 @@
 # machines"): a restart file of another format version gives one message
 # and a non-zero exit on 2 ranks, and leaves the file as it was; runs
 # stopped by a diagnosis (a runaway, a non-finite state) on 3 ranks are
-# the runs on one, message and all; a
-# rank killed with SIGKILL ends the run (the other rank does not wait forever)
-# without a finished-looking run file, and the run then continues from its
-# recovery copy, on 3 ranks by the same command and on 2 by --restart, to
-# the same bits as the uninterrupted run of one process.
+# the runs on one, message and all; the recovery copy of a step on 2
+# ranks is that of one process; a rank killed with SIGKILL ends the run
+# (the other rank does not wait forever) without a finished-looking run
+# file, and the run then continues from its recovery copy, on 3 ranks by
+# the same command and on 2 by --restart, to the same bits as the
+# uninterrupted run of one process.
 # Usage: ranks_failures.sh BIN_DIR TMP_DIR MPIEXEC
 set -eu
 bin=$1 tmp=$2 mpiexec=$3
@@ -65,6 +66,29 @@ if DEM_TEST_NAN=700 "$mpiexec" -np 3 --oversubscribe "$bin/solve" --quiet --thre
 	fail "a NaN velocity on 3 ranks: expected the run to stop"
 fi
 same nan1.h5 nan3.h5
+
+# The recovery copy of a checkpoint at which a dataset that rank 0 alone
+# writes (the surface list) is shorter than at the checkpoint before holds
+# the run of one process at that step: every process kills itself right
+# after the copy of step 300 (DEM_TEST_KILL, solve/run.c), on one process
+# and on 2 ranks, and the two copies are compared.
+killed_at() {
+	k=$1
+	shift
+	if DEM_TEST_KILL=$k "$@" 2> killed.err; then
+		fail "DEM_TEST_KILL=$k $*: expected the run to be killed"
+	fi
+}
+killed_at 200 "$bin/solve" --quiet --threads 1 --output c200.h5 ucs.json
+killed_at 300 "$bin/solve" --quiet --threads 1 --output c1.h5 ucs.json
+/usr/bin/python3 -c '
+import sys, h5py
+n = [h5py.File(p, "r")["checkpoint/surface_area"].shape[0] for p in sys.argv[1:]]
+if not n[1] < n[0]:
+    sys.exit("surface list of %d particles at step 200, %d at 300: expected it shorter" % tuple(n))' \
+	c200.h5.ckpt c1.h5.ckpt
+killed_at 300 "$mpiexec" -np 2 --oversubscribe "$bin/solve" --quiet --output c2.h5 ucs.json
+same c1.h5.ckpt c2.h5.ckpt
 
 # A rank killed with SIGKILL after the first checkpoint.
 "$mpiexec" -np 2 --oversubscribe "$bin/solve" --quiet --output k.h5 ucs.json 2> kill.err &
