@@ -319,6 +319,16 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 	return END_NONE;
 }
 
+/* A check of an interrupted run (tests/workflows/make.sh): with
+ * DEM_TEST_INTERRUPT=S in the environment, the process interrupts itself
+ * (SIGINT, as Ctrl-C does) before step S. */
+static void test_interrupt(const engine *e)
+{
+	const char *s = getenv("DEM_TEST_INTERRUPT");
+	if (s && *s && e->clock.step == atoll(s))
+		raise(SIGINT);
+}
+
 /* Steps until the run ends; everything besides engine_step is timed as
  * output (the phase between steps). */
 static void loop(loop_state *L)
@@ -331,6 +341,7 @@ static void loop(loop_state *L)
 		              boundary_clock_ends_run(e);
 		int64_t rebuilds = e->pairs.rebuilds;
 		double *agree = e->sums.agree;
+		test_interrupt(e);
 		agree[0] = interrupted;
 		agree[1] = par_rank() == 0 && L->o->max_wall > 0 &&
 		           timer_now() - L->wall0 >= L->o->max_wall;
@@ -458,7 +469,7 @@ int run_case(const dem_case *cs, dem_assembly *a, const run_opts *o)
 	run_recovery_name(o->output, ckpt, sizeof ckpt);
 	if (killed_before(cs, a, ckpt, &r)) {
 		if (!o->quiet)
-			fprintf(stderr, "%s: %s: a run of this case was killed; continuing it\n",
+			fprintf(stderr, "%s: %s: a run of this case did not finish; continuing it\n",
 			        err_program_name(), o->output);
 		assembly_free(a);
 		run_opts cont = *o;

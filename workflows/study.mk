@@ -63,7 +63,9 @@ $(STUDY_DIR)/study.csv: $(STUDY_DIR)/points.mk $(wildcard $(STUDY_RESULTS) \
 # rules for every run. These rules' stems are shorter than the Makefile's,
 # so make takes them for the points. A stage that fails writes its name to
 # the point's stage.failed (solve also keeps its diagnosis in
-# run.failed.h5), for the table; one that completes removes them.
+# run.failed.h5), for the table; one that completes removes them. An
+# interrupted solve (status 3) has not failed: its run becomes the recovery
+# copy run.h5.ckpt, which the next make continues (as in the Makefile).
 failed_stage = { rc=$$?; echo $(1) > $(@D)/stage.failed; exit $$rc; }
 
 $(STUDIES)/%/spheres.txt: $(STUDIES)/%/yade.args
@@ -79,8 +81,9 @@ $(STUDIES)/%/run.h5: $(STUDIES)/%/assembly.h5 $(STUDIES)/%/case.json | $(BIN)/so
 	@echo "== study point $*"
 	$(BIN)/solve --assembly $< --output $@ --depfile $(@D)/run.d --report $(@D)/report.json \
 		--threads $(THREADS) $(@D)/case.json \
-		|| { rc=$$?; if [ -f $@ ]; then mv $@ $(@D)/run.failed.h5; fi; \
-		     echo solve > $(@D)/stage.failed; exit $$rc; }
+		|| { rc=$$?; if [ $$rc -eq 3 ]; then [ ! -f $@ ] || mv $@ $@.ckpt; \
+		     else [ ! -f $@ ] || mv $@ $(@D)/run.failed.h5; \
+		     echo solve > $(@D)/stage.failed; fi; exit $$rc; }
 	rm -f $(@D)/run.failed.h5 $(@D)/stage.failed
 
 -include $(wildcard $(STUDIES)/*/*/assembly.d $(STUDIES)/*/*/run.d)

@@ -4,7 +4,8 @@
 # specimen or the seed changes. Runs on the same specimen share one assembly,
 # packed once (also under make -j2) and linked from each run's directory. Two
 # cases run side by side with make -j2, and a failing solve leaves no run.h5
-# that make would take as complete. A run may take another case's file and a
+# that make would take as complete; an interrupted one leaves its recovery
+# copy, which make continues. A run may take another case's file and a
 # sphere count of its own.
 # Usage: make.sh BIN_DIR SOURCE_DIR TMP_DIR
 set -eu
@@ -97,6 +98,24 @@ expect "pack solve post post post post" c COUNT=900
 [ "$(cat "$tmp/runs/c/specimen.key")" = small.count-300 ] || fail "c.count not in c's key"
 grep -q -- "--count 300$" "$tmp/runs/specimens/small.count-300/pack.args" || fail "c.count not used"
 grep -q "cases/a.json" "$tmp/runs/c/run.d" || fail "c.case not used"
+
+# An interrupted solve (SIGINT before step 700, DEM_TEST_INTERRUPT in
+# solve/run.c, as Ctrl-C) fails make and leaves its run as the recovery
+# copy run.h5.ckpt: no run.h5 that make would take as complete, no
+# run.failed.h5. The same make command continues it, to the bits of the
+# run not interrupted.
+cp "$tmp/runs/a/run.h5" "$tmp/whole.h5"
+sleep 1
+touch "$tmp/share/materials/m.json"
+if DEM_TEST_INTERRUPT=700 ran a > /dev/null; then fail "make a, interrupted: succeeded"; fi
+grep -q "interrupted at step 701" "$tmp/log" || { cat "$tmp/log" >&2; fail "solve not interrupted"; }
+[ ! -e "$tmp/runs/a/run.h5" ] || fail "an interrupted run left runs/a/run.h5"
+[ ! -e "$tmp/runs/a/run.failed.h5" ] || fail "an interrupted run taken as failed"
+[ -s "$tmp/runs/a/run.h5.ckpt" ] || fail "an interrupted run left no recovery copy"
+expect "solve post post post post" a
+grep -q "did not finish; continuing it" "$tmp/log" || { cat "$tmp/log" >&2; fail "not continued"; }
+/usr/bin/python3 "$src/tests/solve/same_run.py" "$tmp/whole.h5" "$tmp/runs/a/run.h5" > /dev/null ||
+	fail "the continued run differs from the whole one"
 
 # A case solve rejects: make fails, names the key, leaves no run.h5.
 if ran bad > /dev/null; then fail "make bad succeeded"; fi
