@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -63,16 +64,21 @@ void job_free(job *j)
 	memset(j, 0, sizeof *j);
 }
 
-/* Start the job's command j->next; 0, or -1 when it cannot start. */
+/* Start the job's command j->next; 0, or -1 when it cannot start. The
+ * command dies with calibrate (SIGKILL, even when calibrate itself is
+ * killed outright): a run left going would otherwise write the files of
+ * the same run that calibrate started again resumes. */
 static int launch(job *j)
 {
-	pid_t pid = fork();
+	pid_t parent = getpid(), pid = fork();
 	if (pid < 0) {
 		snprintf(j->message, sizeof j->message, "cannot start %s: %s", j->argv[j->next][0],
 		         strerror(errno));
 		return -1;
 	}
 	if (pid == 0) {
+		if (prctl(PR_SET_PDEATHSIG, SIGKILL) || getppid() != parent)
+			_exit(128 + SIGKILL);
 		int fd = open(j->log, O_WRONLY | O_CREAT | O_APPEND, 0644);
 		int null = open("/dev/null", O_RDONLY);
 		if (fd < 0 || null < 0)

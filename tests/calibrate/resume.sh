@@ -6,6 +6,8 @@
 # calibration file and options, one run per core), so that calibration is
 # not run twice; the interrupted one runs one run at a time, so the
 # comparison also shows that the result does not depend on the scheduling.
+# One killed outright (SIGKILL) takes its runs with it, and the next call
+# gives the same result.
 # Usage: resume.sh BIN_DIR DATA_DIR TMP_DIR WHOLE_DIR
 set -eu
 bin=$1 data=$2 tmp=$3 whole=$4
@@ -57,5 +59,26 @@ cmp -s "$tmp/a" "$tmp/b" || { diff "$tmp/a" "$tmp/b" >&2; fail "the logs differ"
 # Nothing left to run: a third call takes every run from the log.
 run "$tmp/cut" > /dev/null || fail "the third call failed"
 [ "$(field "$tmp/cut/report.json" new)" -eq 0 ] || fail "the third call ran again"
+
+# Killed outright (SIGKILL) with two runs going on: they die with it, so
+# that none goes on writing the files of the runs the next call starts
+# again, and the next call gives the same result, no run failed.
+"$bin/calibrate" --quiet --no-png --no-sensitivity --jobs 2 --out "$tmp/killed" \
+	"$data/recovery.json" > /dev/null 2>&1 &
+pid=$!
+i=0
+while [ "$(cat "$tmp/killed/log.csv" 2> /dev/null | wc -l)" -lt 3 ]; do
+	sleep 0.1
+	i=$((i + 1))
+	[ $i -lt 1200 ] || { kill $pid; fail "no run logged in 120 s"; }
+done
+kill -KILL $pid
+wait $pid || true
+sleep 0.5
+! pgrep -f -- "$tmp/killed/" > /dev/null ||
+	fail "runs of a killed calibration still going: $(pgrep -af -- "$tmp/killed/")"
+run "$tmp/killed" > /dev/null || fail "the calibration continued after SIGKILL failed"
+! grep -q ",failed" "$tmp/killed/log.csv" || fail "runs failed after SIGKILL: $(grep ,failed "$tmp/killed/log.csv")"
+cmp -s "$whole/material.json" "$tmp/killed/material.json" || fail "another material after SIGKILL"
 rm -rf "$tmp"
 echo "calibrate: $logged runs before the stop, $new after it, $runs without a stop"
