@@ -159,6 +159,9 @@ static void plot_maps(const char *dir, const dem_run *r, const specimen *sp, con
 	draw(dir, "cracks_orientation", &d, 900, 650);
 }
 
+/* The files of the crack series (vtk/cracks.pvd and its frames). */
+static int crack_file(const char *name) { return out_series_name(name, "cracks", "vtp"); }
+
 int post_cracks(int argc, char **argv)
 {
 	const char *out = NULL;
@@ -209,14 +212,16 @@ int post_cracks(int argc, char **argv)
 	if (!no_vtk) {
 		char *vdir = out_path(dir, "vtk");
 		out_mkdir(vdir);
+		char *stage = out_series_begin(vdir, "cracks");
 		size_t *all = xmalloc((r.nsnap ? r.nsnap : 1) * sizeof *all);
 		for (size_t k = 0; k < r.nsnap; k++)
 			all[k] = k;
 		double *times = xmalloc((r.nsnap + 1) * sizeof *times);
 		size_t nf = cracks_frames(&r, all, r.nsnap, times);
-		cracks_series(vdir, &r, times, nf, NULL);
+		cracks_series(stage, &r, times, nf, NULL);
+		out_series_commit(vdir, stage, "cracks.pvd", crack_file);
 		printf("wrote %s/cracks.pvd (%zu frames)\n", vdir, nf);
-		free(all), free(times), free(vdir);
+		free(all), free(times), free(vdir), free(stage);
 	}
 	if (!no_png && r.ncracks == 0)
 		printf("%s: no cracks in the run: no crack figures drawn\n", file);

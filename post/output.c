@@ -1,8 +1,11 @@
+#include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "lib/afile.h"
 #include "lib/err.h"
@@ -48,6 +51,91 @@ char *out_path(const char *dir, const char *name)
 	char *p = xmalloc(n);
 	snprintf(p, n, "%s/%s", dir, name);
 	return p;
+}
+
+/* Remove dir's files that go(name) accepts (all when go is NULL). */
+static void remove_files(const char *dir, int (*go)(const char *name))
+{
+	DIR *d = opendir(dir);
+	if (!d)
+		fatal("%s: cannot read directory: %s", dir, strerror(errno));
+	for (struct dirent *e; (e = readdir(d));) {
+		if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..") || (go && !go(e->d_name)))
+			continue;
+		char *path = out_path(dir, e->d_name);
+		if (unlink(path) != 0 && errno != ENOENT)
+			fatal("%s: cannot remove: %s", path, strerror(errno));
+		free(path);
+	}
+	closedir(d);
+}
+
+char *out_series_begin(const char *dir, const char *name)
+{
+	size_t n = strlen(name) + 6;
+	char *base = xmalloc(n);
+	snprintf(base, n, ".%s.new", name);
+	char *stage = out_path(dir, base);
+	free(base);
+	/* What a killed run left. */
+	if (access(stage, F_OK) == 0) {
+		remove_files(stage, NULL);
+		if (rmdir(stage) != 0)
+			fatal("%s: cannot remove: %s", stage, strerror(errno));
+	}
+	out_mkdir(stage);
+	return stage;
+}
+
+static void sync_dir(const char *dir)
+{
+	int fd = open(dir, O_RDONLY | O_DIRECTORY);
+	if (fd >= 0)
+		fsync(fd), close(fd);
+}
+
+void out_series_commit(const char *dir, const char *stage, const char *marker,
+                       int (*ours)(const char *name))
+{
+	char *mark = out_path(dir, marker), *staged_mark = out_path(stage, marker);
+	if (unlink(mark) != 0 && errno != ENOENT)
+		fatal("%s: cannot remove: %s", mark, strerror(errno));
+	sync_dir(dir);
+	remove_files(dir, ours);
+	DIR *d = opendir(stage);
+	if (!d)
+		fatal("%s: cannot read directory: %s", stage, strerror(errno));
+	for (struct dirent *e; (e = readdir(d));) {
+		if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..") ||
+		    !strcmp(e->d_name, marker))
+			continue;
+		char *from = out_path(stage, e->d_name), *to = out_path(dir, e->d_name);
+		if (rename(from, to) != 0)
+			fatal("%s: cannot rename to %s: %s", from, to, strerror(errno));
+		free(from), free(to);
+	}
+	closedir(d);
+	sync_dir(dir);
+	if (rename(staged_mark, mark) != 0)
+		fatal("%s: cannot rename to %s: %s", staged_mark, mark, strerror(errno));
+	sync_dir(dir);
+	if (rmdir(stage) != 0)
+		fatal("%s: cannot remove: %s", stage, strerror(errno));
+	free(mark), free(staged_mark);
+}
+
+int out_series_name(const char *name, const char *part, const char *ext)
+{
+	size_t n = strlen(part);
+	if (strncmp(name, part, n) != 0)
+		return 0;
+	const char *rest = name + n;
+	if (!strcmp(rest, ".pvd"))
+		return 1;
+	if (*rest++ != '_')
+		return 0;
+	size_t d = strspn(rest, "0123456789");
+	return d > 0 && rest[d] == '.' && !strcmp(rest + d + 1, ext);
 }
 
 void out_text_open(out_text *o, const char *path)

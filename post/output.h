@@ -15,6 +15,22 @@ char *out_path(const char *dir, const char *name);
 /* Create a directory and its parents; fatal on failure. */
 void out_mkdir(const char *dir);
 
+/* A series of files (post vtk's frames, post cracks' discs) that replaces
+ * the older one in dir as a whole. Its files are written into a staging
+ * directory, dir/.NAME.new (out_series_begin: made empty, its path
+ * returned; caller frees), then moved into dir (out_series_commit): the
+ * marker (the file whose presence says the series is complete) and every
+ * file of the older series (those ours() accepts) removed, the new files
+ * renamed in, the marker last. A kill before the commit leaves the older
+ * series whole, one during it a series without its marker: never a marker
+ * over files of two series. */
+char *out_series_begin(const char *dir, const char *name);
+void out_series_commit(const char *dir, const char *stage, const char *marker,
+                       int (*ours)(const char *name));
+
+/* Whether name is a file of part's series: PART.pvd or PART_<digits>.EXT. */
+int out_series_name(const char *name, const char *part, const char *ext);
+
 /* A text file written atomically. */
 typedef struct {
 	FILE *f;

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "lib/cli.h"
 #include "lib/err.h"
@@ -106,6 +107,19 @@ static void frame_files(const char *file, const dem_run *r, const frame *f, cons
 	snapshot_free(&s);
 }
 
+/* The files of a run's series (run_files), run.pvd among them. */
+static int series_file(const char *name)
+{
+	if (!strcmp(name, "run.pvd") || !strcmp(name, "geometry.vtp"))
+		return 1;
+	for (int p = 0; p < NPARTS; p++)
+		if (out_series_name(name, part_name[p], part_ext[p]))
+			return 1;
+	return 0;
+}
+
+/* The series of the run in file, into dir as a whole (out_series_begin):
+ * written in a staging directory, then moved in, run.pvd last. */
 static void run_files(const char *file, const char *dir, long every)
 {
 	dem_run r;
@@ -113,6 +127,7 @@ static void run_files(const char *file, const char *dir, long every)
 	if (r.nsnap == 0)
 		fatal("%s: the run has no snapshots (it stopped before writing one)", file);
 	out_mkdir(dir);
+	char *stage = out_series_begin(dir, "vtk");
 	frame f;
 	frame_of(&f, &r.assembly.geom);
 	size_t *snaps = xmalloc(r.nsnap * sizeof *snaps);
@@ -128,14 +143,14 @@ static void run_files(const char *file, const char *dir, long every)
 	size_t done = 0;
 #pragma omp parallel for schedule(dynamic, 1)
 	for (size_t k = 0; k < nframes; k++) {
-		frame_files(file, &r, &f, snaps, k, dir, entries);
+		frame_files(file, &r, &f, snaps, k, stage, entries);
 #pragma omp critical(post_progress)
 		progress_update(&pr, (double)++done, NULL);
 	}
 	progress_end(&pr);
 	double *times = xmalloc((nframes + 1) * sizeof *times);
 	size_t ncrack = cracks_frames(&r, snaps, nframes, times);
-	cracks_series(dir, &r, times, ncrack, entries[PART_CRACKS]);
+	cracks_series(stage, &r, times, ncrack, entries[PART_CRACKS]);
 	for (size_t k = 0; k < ncrack; k++)
 		entries[PART_CRACKS][k].part = PART_CRACKS;
 	/* One collection per part, and run.pvd with every part at each time. */
@@ -147,7 +162,7 @@ static void run_files(const char *file, const char *dir, long every)
 		if (p != PART_CRACKS && n) {
 			char name[64];
 			snprintf(name, sizeof name, "%s.pvd", part_name[p]);
-			char *path = out_path(dir, name);
+			char *path = out_path(stage, name);
 			pvd_entry *single = xmalloc(n * sizeof *single);
 			for (size_t k = 0; k < n; k++)
 				single[k] = (pvd_entry){entries[p][k].t, 0, entries[p][k].file};
@@ -158,17 +173,20 @@ static void run_files(const char *file, const char *dir, long every)
 		for (size_t k = 0; k < n; k++)
 			all[nall++] = entries[p][k];
 	}
-	/* run.pvd last: its presence says the series is complete. */
-	write_geometry(dir, &r.assembly.geom);
-	char *run_pvd = out_path(dir, "run.pvd");
+	/* run.pvd: its presence says the series is complete. */
+	write_geometry(stage, &r.assembly.geom);
+	char *run_pvd = out_path(stage, "run.pvd");
 	pvd_write(run_pvd, all, nall);
+	out_series_commit(dir, stage, "run.pvd", series_file);
+	free(run_pvd);
+	run_pvd = out_path(dir, "run.pvd");
 	printf("wrote %zu snapshots (%zu particles, %zu bonds, %zu cracks) to %s; open %s\n",
 	       nframes, r.assembly.n, r.bonds.n, r.ncracks, dir, run_pvd);
 	for (size_t k = 0; k < nall; k++)
 		free((char *)all[k].file);
 	for (int p = 0; p < NPARTS; p++)
 		free(entries[p]);
-	free(all), free(times), free(snaps), free(run_pvd);
+	free(all), free(times), free(snaps), free(run_pvd), free(stage);
 	run_free(&r);
 }
 

@@ -2,9 +2,10 @@
  * VTK library: every particle, bond, crack disc and platen is compared
  * with the run file as lib/runfile.h reads it, and the files must be
  * binary, compressed XML indexed by .pvd series, the same files whatever
- * the threads that write the frames. Also the packing of an assembly
- * file. */
+ * the threads that write the frames; a series written over another
+ * replaces it as a whole. Also the packing of an assembly file. */
 #include <math.h>
+#include <sys/stat.h>
 
 #include "lib/runfile.h"
 #include "lib/vec3.h"
@@ -303,6 +304,52 @@ static void check_assembly(const dem_run *run)
 	CHECK(harness_exists(gpath));
 }
 
+/* The files in d whose names start with prefix. */
+static int count_files(const char *d, const char *prefix)
+{
+	char cmd[1400];
+	snprintf(cmd, sizeof cmd, "ls -A '%s' | grep -c '^%s' > '%s/count.txt'", d, prefix, dir);
+	if (system(cmd) < 0)
+		return -1;
+	snprintf(cmd, sizeof cmd, "%s/count.txt", dir);
+	char *text = harness_slurp(cmd);
+	int n = text ? atoi(text) : -1;
+	free(text);
+	return n;
+}
+
+/* A series written over another run's replaces it as a whole: the older
+ * frames beyond the new ones removed, the other files of the directory
+ * kept, what a killed post left in its staging directory cleared. */
+static void check_replaced(const char *run_path)
+{
+	char d[1200], path[1300];
+	snprintf(d, sizeof d, "%s/replaced", dir);
+	post_result res = harness_post("vtk --out %s %s", d, run_path);
+	CHECK(res.status == 0);
+	harness_free(&res);
+	CHECK(count_files(d, "particles_") == 3 && count_files(d, "cracks_") >= 3);
+	snprintf(path, sizeof path, "%s/notes.txt", d);
+	FILE *f = fopen(path, "w");
+	CHECK(f && fputs("mine\n", f) >= 0 && fclose(f) == 0);
+	snprintf(path, sizeof path, "%s/.vtk.new", d);
+	CHECK(mkdir(path, 0777) == 0);
+	snprintf(path, sizeof path, "%s/.vtk.new/particles_000007.vtu", d);
+	f = fopen(path, "w");
+	CHECK(f && fclose(f) == 0);
+	res = harness_post("vtk --every 2 --out %s %s", d, run_path);
+	CHECK(res.status == 0);
+	harness_free(&res);
+	CHECK(count_files(d, "particles_") == 2 && count_files(d, "bonds_") == 2);
+	CHECK(count_files(d, "particles_000002") == 0);
+	CHECK(count_files(d, "notes.txt") == 1);
+	CHECK(count_files(d, ".vtk.new") == 0);
+	snprintf(path, sizeof path, "%s/every", dir);
+	char cmd[4000];
+	snprintf(cmd, sizeof cmd, "rm '%s/notes.txt' && diff -r '%s' '%s'", d, path, d);
+	CHECK(system(cmd) == 0);
+}
+
 int main(void)
 {
 	harness_dir(dir, sizeof dir, "vtk");
@@ -346,6 +393,7 @@ int main(void)
 		snprintf(cmd, sizeof cmd, "diff -r '%s' '%s/threads%d'", vdir, dir, t);
 		CHECK(system(cmd) == 0);
 	}
+	check_replaced(run_path);
 	check_assembly(&run);
 	snapshot_free(&s);
 	run_free(&run);
