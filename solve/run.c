@@ -522,7 +522,8 @@ static int drop_later_snapshots(run_writer *w, int64_t step)
 /* The file a restart continues from (its name into from, its contents
  * into r): the run file when it was interrupted (Ctrl-C, a signal, a
  * budget), or its recovery copy, which is what a run killed outright (kill
- * -9, a lost node) leaves; the one further on when there are both. */
+ * -9, a lost node) leaves; the one further on when there are both, the
+ * copy when the run file is of an earlier run that finished. */
 static void restart_source(const char *path, char *from, size_t n, dem_run *r)
 {
 	char ckpt[4200];
@@ -538,10 +539,13 @@ static void restart_source(const char *path, char *from, size_t n, dem_run *r)
 	if (has_run) {
 		if (run_read_head_part(path, rank, ranks, r))
 			fatal(NULL);
-		if (strcmp(r->status, "interrupted") != 0)
+		/* A recovery copy beside a finished run file is of a later run
+		 * under the same name, killed. */
+		int interrupted = strcmp(r->status, "interrupted") == 0;
+		if (!interrupted && !has_ckpt)
 			fatal("%s: the run has status '%s': only an interrupted run continues",
 			      path, r->status);
-		if (!has_ckpt || c.nrows <= r->nrows) {
+		if (interrupted && (!has_ckpt || c.nrows <= r->nrows)) {
 			if (has_ckpt)
 				run_free(&c);
 			snprintf(from, n, "%s", path);

@@ -5,7 +5,8 @@
  * complete checkpoint, by `solve --restart` or by the same command run again
  * (as make does). The run that finally completes must equal an
  * uninterrupted one bit for bit: every history column but the wall-clock
- * rate, every crack, every snapshot. A recovery copy whose checkpoint data
+ * rate, every crack, every snapshot. A run killed where a finished one of
+ * the same name lies continues from its copy by --restart. A recovery copy whose checkpoint data
  * have one value changed is refused by its checksum; one left by another
  * case is not continued. */
 #include <hdf5.h>
@@ -151,6 +152,18 @@ int main(void)
 	        during_copy);
 	CHECK(restarts_ok && kills == KILLS);
 	CHECK(finish(pid) == 0);
+	CHECK(!exists(ckpt));
+	CHECK(harness_same_runs(ref, run) == 0);
+
+	/* The same run again under the same name, killed: --restart takes its
+	 * recovery copy, not the finished run file beside it. */
+	pid = start("--output", run, cpath);
+	for (int k = 0; k < 3000 && !exists(ckpt); k++)
+		sleep_s(0.002);
+	kill(pid, SIGKILL);
+	finish(pid);
+	CHECK(exists(ckpt));
+	CHECK(finish(start("--restart", run, NULL)) == 0);
 	CHECK(!exists(ckpt));
 	CHECK(harness_same_runs(ref, run) == 0);
 
