@@ -166,7 +166,7 @@ int main(int argc, char **argv)
 	    .usage = "calibrate [options] CALIBRATION.json",
 	    .summary = summary,
 	    .epilog = "Example:\n  calibrate --out runs/calibrate-concrete "
-	              "share/calibration/concrete.json",
+	              "share/calibration/concrete-recovery.json",
 	    .opts = opts,
 	    .nopts = (int)(sizeof opts / sizeof opts[0]),
 	    .min_pos = 1,
