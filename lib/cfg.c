@@ -1,4 +1,5 @@
 #include <cjson/cJSON.h>
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -137,6 +138,36 @@ static void full_key(const cfg *c, const char *key, char *buf, size_t n)
 		snprintf(buf, n, "%s", key);
 }
 
+/* Whether b looks like a, mistyped: the same but for case, '_' or '-',
+ * two neighbouring letters swapped, or one letter more or less (not one
+ * letter for another: "mu1" and "mu2" are two keys). */
+static int mistyped(const char *a, const char *b)
+{
+	char x[128], y[128];
+	size_t n = 0, m = 0;
+	for (; *a && n + 1 < sizeof x; a++)
+		if (*a != '_' && *a != '-')
+			x[n++] = (char)tolower((unsigned char)*a);
+	for (; *b && m + 1 < sizeof y; b++)
+		if (*b != '_' && *b != '-')
+			y[m++] = (char)tolower((unsigned char)*b);
+	x[n] = y[m] = '\0';
+	if (n == m) {
+		size_t i = 0;
+		while (i < n && x[i] == y[i])
+			i++;
+		return i == n || (i + 1 < n && x[i] == y[i + 1] && x[i + 1] == y[i] &&
+		                  strcmp(x + i + 2, y + i + 2) == 0);
+	}
+	if (n + 1 != m && m + 1 != n)
+		return 0;
+	const char *l = n > m ? x : y, *sh = n > m ? y : x;
+	size_t i = 0;
+	while (sh[i] && sh[i] == l[i])
+		i++;
+	return strcmp(sh + i, l + i + 1) == 0;
+}
+
 int cfg_error(const cfg *c, const char *key, const char *fmt, ...)
 {
 	char what[1024], name[512];
@@ -145,6 +176,15 @@ int cfg_error(const cfg *c, const char *key, const char *fmt, ...)
 	vsnprintf(what, sizeof what, fmt, ap);
 	va_end(ap);
 	full_key(c, key, name, sizeof name);
+	/* A key missing where one like it is given: name that one. */
+	if (strncmp(what, "missing", 7) == 0)
+		for (cJSON *m = c->json->child; m; m = m->next)
+			if (m->string && strcmp(m->string, key) != 0 && mistyped(key, m->string)) {
+				size_t len = strlen(what);
+				snprintf(what + len, sizeof what - len, " (found '%s': misspelt?)",
+				         m->string);
+				break;
+			}
 	return err_set("%s: key '%s': %s", c->source, name, what);
 }
 

@@ -51,6 +51,25 @@ static void test_errors(void)
 	                     "number (Pa)");
 	CHECK(cfg_number(c, "nu", &e, "", 0, 0.5) == -1);
 	CHECK_STR(err_msg(), "cement.json: key 'nu': missing: expected a number in [0, 0.5]");
+	/* A missing key where one like it is given names it: one letter more or
+	 * less, two swapped, another case, '_'; not one letter for another. */
+	cfg *near = cfg_parse("{\"stpo\": 1, \"mu_1\": 2, \"Density\": 3, \"tensile_strenght\": 4,"
+	                      " \"mu2\": 5, \"rat\": 6}",
+	                      "c.json");
+	const char *keys[][2] = {{"stop", "stpo"},
+	                         {"mu1", "mu_1"},
+	                         {"density", "Density"},
+	                         {"tensile_strength", "tensile_strenght"},
+	                         {"rate", "rat"}};
+	for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++) {
+		char want[200];
+		snprintf(want, sizeof want, " (found '%s': misspelt?)", keys[k][1]);
+		CHECK(cfg_number(near, keys[k][0], &e, "", 0, 1) == -1);
+		CHECK_CONTAINS(err_msg(), want);
+	}
+	CHECK(cfg_number(near, "mu3", &e, "", 0, 1) == -1);
+	CHECK(strstr(err_msg(), "found") == NULL);
+	cfg_free(near);
 	static const char *const words[] = {"linear", "onate", NULL};
 	int choice;
 	CHECK(cfg_choice_or(c, "law", &choice, words, 0) == -1);
