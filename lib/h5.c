@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/statvfs.h>
+#include <unistd.h>
 
 #include <hdf5_hl.h>
 #include <zlib.h>
@@ -251,9 +252,10 @@ static hid_t check_format(hid_t f, const char *name, const char *format)
 hid_t h5_open(const char *path, const char *format, int readwrite)
 {
 	h5_quiet();
+	if (access(path, F_OK) != 0)
+		return err_set("%s: cannot read: %s", path, strerror(errno));
 	if (H5Fis_hdf5(path) <= 0)
-		return err_set(
-		    "%s: not a readable HDF5 file (missing, truncated or another format)", path);
+		return err_set("%s: not a readable HDF5 file (truncated or another format)", path);
 	hid_t f = H5Fopen(path, readwrite ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT);
 	if (f < 0)
 		return err_set("%s: cannot open HDF5 file", path);

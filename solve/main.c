@@ -1,5 +1,7 @@
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "lib/afile.h"
 #include "lib/assembly.h"
@@ -109,6 +111,10 @@ static int solve_main(int argc, char **argv)
 	                   {"the material", cs.material_file},
 	                   {"the assembly", cs.assembly}};
 	cli_check_outputs(&spec, outs, 3, ins, 3);
+	if (!assembly && access(cs.assembly, F_OK) != 0)
+		fatal("%s: key 'assembly': %s (relative to the case file): %s; make it with pack, "
+		      "or give --assembly FILE",
+		      pos[0], cs.assembly, strerror(errno));
 	if (depfile && par_rank() == 0 && depfile_write(depfile, output, inputs, 3))
 		fatal(NULL);
 	dem_assembly a; /* each rank a piece (solve/order.h) */

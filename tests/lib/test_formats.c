@@ -509,7 +509,7 @@ static void test_bad_files(const char *assembly_path, const char *run_path)
 	CHECK(run_read(assembly_path, &r) == -1);
 	CHECK_CONTAINS(err_msg(), "value \"dem-assembly\": expected \"dem-run\"");
 	CHECK(assembly_read("/nonexistent/a.h5", &a) == -1);
-	CHECK_CONTAINS(err_msg(), "/nonexistent/a.h5: not a readable HDF5 file");
+	CHECK_CONTAINS(err_msg(), "/nonexistent/a.h5: cannot read: No such file or directory");
 	unlink(bad);
 }
 

@@ -56,8 +56,8 @@ int main(void)
 			         text, commands[c]);
 		else
 			snprintf(msg, sizeof msg,
-			         "post: %s: not a readable HDF5 file (missing, truncated or "
-			         "another format)\n",
+			         "post: %s: not a readable HDF5 file (truncated or another "
+			         "format)\n",
 			         text);
 		expect(1, msg, commands[c], text);
 		if (both[c])
