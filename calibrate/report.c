@@ -124,8 +124,10 @@ static void sensitivities_md(FILE *f, const report *rp)
 	        "## Sensitivities at the optimum\n\nElasticities: the change of each quantity, "
 	        "as a fraction of its target, per relative change of each key (central "
 	        "differences, steps of %.3g %%); noise: what the three runs of each key leave "
-	        "beyond a straight line, as a fraction of the target.\n\n| target |",
-	        100 * sp->sens_step);
+	        "beyond a straight line, as a fraction of the target.%s\n\n| target |",
+	        100 * sp->sens_step,
+	        sp->nkey > sp->nfree ? " The keys that keep their ratio to a free one move with it."
+	                             : "");
 	for (int k = 0; k < sp->nfree; k++)
 		fprintf(f, " %s |", sp->key[k].name);
 	fprintf(f, " noise |\n|---|");

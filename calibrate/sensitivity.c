@@ -103,6 +103,18 @@ void sensitivity_analyse(const cal_spec *sp, sensitivity *s)
 			s->target_cos[i][j] = cosine(n, jw[i], 1, jw[j], 1);
 }
 
+/* Whether key k is its class's anchor under the scaling (space.h): the
+ * first free key of the class. */
+static int is_anchor(const cal_spec *sp, int k)
+{
+	if (!sp->scaling || sp->key[k].cls == CLS_NONE)
+		return 0;
+	for (int j = 0; j < k; j++)
+		if (sp->key[j].free && sp->key[j].cls == sp->key[k].cls)
+			return 0;
+	return 1;
+}
+
 int sensitivity_run(evaluator *e, const double *v, const outcome *at, sensitivity *s)
 {
 	const cal_spec *sp = e->sp;
@@ -117,8 +129,15 @@ int sensitivity_run(evaluator *e, const double *v, const outcome *at, sensitivit
 		dv[k][0] = fmin(h, p->hi - v[k]);
 		dv[k][1] = -fmin(h, v[k] - p->lo);
 		for (int side = 0; side < 2; side++) {
-			memcpy(pts[2 * k + side], v, sizeof pts[0]);
-			pts[2 * k + side][k] = v[k] + dv[k][side];
+			double *pt = pts[2 * k + side];
+			memcpy(pt, v, sizeof pts[0]);
+			pt[k] = v[k] + dv[k][side];
+			/* The keys tied to an anchor keep their ratio to it, as
+			 * everywhere in the calibration: they move with it. */
+			if (is_anchor(sp, k) && v[k] != 0)
+				for (int j = n; j < sp->nkey; j++)
+					if (sp->key[j].cls == p->cls)
+						pt[j] = v[j] * (pt[k] / v[k]);
 		}
 		double scale = v[k] != 0 ? fabs(v[k]) : p->hi - p->lo;
 		s->h[k] = (dv[k][0] - dv[k][1]) / scale;

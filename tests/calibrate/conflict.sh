@@ -3,7 +3,8 @@
 # truth's stresses give beside its UCS. With the strengths and E0 free, every
 # key moves the two together, so the search stops on the best compromise
 # (exit status 4) within its budget, says which targets conflict, and writes
-# the material all the same.
+# the material all the same. Its sensitivities move the keys tied to the
+# free strength with it, as every run does.
 # Usage: conflict.sh BIN_DIR DATA_DIR TMP_DIR
 set -eu
 bin=$1 data=$2 tmp=$3
@@ -29,5 +30,15 @@ grep -q '"met":	false' "$tmp/out/report.json" || fail "report.json says met"
 grep -q "targets not all met" "$tmp/out/material.json" || fail "material.json's name"
 runs=$(sed -n 's/.*"search":[[:space:]]*\([0-9]*\).*/\1/p' "$tmp/out/report.json" | head -n 1)
 [ "$runs" -lt 20 ] || fail "$runs search runs: the budget, not the diagnosis, ended it"
+# Every run, those of the sensitivities too, keeps the tied stresses at
+# their template ratio to the free one (the strength of the scaling).
+/usr/bin/python3 -c '
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+phases = set(r["phase"] for r in rows)
+ratios = set(round(float(r["shear_strength"]) / float(r["tensile_strength"]), 9) for r in rows)
+if "sensitivity" not in phases or len(ratios) != 1:
+    sys.exit("phases %s, shear/tensile strength ratios %s: expected one" % (sorted(phases), sorted(ratios)))' \
+	"$tmp/out/log.csv" || fail "a run broke the tie of the stresses"
 rm -rf "$tmp"
 echo "calibrate: conflicting targets diagnosed after $runs search runs"
