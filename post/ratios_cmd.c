@@ -17,6 +17,7 @@
 #include "post/plot.h"
 #include "post/post.h"
 #include "post/ratios.h"
+#include "post/summary.h"
 
 enum { MAX_RUNS = 32 };
 
@@ -56,21 +57,11 @@ static void compute_run(run_ratios *rr, const instant *in, const ratio_bins *bin
 	if (r.bonds.n == 0)
 		fatal("%s: the run has no bonds (/bonds is missing or empty)", rr->path);
 	printf("%s\n", desc);
-	/* A peak at the end of a run that a strain stop ended is no peak: the
-	 * stress was still rising (or on a plateau) when the run stopped. */
-	const double *sa = run_column_data(&r, "stress_axial");
-	if (in->kind == AT_PEAK && sa && r.nrows > 2 && r.status &&
-	    strstr(r.status, "axial strain reached")) {
-		size_t top = 0;
-		for (size_t k = 1; k < r.nrows; k++)
-			top = sa[k] > sa[top] ? k : top;
-		if (sa[r.nrows - 1] >= 0.99 * sa[top]) {
-			rr->plateau = 1;
-			warn("%s: the axial stress has no peak before the run ended (%s): the "
-			     "instant is "
-			     "the strain stop's plateau, not a limit stress",
-			     rr->path, r.status);
-		}
+	if (in->kind == AT_PEAK && summary_no_peak(&r)) {
+		rr->plateau = 1;
+		warn("%s: the axial stress has no peak before the run ended (%s): the instant is "
+		     "the strain stop's plateau, not a limit stress",
+		     rr->path, r.status);
 	}
 	dem_snapshot s;
 	load_snapshot(rr->path, &r, rr->snap, &s);

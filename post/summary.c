@@ -1,6 +1,7 @@
 /* The figures of summary.json (equations in post/summary.h). */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "lib/err.h"
 #include "post/summary.h"
@@ -95,6 +96,17 @@ static void hydrostatic(const dem_run *r, summary *s)
 	if (ev)
 		s->bulk_modulus = slope_band(ev, p, p, r->nrows, 0.25 * pmax, 0.75 * pmax);
 	s->ke_ratio_max = ke_ratio(r, p, r->nrows, 0.5 * pmax, pmax);
+}
+
+int summary_no_peak(const dem_run *r)
+{
+	const double *sa = run_column_data(r, "stress_axial");
+	if (!sa || r->nrows <= 2 || !r->status || !strstr(r->status, "axial strain reached"))
+		return 0;
+	size_t top = 0;
+	for (size_t k = 1; k < r->nrows; k++)
+		top = sa[k] > sa[top] ? k : top;
+	return sa[r->nrows - 1] >= 0.99 * sa[top];
 }
 
 int summary_compute(const dem_run *r, summary_kind kind, double D, double t, summary *s)

@@ -62,6 +62,11 @@ typedef struct {
 	double wall_time;   /* s */
 } summary;
 
+/* Whether the run has no peak: its axial-strain stop ended it with the
+ * axial stress still within 1 % of its highest (still rising, or on a
+ * plateau), so its "peak" is where the run stopped, not a limit stress. */
+int summary_no_peak(const dem_run *r);
+
 /* Figures of the history of r for a test of that kind; D and t (m) are the
  * Brazilian disc's diameter and thickness (ignored otherwise). Returns 0,
  * or -1 with err_set() when the history lacks strain_axial or stress_axial

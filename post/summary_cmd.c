@@ -118,18 +118,26 @@ int post_summary(int argc, char **argv)
 	if (summary_compute(&r, kind_of(nm.test), r.assembly.geom.diameter, r.assembly.geom.height,
 	                    &s))
 		fatal("%s: %s", file, err_msg());
-	char warning[256], *label = post_run_label(file);
-	int slow = s.ke_ratio_max > SUMMARY_KE_RATIO_MAX;
-	if (slow) {
+	char warning[600] = "", *label = post_run_label(file);
+	if (s.ke_ratio_max > SUMMARY_KE_RATIO_MAX)
 		snprintf(warning, sizeof warning,
 		         "kinetic/elastic energy ratio %.3g on the loading branch (above %g): the "
 		         "loading is too fast to be quasi-static",
 		         s.ke_ratio_max, SUMMARY_KE_RATIO_MAX);
-		fprintf(stderr, "%s: warning: %s: %s\n", err_program_name(), file, warning);
+	if (kind_of(nm.test) != TEST_HYDROSTATIC && summary_no_peak(&r)) {
+		size_t len = strlen(warning);
+		snprintf(
+		    warning + len, sizeof warning - len,
+		    "%sno peak: the axial-strain stop ended the run with the stress within 1 %% "
+		    "of its highest, so the peak and strength figures are the stop's (the "
+		    "specimen had not failed: raise stop.strain_axial)",
+		    len ? "; " : "");
 	}
+	if (warning[0])
+		fprintf(stderr, "%s: warning: %s: %s\n", err_program_name(), file, warning);
 	char *dir = out_dir(out, file);
 	char *path = out_path(dir, "summary.json");
-	write_json(path, label, &r, &nm, &s, slow ? warning : NULL);
+	write_json(path, label, &r, &nm, &s, warning[0] ? warning : NULL);
 	printf("wrote %s\n", path);
 	free(path), free(dir), free(label);
 	run_free(&r);

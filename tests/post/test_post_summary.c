@@ -34,7 +34,9 @@ static const run_column cols[] = {
 };
 enum { NCOLS = sizeof cols / sizeof cols[0] };
 
-typedef enum { TRIAXIAL, BTS, HYDROSTATIC, CYCLE } kind;
+/* BTS_RISING: a Brazilian test whose load still rises when its strain stop
+ * ends it (no peak). */
+typedef enum { TRIAXIAL, BTS, HYDROSTATIC, CYCLE, BTS_RISING } kind;
 
 /* Deviator of the triaxial history: E0 e up to the peak row, then falling
  * linearly to half the peak at the last row. */
@@ -67,7 +69,8 @@ static void write_run(const char *path, kind kd, double ke_fraction)
 	int32_t mat[2] = {0, 0};
 	dem_assembly a = {.n = 2, .x = x, .r = r, .material = mat};
 	prov_init(&a.prov, "pack", "{}", 0);
-	strcpy(a.geom.shape, kd == BTS ? "disc" : "cylinder");
+	int bts = kd == BTS || kd == BTS_RISING;
+	strcpy(a.geom.shape, bts ? "disc" : "cylinder");
 	a.geom.axis[2] = 1;
 	a.geom.diameter = D;
 	a.geom.height = T;
@@ -76,7 +79,8 @@ static void write_run(const char *path, kind kd, double ke_fraction)
 	    "{\"test\":\"triaxial\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}",
 	    "{\"test\":\"bts\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}",
 	    "{\"test\":\"hydrostatic\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}",
-	    "{\"test\":\"triaxial\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}"};
+	    "{\"test\":\"triaxial\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}",
+	    "{\"test\":\"bts\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}"};
 	dem_provenance prov;
 	prov_init(&prov, "solve", config[kd], 0);
 	run_writer *w = run_create(path, &prov, &a, cols, NCOLS);
@@ -86,8 +90,9 @@ static void write_run(const char *path, kind kd, double ke_fraction)
 	CHECK(w && run_write_bonds(w, &b) == 0);
 	for (int k = 0; w && k < ROWS; k++) {
 		double e = DE * k, p = PC, sa = PC + deviator(k), er = -NU0 * e, ev = e + 2 * er;
-		if (kd == BTS)
-			p = 0, sa = bts_force(k) / (PI * D * D / 4);
+		double f = kd == BTS_RISING ? 5e3 * k / (ROWS - 1) : bts_force(k);
+		if (bts)
+			p = 0, sa = f / (PI * D * D / 4);
 		if (kd == HYDROSTATIC)
 			p = sa = PMAX * k / (ROWS - 1), ev = p / K0, e = ev / 3, er = ev / 3;
 		if (kd == CYCLE) {
@@ -95,24 +100,27 @@ static void write_run(const char *path, kind kd, double ke_fraction)
 			cycle(k, &e, &qc);
 			sa = PC + qc, er = -NU0 * e, ev = e + 2 * er;
 		}
-		double row[NCOLS] = {1e-6 * k,  100.0 * k,    e,
-		                     sa,        er,           ev,
-		                     p,         bts_force(k), ke_fraction * (1 + e),
-		                     1 + e,     k / 2,        k - k / 2,
-		                     1000.0 + k};
+		double row[NCOLS] = {
+		    1e-6 * k, 100.0 * k, e,         sa,        er, ev, p, f, ke_fraction * (1 + e),
+		    1 + e,    k / 2,     k - k / 2, 1000.0 + k};
 		CHECK(run_history(w, row) == 0);
 	}
-	CHECK(w && run_finish(w, "complete") == 0);
+	CHECK(w && run_finish(w, kd == BTS_RISING ? "stopped: axial strain reached 0.03"
+	                                          : "complete") == 0);
 	prov_free(&prov);
 	prov_free(&a.prov);
 }
 
+/* warn: 0 none, 1 not quasi-static, 2 no peak. */
 static cfg *summary_of(const char *dir, const char *run, int warn)
 {
 	post_result res = harness_post("summary --out %s/out %s", dir, run);
 	CHECK(res.status == 0);
-	if (warn)
+	if (warn == 1)
 		CHECK_CONTAINS(res.err, "the loading is too fast to be quasi-static");
+	else if (warn == 2)
+		CHECK_CONTAINS(res.err, "no peak: the axial-strain stop ended the run with the "
+		                        "stress within 1 % of its highest");
 	else
 		CHECK_STR(res.err, "");
 	harness_free(&res);
@@ -178,6 +186,16 @@ int main(void)
 	CHECK_REL(num(c, "bts_strength"), 2 * 5e3 / (PI * D * T), 1e-10);
 	text = cfg_text(c);
 	CHECK_CONTAINS(text, "\"young_modulus\":null");
+	free(text);
+	cfg_free(c);
+
+	/* A load still rising at the strain stop: the strength is the stop's,
+	 * and the summary says so. */
+	write_run(run, BTS_RISING, 0.01);
+	c = summary_of(dir, run, 2);
+	CHECK_REL(num(c, "peak_force"), 5e3, 1e-12);
+	text = cfg_text(c);
+	CHECK_CONTAINS(text, "\"warning\":\"no peak: ");
 	free(text);
 	cfg_free(c);
 
