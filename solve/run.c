@@ -469,7 +469,8 @@ int run_case(const dem_case *cs, dem_assembly *a, const run_opts *o)
 	run_recovery_name(o->output, ckpt, sizeof ckpt);
 	if (killed_before(cs, a, ckpt, &r)) {
 		if (!o->quiet)
-			fprintf(stderr, "%s: %s: a run of this case did not finish; continuing it\n",
+			fprintf(stderr,
+			        "%s: %s: a run of this case did not finish; continuing it\n",
 			        err_program_name(), o->output);
 		assembly_free(a);
 		run_opts cont = *o;

@@ -318,6 +318,12 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 		    "= %.3g x critical %.4g s (Eq. 11-15, set by particle %d)\n",
 		    err_program_name(), e->p.n, e->pairs.nbonds, pk.coordination, e->law->name,
 		    e->clock.dt, e->clock.dt / e->clock.dt_crit, e->clock.dt_crit, w_orig);
+	if (!o->quiet && e->team < e->nthreads)
+		fprintf(
+		    stderr,
+		    "%s: on %d thread(s), not %d: a thread takes at least about 1 000 particles "
+		    "(the results are the same on any number)\n",
+		    err_program_name(), e->team, e->nthreads);
 	return 0;
 }
 
