@@ -247,6 +247,17 @@ static double x_of(const study_param *p, int v)
 	return p->numeric ? p->value[v]->valuedouble * p->scale : v;
 }
 
+/* "label = value" of value v of p, as the figures show it (the value
+ * times the scale), appended to t (of size n). */
+static void value_title(const study_param *p, int v, char *t, size_t n)
+{
+	size_t len = strlen(t);
+	if (p->numeric)
+		snprintf(t + len, n - len, "%s = %g", p->label, x_of(p, v));
+	else
+		snprintf(t + len, n - len, "%s = %s", p->label, p->text[v]);
+}
+
 static int draw_response(const study *s, const group *g, const char *dir)
 {
 	const study_param *p = &s->p[0];
@@ -302,7 +313,7 @@ static int draw_response(const study *s, const group *g, const char *dir)
 	for (int j = 0; j < ng; j++) {
 		char t[200] = "";
 		if (s->np > 1)
-			snprintf(t, sizeof t, "%s = %s", s->p[1].label, s->p[1].text[j]);
+			value_title(&s->p[1], j, t, sizeof t);
 		fprintf(d.f, "group_title[%d] = ", j + 1);
 		plot_quote(d.f, t);
 		fputc('\n', d.f);
@@ -395,9 +406,11 @@ static int draw_curves(const study *s, const char *dir)
 			first &= s->point[j].v[0] != pt->v[0] || s->point[j].v[1] != pt->v[1];
 		char t[200] = "";
 		if (first)
-			for (int i = 0; i < s->np; i++)
-				snprintf(t + strlen(t), sizeof t - strlen(t), "%s%s = %s",
-				         i ? ", " : "", s->p[i].name, s->p[i].text[pt->v[i]]);
+			for (int i = 0; i < s->np; i++) {
+				if (i)
+					snprintf(t + strlen(t), sizeof t - strlen(t), ", ");
+				value_title(&s->p[i], pt->v[i], t, sizeof t);
+			}
 		title[n++] = xstrdup(t);
 	}
 	fprintf(d.f, "EOD\nncurves = %d\narray curve_lt[%d]\narray curve_title[%d]\n", n, n ? n : 1,

@@ -10,9 +10,15 @@ set title 'Calibration: ' . title_text noenhanced
 set xlabel 'point evaluated'
 set ylabel 'largest error / tolerance'
 set logscale y
+set format y '10^{%L}'
 set yrange [*:*]
 set offsets 0.5, 0.5, 0, 0
-set key top right
+# Whole points on the x axis: a tick at each when there are few.
+set format x '%.0f'
+stats $path using 1 nooutput
+if (STATS_max < 12) set xtics 1
+set key below maxrows 2 width 2
+set bmargin 7
 plot $path using 1:2 with points lt 1 pt 7 title 'point (its runs)', \
      $path using 1:3 with points lt 2 pt 6 title 'its best scaled copy (predicted)', \
      $path using 1:4 with steps lt 3 lw 2 title 'best so far', \
