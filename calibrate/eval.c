@@ -10,6 +10,7 @@
 #include "calibrate/runner.h"
 #include "lib/cfg.h"
 #include "lib/err.h"
+#include "lib/json.h"
 
 static const char *const phase_names[] = {"truth", "search", "sensitivity", "confirm"};
 static const char *const kind_names[] = {"search", "confirm"};
@@ -275,14 +276,8 @@ static int threads_per_run(const evaluator *e, int nrun)
 static int write_case(const char *dir, const cJSON *cs)
 {
 	char *path = join(dir, "case.json");
-	char *text = cJSON_Print(cs);
-	FILE *f = fopen(path, "w");
-	int rc = f && fputs(text, f) >= 0 && fputc('\n', f) != EOF ? 0 : -1;
-	if (f && fclose(f))
-		rc = -1;
-	if (rc)
-		err_set("%s: cannot write: %s", path, strerror(errno));
-	free(path), free(text);
+	int rc = json_write(path, cJSON_Duplicate(cs, 1));
+	free(path);
 	return rc;
 }
 
