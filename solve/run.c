@@ -320,13 +320,14 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 }
 
 /* A check of an interrupted run (tests/workflows/make.sh): with
- * DEM_TEST_INTERRUPT=S in the environment, the process interrupts itself
- * (SIGINT, as Ctrl-C does) before step S. */
+ * DEM_TEST_INTERRUPT=S in the environment, SIGINT goes to the process's
+ * whole process group before step S, as Ctrl-C in a terminal sends it
+ * (run it in a group of its own: setsid). */
 static void test_interrupt(const engine *e)
 {
 	const char *s = getenv("DEM_TEST_INTERRUPT");
 	if (s && *s && e->clock.step == atoll(s))
-		raise(SIGINT);
+		kill(0, SIGINT);
 }
 
 /* Steps until the run ends; everything besides engine_step is timed as

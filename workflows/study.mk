@@ -77,6 +77,7 @@ $(STUDIES)/%/assembly.h5: $(STUDIES)/%/specimen.json | $(BIN)/pack
 		> $(@D)/pack.txt || $(call failed_stage,pack)
 	rm -f $(@D)/stage.failed
 
+$(STUDIES)/%/run.h5: SHELL := $(TOP)/workflows/solve-shell
 $(STUDIES)/%/run.h5: $(STUDIES)/%/assembly.h5 $(STUDIES)/%/case.json | $(BIN)/solve
 	@echo "== study point $*"
 	$(BIN)/solve --assembly $< --output $@ --depfile $(@D)/run.d --report $(@D)/report.json \

@@ -99,15 +99,19 @@ expect "pack solve post post post post" c COUNT=900
 grep -q -- "--count 300$" "$tmp/runs/specimens/small.count-300/pack.args" || fail "c.count not used"
 grep -q "cases/a.json" "$tmp/runs/c/run.d" || fail "c.case not used"
 
-# An interrupted solve (SIGINT before step 700, DEM_TEST_INTERRUPT in
-# solve/run.c, as Ctrl-C) fails make and leaves its run as the recovery
-# copy run.h5.ckpt: no run.h5 that make would take as complete, no
-# run.failed.h5. The same make command continues it, to the bits of the
-# run not interrupted.
+# Ctrl-C during a solve (SIGINT to make's whole process group before step
+# 700, DEM_TEST_INTERRUPT in solve/run.c; make in a session of its own)
+# fails make and leaves the run as the recovery copy run.h5.ckpt: no run.h5
+# that make would take as complete, no run.failed.h5. The same make command
+# continues it, to the bits of the run not interrupted.
 cp "$tmp/runs/a/run.h5" "$tmp/whole.h5"
 sleep 1
 touch "$tmp/share/materials/m.json"
-if DEM_TEST_INTERRUPT=700 ran a > /dev/null; then fail "make a, interrupted: succeeded"; fi
+if DEM_TEST_INTERRUPT=700 setsid --wait make -C "$src/workflows" \
+	BIN="$bin" SHARE="$tmp/share" OUT="$tmp/runs" THREADS=1 CASES="a b bad c" \
+	a.specimen=small b.specimen=small bad.specimen=small c.specimen=small a > "$tmp/log" 2>&1; then
+	fail "make a, interrupted: succeeded"
+fi
 grep -q "interrupted at step 701" "$tmp/log" || { cat "$tmp/log" >&2; fail "solve not interrupted"; }
 [ ! -e "$tmp/runs/a/run.h5" ] || fail "an interrupted run left runs/a/run.h5"
 [ ! -e "$tmp/runs/a/run.failed.h5" ] || fail "an interrupted run taken as failed"
