@@ -121,6 +121,13 @@ grep -q "did not finish; continuing it" "$tmp/log" || { cat "$tmp/log" >&2; fail
 /usr/bin/python3 "$src/tests/solve/same_run.py" "$tmp/whole.h5" "$tmp/runs/a/run.h5" > /dev/null ||
 	fail "the continued run differs from the whole one"
 
+# An output path with a space: one message naming it, nothing made.
+if make -C "$src/workflows" BIN="$bin" OUT="$tmp/with space" a > "$tmp/log" 2>&1; then
+	fail "OUT with a space: make succeeded"
+fi
+grep -q "OUT='$tmp/with space': a path with spaces" "$tmp/log" || { cat "$tmp/log" >&2; fail "no message for OUT with a space"; }
+[ ! -e "$tmp/with space" ] || fail "OUT with a space: something was made"
+
 # A case solve rejects: make fails, names the key, leaves no run.h5.
 if ran bad > /dev/null; then fail "make bad succeeded"; fi
 grep -q "no_such_key" "$tmp/log" || { cat "$tmp/log" >&2; fail "no message naming the key"; }
