@@ -73,6 +73,12 @@ def parse(argv):
     if not args["dir"]:
         sys.exit("usage: pvbatch show_run.py VTK_DIR [OUT.png] [--time T] [--size W H] [--bonds] "
                  "[--ranges-at-end]")
+    # The run.pvd that post vtk names, or any .pvd of its series: its directory.
+    if args["dir"].endswith(".pvd") and os.path.isfile(args["dir"]):
+        args["dir"] = os.path.dirname(os.path.abspath(args["dir"]))
+    if not os.path.isfile(os.path.join(args["dir"], "particles.pvd")):
+        sys.exit("show_run.py: %s: not a run's VTK directory (expected the directory post vtk "
+                 "wrote, with particles.pvd and run.pvd)" % args["dir"])
     if args["size"] is None:
         w, h = DEFAULT_SIZE
         args["size"] = (w * 3 // 2, h) if args["bonds"] else (w, h)
