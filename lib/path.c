@@ -34,6 +34,29 @@ char *path_absolute(const char *name)
 	return out;
 }
 
+char *path_shell_word(const char *name)
+{
+	if (name[0] && strspn(name, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+	                            "0123456789/._-+,:@%=") == strlen(name))
+		return xstrdup(name);
+	/* Each ' as '\'' (close, an escaped quote, open again). */
+	size_t n = 3;
+	for (const char *c = name; *c; c++)
+		n += *c == '\'' ? 4 : 1;
+	char *out = xmalloc(n), *o = out;
+	*o++ = '\'';
+	for (const char *c = name; *c; c++)
+		if (*c == '\'') {
+			memcpy(o, "'\\''", 4);
+			o += 4;
+		} else {
+			*o++ = *c;
+		}
+	*o++ = '\'';
+	*o = '\0';
+	return out;
+}
+
 /* The directory part of name ("." for none); returns what follows it. */
 static const char *dir_of(const char *name, char *dir, size_t n)
 {

@@ -16,6 +16,10 @@ char *path_beside(const char *file, const char *name);
  * exists, else joined to the current directory. A new string. */
 char *path_absolute(const char *name);
 
+/* name as a shell word, to paste into a command: as it is when it needs
+ * no quoting, else in single quotes. A new string. */
+char *path_shell_word(const char *name);
+
 /* Whether a and b name the same file: the same inode when both exist, else
  * the same name once the directory part is resolved. */
 int path_same(const char *a, const char *b);

@@ -19,6 +19,7 @@
 #include "lib/afile.h"
 #include "lib/err.h"
 #include "lib/h5.h"
+#include "lib/path.h"
 #include "lib/progress.h"
 #include "lib/timer.h"
 #include "solve/boundary.h"
@@ -307,11 +308,13 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 	if (agreed[0] || budget) {
 		if (!o->quiet) {
 			progress_end(&L->pg);
+			char *word = path_shell_word(o->output);
 			fprintf(stderr,
 			        "%s: interrupted at step %" PRId64
 			        " (%s); continue with: solve --restart %s\n",
 			        err_program_name(), e->clock.step,
-			        agreed[0] ? strsignal((int)agreed[0]) : "budget", o->output);
+			        agreed[0] ? strsignal((int)agreed[0]) : "budget", word);
+			free(word);
 		}
 		return end(L, END_INTERRUPTED, RUN_INTERRUPTED, "interrupted");
 	}

@@ -1,5 +1,6 @@
-/* Names beside the file that gives them, and make dependency files: the
- * exact text make reads, escapes, and the empty rule per prerequisite. */
+/* Names beside the file that gives them, names as shell words, and make
+ * dependency files: the exact text make reads, escapes, and the empty rule
+ * per prerequisite. */
 #include <stdlib.h>
 #include <unistd.h>
 
@@ -32,6 +33,17 @@ int main(void)
 	beside("ucs.json", "cement.json", "cement.json");
 	beside("/a/b/ucs.json", "/m/cement.json", "/m/cement.json");
 	beside("/ucs.json", "cement.json", "/cement.json");
+	/* Names pasted into a shell command (solve's restart hint). */
+	const char *words[][2] = {{"runs/demo-ucs/run.h5", "runs/demo-ucs/run.h5"},
+	                          {"my runs/run 1.h5", "'my runs/run 1.h5'"},
+	                          {"it's.h5", "'it'\\''s.h5'"},
+	                          {"$HOME/r.h5", "'$HOME/r.h5'"},
+	                          {"", "''"}};
+	for (size_t k = 0; k < sizeof words / sizeof words[0]; k++) {
+		char *w = path_shell_word(words[k][0]);
+		CHECK_STR(w, words[k][1]);
+		free(w);
+	}
 
 	char dir[] = "/tmp/dem-depfile-XXXXXX";
 	CHECK(mkdtemp(dir) != NULL);
