@@ -22,6 +22,10 @@ STUDY ?=
 STUDIES := $(OUT)/studies
 
 ifneq ($(STUDY),)
+ifneq ($(filter-out /%,$(filter %.json %/%,$(STUDY))),)
+$(error STUDY=$(STUDY): a relative path (make -C changes directory): give a shipped study's \
+	name (STUDY=tiny) or an absolute path (STUDY=$$PWD/$(STUDY)))
+endif
 STUDY_FILE := $(if $(filter /%,$(STUDY)),$(STUDY),$(SHARE)/studies/$(STUDY).json)
 ifeq ($(wildcard $(STUDY_FILE)),)
 $(error STUDY=$(STUDY): no study file $(STUDY_FILE): expected one of $(basename $(notdir \
