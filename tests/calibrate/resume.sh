@@ -18,6 +18,15 @@ opts="--quiet --no-png --no-sensitivity --jobs 1"
 # shellcheck disable=SC2086
 run() { "$bin/calibrate" $opts --out "$1" "$data/recovery.json"; }
 field() { sed -n "s/.*\"$2\":[[:space:]]*\([0-9]*\).*/\1/p" "$1" | head -n 1; }
+# logged_rows LOG N PID: wait until the calibration PID has logged N runs.
+logged_rows() {
+	i=0
+	while [ "$(cat "$1" 2> /dev/null | wc -l)" -le "$2" ]; do
+		sleep 0.1
+		i=$((i + 1))
+		[ $i -lt 1200 ] || { kill "$3"; fail "no $2 runs logged in $1 in 120 s"; }
+	done
+}
 
 [ -s "$whole/report.json" ] ||
 	fail "no uninterrupted calibration in $whole (test_calibrate_recovery makes it)"
@@ -27,12 +36,7 @@ runs=$(field "$whole/report.json" new)
 # shellcheck disable=SC2086
 "$bin/calibrate" $opts --out "$tmp/cut" "$data/recovery.json" > /dev/null 2> "$tmp/cut.err" &
 pid=$!
-i=0
-while [ "$(cat "$tmp/cut/log.csv" 2> /dev/null | wc -l)" -lt 4 ]; do
-	sleep 0.2
-	i=$((i + 1))
-	[ $i -lt 600 ] || { kill $pid; fail "no run logged in 120 s"; }
-done
+logged_rows "$tmp/cut/log.csv" 3 $pid
 kill -TERM $pid
 status=0
 wait $pid || status=$?
@@ -66,12 +70,7 @@ run "$tmp/cut" > /dev/null || fail "the third call failed"
 "$bin/calibrate" --quiet --no-png --no-sensitivity --jobs 2 --out "$tmp/killed" \
 	"$data/recovery.json" > /dev/null 2>&1 &
 pid=$!
-i=0
-while [ "$(cat "$tmp/killed/log.csv" 2> /dev/null | wc -l)" -lt 3 ]; do
-	sleep 0.1
-	i=$((i + 1))
-	[ $i -lt 1200 ] || { kill $pid; fail "no run logged in 120 s"; }
-done
+logged_rows "$tmp/killed/log.csv" 2 $pid
 kill -KILL $pid
 wait $pid || true
 sleep 0.5
