@@ -50,26 +50,43 @@ int experiment_read(const char *path, experiment *e)
 		return err_set("%s: cannot read: %s", path, strerror(errno));
 	int where[EXP_NCOLS]; /* field index of each column, -1 absent */
 	double scale = 1;     /* 1e6 for stress_axial_MPa */
-	int header = 0, rc = 0;
+	int header = 0, nheader = 0, rc = 0;
 	size_t cap = 0, lineno = 0;
 	char line[8192], *field[MAX_FIELDS];
 	while (!rc && fgets(line, sizeof line, f)) {
 		lineno++;
+		/* The byte order mark some spreadsheets write first. */
+		if (lineno == 1 && strncmp(line, "\xEF\xBB\xBF", 3) == 0)
+			memmove(line, line + 3, strlen(line + 3) + 1);
 		if (line[0] == '#' || strspn(line, " \t\r\n") == strlen(line))
 			continue;
 		int nf = split(line, field, MAX_FIELDS);
+		if (header && nf != nheader) {
+			rc = err_set("%s: line %zu: %d fields, the header has %d (a decimal comma? "
+			             "the separator is the comma, the decimal mark the point)",
+			             path, lineno, nf, nheader);
+			break;
+		}
 		if (!header) {
-			header = 1;
+			header = 1, nheader = nf;
 			for (int c = 0; c < EXP_NCOLS; c++)
 				where[c] = -1;
-			for (int k = 0; k < nf; k++) {
+			for (int k = 0; !rc && k < nf; k++) {
 				for (int c = 0; c < EXP_NCOLS; c++)
 					if (strcmp(field[k], names[c]) == 0)
 						where[c] = k;
 				if (strcmp(field[k], "stress_axial_MPa") == 0)
 					where[EXP_STRESS_AXIAL] = k, scale = 1e6;
 			}
-			if (where[EXP_STRAIN_AXIAL] < 0 || where[EXP_STRESS_AXIAL] < 0)
+			int both = 0;
+			for (int k = 0; k < nf; k++)
+				both += strcmp(field[k], "stress_axial") == 0 ||
+				        strcmp(field[k], "stress_axial_MPa") == 0;
+			if (both > 1)
+				rc = err_set("%s: line %zu: the header names stress_axial and "
+				             "stress_axial_MPa: expected one of them",
+				             path, lineno);
+			else if (where[EXP_STRAIN_AXIAL] < 0 || where[EXP_STRESS_AXIAL] < 0)
 				rc = err_set("%s: line %zu: the header must name the columns "
 				             "strain_axial and "
 				             "stress_axial (Pa) or stress_axial_MPa",
@@ -110,6 +127,18 @@ int experiment_read(const char *path, experiment *e)
 	if (!rc && !header)
 		rc = err_set("%s: empty: expected a header naming strain_axial and stress_axial",
 		             path);
+	if (!rc && e->n == 0)
+		rc = err_set("%s: a header and no points", path);
+	/* Stresses in Pa below a kilopascal are MPa written under the Pa
+	 * column (laboratory tests of rock and concrete). */
+	double top = 0;
+	for (size_t k = 0; !rc && k < e->n; k++)
+		if (isfinite(e->col[EXP_STRESS_AXIAL][k]))
+			top = fmax(top, fabs(e->col[EXP_STRESS_AXIAL][k]));
+	if (!rc && scale == 1 && top > 0 && top < 1e3)
+		rc = err_set("%s: column 'stress_axial' (Pa): at most %g Pa: values in MPa go in a "
+		             "column named stress_axial_MPa",
+		             path, top);
 	if (rc)
 		experiment_free(e);
 	return rc;

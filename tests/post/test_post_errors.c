@@ -127,6 +127,32 @@ int main(void)
 	         "(Pa) or stress_axial_MPa\n",
 	         exp);
 	expect(1, msg, "curve", args);
+	/* A row of more fields than the header (decimal commas), no points, MPa
+	 * under the Pa column, both stress columns: one message each. */
+	const char *bad[][2] = {
+	    {"strain_axial,stress_axial_MPa\n0,001,5\n",
+	     "line 2: 3 fields, the header has 2 (a decimal comma? the separator is the comma, "
+	     "the decimal mark the point)"},
+	    {"strain_axial,stress_axial_MPa\n", "a header and no points"},
+	    {"strain_axial,stress_axial\n0.001,5\n0.002,9\n",
+	     "column 'stress_axial' (Pa): at most 9 Pa: values in MPa go in a column named "
+	     "stress_axial_MPa"},
+	    {"strain_axial,stress_axial,stress_axial_MPa\n0.001,5e6,5\n",
+	     "line 1: the header names stress_axial and stress_axial_MPa: expected one of them"}};
+	for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+		f = fopen(exp, "w");
+		fputs(bad[k][0], f);
+		fclose(f);
+		snprintf(msg, sizeof msg, "post: %s: %s\n", exp, bad[k][1]);
+		expect(1, msg, "curve", args);
+	}
+	/* A spreadsheet's byte order mark before the header is skipped. */
+	f = fopen(exp, "w");
+	fputs("\xEF\xBB\xBFstrain_axial,stress_axial_MPa\n0.001,12\n", f);
+	fclose(f);
+	post_result ok = harness_post("curve --no-png --experiment %s %s", exp, run);
+	CHECK(ok.status == 0);
+	harness_free(&ok);
 	/* commands */
 	post_result res = harness_post("nonsense %s", run);
 	CHECK(res.status == 2);
