@@ -19,6 +19,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <unistd.h>
 
 #include "lib/err.h"
@@ -306,6 +307,12 @@ static void boundary_faces(size_t **faces, size_t *nfaces)
 }
 
 /* Node tags to a compact vertex array. */
+int geometry_is_step(const char *file)
+{
+	const char *dot = strrchr(file, '.');
+	return dot && (!strcasecmp(dot, ".step") || !strcasecmp(dot, ".stp"));
+}
+
 static int to_trimesh(const size_t *faces, size_t nfaces, double scale, trimesh *m)
 {
 	int ierr;
@@ -385,7 +392,8 @@ int geometry_build(const geometry_spec *s, dem_geometry *g)
 	if (rc == 0) {
 		size_t *faces, nfaces;
 		boundary_faces(&faces, &nfaces);
-		rc = to_trimesh(faces, nfaces, s->kind == SHAPE_FILE ? s->scale : 1, &m);
+		double scale = s->kind == SHAPE_FILE && !geometry_is_step(s->file) ? s->scale : 1;
+		rc = to_trimesh(faces, nfaces, scale, &m);
 		free(faces);
 	}
 	G->gmshLoggerStop(&ierr);

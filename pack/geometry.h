@@ -28,6 +28,9 @@ int geometry_extent(const geometry_spec *s, dem_geometry *g);
  * multiplied by `scale`. Returns 0, or -1 with err_set() naming the file
  * and what is wrong (unreadable, no closed volume, ...). */
 int geometry_build(const geometry_spec *s, dem_geometry *g);
+/* Whether file is a STEP file (.step or .stp, any case): read in metres,
+ * --scale does not apply. */
+int geometry_is_step(const char *file);
 
 /* Volume of the part of the specimen farther than w from its boundary
  * (m^3), exact for the built-in shapes; for a file, -1 (not known in

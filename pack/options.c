@@ -8,6 +8,7 @@
 #include "lib/cli.h"
 #include "lib/err.h"
 #include "lib/path.h"
+#include "pack/geometry.h"
 #include "pack/options.h"
 
 #define LEN 1e-9, 1e3 /* bounds of a length (m) */
@@ -217,7 +218,8 @@ static void warn_ignored(const pack_options *o)
 	    {"thickness", o->thickness != d.thickness, !file && disc, shape},
 	    {"length", o->length != d.length, !file && box, shape},
 	    {"width", o->width != d.width, !file && box, shape},
-	    {"scale", o->scale != d.scale, file, "without --geometry"},
+	    {"scale", o->scale != d.scale, file && !geometry_is_step(o->geometry),
+	     file ? "to a STEP file (read in metres)" : "without --geometry"},
 	    {"rmin", o->rmin != d.rmin, !strcmp(dist, "uniform"), sizes},
 	    {"rmax", o->rmax != d.rmax, !strcmp(dist, "uniform"), sizes},
 	    {"radius", o->radius != d.radius,

@@ -147,6 +147,14 @@ static void test_files(void)
 	CHECK_REL(g.volume, 1e-6, 1e-12);
 	free(g.vert);
 	free(g.tri);
+	/* and not those of a STEP file, read in metres. */
+	gs = (geometry_spec){SHAPE_FILE, 0, 0, {0, 0, 0}, GEO "cylinder_20x40_mm.step", 0.001};
+	CHECK(geometry_build(&gs, &g) == 0);
+	CHECK_REL(g.volume, M_PI * 0.01 * 0.01 * 0.04, 1e-3);
+	free(g.vert);
+	free(g.tri);
+	CHECK(geometry_is_step("a/b.STP") && geometry_is_step("c.step") &&
+	      !geometry_is_step("d.brep") && !geometry_is_step("step"));
 }
 
 static void test_bad_files(void)
