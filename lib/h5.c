@@ -944,12 +944,10 @@ int h5_write(hid_t loc, const char *name, hid_t type, const void *data, size_t r
 	return h5_rows_close(&r) || rc ? -1 : 0;
 }
 
-/* Whether dataset d can hold n values: a damaged dataspace can claim any
- * number of rows, which would then be allocated before anything is read.
- * The values take their type's size in the storage, unless a filter
- * compresses them (deflate to a 1032th at most), and the storage cannot be
- * larger than the file. */
-static int stored_holds(hid_t d, double n)
+/* (h5.h) The values take their type's size in the storage, unless a
+ * filter compresses them (deflate to a 1032th at most), and the storage
+ * cannot be larger than the file. */
+int h5_stored_holds(hid_t d, double n)
 {
 	if (n == 0)
 		return 1;
@@ -1000,7 +998,7 @@ int h5_read_part(hid_t loc, const char *name, hid_t type, void **data, size_t *r
 			               h5_name(loc), name, cols);
 		return err_set("%s: dataset '%s': wrong shape: expected [N]", h5_name(loc), name);
 	}
-	if (!stored_holds(d, (double)dims[0] * (double)(cols ? cols : 1))) {
+	if (!h5_stored_holds(d, (double)dims[0] * (double)(cols ? cols : 1))) {
 		H5Dclose(d);
 		return err_set("%s: dataset '%s': %llu rows, more than the file holds (a damaged "
 		               "file)",
@@ -1026,7 +1024,7 @@ int h5_read_part(hid_t loc, const char *name, hid_t type, void **data, size_t *r
 
 int h5_read_n(hid_t loc, const char *name, hid_t type, void **data, size_t rows, size_t cols)
 {
-	size_t got;
+	size_t got = 0;
 	if (h5_read(loc, name, type, data, &got, cols))
 		return -1;
 	if (got != rows) {

@@ -159,6 +159,9 @@ int h5_read(hid_t loc, const char *name, hid_t type, void **data, size_t *rows, 
  * rows [*first, *first + *held) of the *rows. */
 int h5_read_part(hid_t loc, const char *name, hid_t type, void **data, size_t *rows, size_t cols,
                  int part, int parts, size_t *first, size_t *held);
+/* Whether dataset d can hold n values: a damaged dataspace can claim any
+ * number of rows, which would then be allocated before anything is read. */
+int h5_stored_holds(hid_t d, double n);
 /* As h5_read but the row count must equal rows. */
 int h5_read_n(hid_t loc, const char *name, hid_t type, void **data, size_t rows, size_t cols);
 

@@ -381,6 +381,12 @@ static hid_t open_rows(hid_t g, const char *name, size_t n, size_t cols)
 		return err_set("%s: checkpoint dataset '%s': wrong shape (expected %zu rows)",
 		               h5_name(g), name, n);
 	}
+	if (!h5_stored_holds(d, (double)n * (double)(cols ? cols : 1))) {
+		H5Dclose(d);
+		return err_set("%s: checkpoint dataset '%s': %zu rows, more than the file holds (a "
+		               "damaged file)",
+		               h5_name(g), name, n);
+	}
 	return d;
 }
 
@@ -702,17 +708,18 @@ static int read_pairs(hid_t g, engine *e, size_t nc)
 	pairlist *L = &e->pairs.contacts;
 	size_t p0, p1, c0 = 0, c1 = nc;
 	int split = ranks_own(e, &p0, &p1) && e->ranks.size > 1, rc = 0;
+	/* nc, a count from the file, sizes the list only once the file is seen
+	 * to hold that many contacts (open_rows). */
+	hid_t d = open_rows(g, contact_fields[0].name, nc, 0);
+	if (d < 0)
+		return -1;
 	if (split) {
-		hid_t d = open_rows(g, contact_fields[0].name, nc, 0);
-		if (d < 0)
-			return -1;
 		c0 = first_contact_of(d, 0, nc, p0, &rc);
 		c1 = first_contact_of(d, c0, nc, p1, &rc);
-		H5Dclose(d);
-		if (rc)
-			return err_set("%s: checkpoint dataset 'contact_i': unreadable",
-			               h5_name(g));
 	}
+	H5Dclose(d);
+	if (rc)
+		return err_set("%s: checkpoint dataset 'contact_i': unreadable", h5_name(g));
 	L->n = 0;
 	if (c1 - c0 > L->cap || !L->rec) { /* none yet at a restart (engine_opts) */
 		L->cap = c1 - c0;
@@ -980,12 +987,12 @@ int checkpoint_read_file(engine *e, hid_t f)
 	size_t c0 = 0;
 	while (c0 < C->n && (size_t)C->rec[c0].i < p0)
 		c0++;
-	pairlist contacts = {.n = C->n - c0, .rec = C->rec + c0, .f = C->f + 6 * c0};
+	pairlist contacts = {.n = C->n - c0, .rec = C->rec + c0, .f = C->f ? C->f + 6 * c0 : NULL};
 	v.contacts = &contacts;
 	if (!head)
 		v.ncand[0] = v.ncand[1] = 0;
 	old_bonds own_old = old;
-	if (is_old)
+	if (is_old && !rc) /* old's arrays are read */
 		own_old = (old_bonds){old.h + OLD_NHIST * first, old.f + OLD_FCOLS * first};
 	crc_parts mine, *all = head ? xmalloc((size_t)par_size() * sizeof *all) : NULL;
 	if (!rc) {

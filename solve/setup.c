@@ -272,7 +272,8 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 	law_packing pk = packing_of(e, a);
 	e->law->setup(e->lp, &pk);
 	platens_init(e);
-	surface_init(e);
+	if (surface_init(e))
+		return -1;
 	gauge_init(e);
 	geometry_sizes(e, a);
 	bonds_init_history(e);

@@ -65,7 +65,7 @@ static void extent(const engine *e, size_t p0, size_t p1, int split, double *lo,
 	*hi = m[1];
 }
 
-void surface_init(engine *e)
+int surface_init(engine *e)
 {
 	particles *P = &e->p;
 	surface *S = &e->bc.surf;
@@ -99,13 +99,23 @@ void surface_init(engine *e)
 	v3_cross(e->frame.e2, e->frame.axis, e->frame.e1);
 	extent(e, p0, p1, split, &lo, &hi);
 	S->bin = e->cs->surface_bin > 0 ? e->cs->surface_bin : 2 * e->frame.r_mean;
-	S->ntheta = (int)fmax(8, round(2 * DEM_PI * best / S->bin));
-	S->nz = (int)fmax(1, round((hi - lo) / S->bin));
+	double ntheta = fmax(8, round(2 * DEM_PI * best / S->bin)),
+	       nz = fmax(1, round((hi - lo) / S->bin));
+	/* A specimen of 10^8 spheres has some 10^5 bins: many more say the
+	 * particles' positions or sizes are not a specimen's. */
+	if (!(ntheta * nz <= SURFACE_MAX_BINS))
+		return err_set("the lateral surface would take %.3g x %.3g bins of %g m (radius %g "
+		               "m, height %g m): expected at most %g; the assembly's positions or "
+		               "radii are not a specimen's",
+		               ntheta, nz, S->bin, best, hi - lo, (double)SURFACE_MAX_BINS);
+	S->ntheta = (int)ntheta;
+	S->nz = (int)nz;
 	size_t nbins = (size_t)S->ntheta * S->nz;
 	S->best = xmalloc(nbins * sizeof *S->best);
 	S->best_rho = xmalloc(nbins * sizeof *S->best_rho);
 	S->n = S->cap = 0;
 	surface_update(e);
+	return 0;
 }
 
 /* The bins a sphere overlaps as seen from the axis, and its outer distance. */

@@ -31,7 +31,12 @@ typedef struct {
 	double radius0; /* m, initial outer radius */
 } gauge;
 
-void surface_init(engine *e);
+/* The most bins the lateral surface may take (surface_init). */
+enum { SURFACE_MAX_BINS = 10000000 };
+/* The surface's bins and its first list. 0, or -1 with err_set() when the
+ * particles would need more than SURFACE_MAX_BINS bins (a damaged
+ * assembly). */
+int surface_init(engine *e);
 void surface_update(engine *e);
 /* Room for cap surface particles. */
 void surface_room(surface *S, size_t cap);

@@ -332,7 +332,7 @@ onate_pairs_body(LAW_PAIRS_PARAMS, law_fused *restrict o, int curve, int broken)
 		             (gone | ((L->state[q] < BOND_BROKEN_TENSION) & !(ks * us > strength)));
 		double ss = ks * dh_secant(h1, p->delta_s);
 		double fv = L->k[q] * k.vn;
-		int32_t st = (h[0] > 0) | (h[1] > 0) ? BOND_DAMAGED : BOND_INTACT;
+		int32_t st = ((h[0] > 0) | (h[1] > 0)) ? BOND_DAMAGED : BOND_INTACT;
 		if (broken) { /* shear_slip; onate_force's ss = 1 */
 			o->e_friction[q] = shear_slip_lane(t, k.t, ks, ks * us, p->mu2 * fnc, gone);
 			ss = law_sel(gone, ks, ss);
