@@ -57,12 +57,27 @@ static void conflicts(report *rp, const fit *f)
 		double norm = 0;
 		for (int k = 0; k < sp->nfree; k++)
 			norm += s->J[i][k] * s->J[i][k];
+		norm = sqrt(norm);
+		double off = fabs(f->err[i]) - sp->target[i].tol;
 		char a[128];
-		if (fabs(f->err[i]) > sp->target[i].tol && sqrt(norm) < 1e-3)
+		if (off <= 0)
+			continue;
+		if (norm < 1e-3)
 			note(rp,
 			     "%s does not respond to the free keys (its sensitivities are below "
 			     "0.001): free a key that moves it",
 			     target_name(sp, i, a, sizeof a));
+		/* The relative change of the keys that would meet it, along the
+		 * direction that moves it most, as the sensitivities extrapolate. */
+		else if (off / norm > 1)
+			note(rp,
+			     "%s is out of reach of these keys: off by %+.2f %%, it moves by at "
+			     "most "
+			     "%.3g of its target per relative change of the keys, so meeting it "
+			     "would take changing them by some %.0f %%; free a key that moves it, "
+			     "or loosen or drop it (more runs will not help)",
+			     target_name(sp, i, a, sizeof a), 100 * f->err[i], norm,
+			     100 * off / norm);
 	}
 }
 
@@ -123,7 +138,7 @@ static void at_bounds(report *rp, const double *v)
 	for (int k = 0; k < sp->nfree; k++) {
 		const cal_key *p = &sp->key[k];
 		double x = p->log ? log(v[k]) : v[k], lo = p->log ? log(p->lo) : p->lo,
-		       hi = p->log ? log(p->hi) : p->hi, tol = 1e-3 * (hi - lo);
+		       hi = p->log ? log(p->hi) : p->hi, tol = 0.01 * (hi - lo);
 		if (x <= lo + tol || x >= hi - tol)
 			note(rp, "%s ended at its %s bound (%g)%s", p->name,
 			     x <= lo + tol ? "lower" : "upper", x <= lo + tol ? p->lo : p->hi,

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "calibrate/quantity.h"
+#include "calibrate/report.h"
 #include "calibrate/runlog.h"
 #include "calibrate/scaling.h"
 #include "calibrate/sensitivity.h"
@@ -149,11 +150,44 @@ static void test_uncertainty(void)
 	CHECK(isinf(s.sigma[1]));
 }
 
+/* The diagnosis of an unmet target: out of reach when meeting it would
+ * take changing the keys by more than their whole values (its
+ * sensitivities extrapolated), not when a small step would do. */
+static void test_out_of_reach(void)
+{
+	static cal_spec sp;
+	static cal_test test = {.name = "ucs"};
+	sp.nfree = sp.nkey = 2, sp.ntarget = 2, sp.runs = 8;
+	sp.test[0] = test;
+	for (int k = 0; k < 2; k++)
+		sp.key[k] = (cal_key){.name = k ? "nu" : "E0", .free = 1, .lo = 0.01, .hi = 100};
+	for (int i = 0; i < 2; i++)
+		sp.target[i] = (cal_target){.test = 0, .quantity = i, .tol = 0.05, .weight = 1};
+	/* Target 0 off by 80 % and moved by 0.03 per relative change: out of
+	 * reach (some 2 500 %); target 1 off by 20 % and moved by 1: not. */
+	sensitivity s = {.ran = 1, .J = {{0.03, 0}, {0, 1}}, .noise = {0, 0}};
+	sensitivity_analyse(&sp, &s);
+	path_point pt = {.v = {1, 1}, .ok = 1, .fit = {.err = {-0.8, 0.2}}};
+	search_result r = {.path = &pt, .npath = 1, .best = 0, .status = SEARCH_BUDGET};
+	report rp = {.sp = &sp, .r = &r, .sens = &s};
+	report_diagnose(&rp);
+	int reach = 0;
+	for (int k = 0; k < rp.nnotes; k++)
+		if (strstr(rp.notes[k], "out of reach of these keys")) {
+			reach++;
+			CHECK(strstr(rp.notes[k], quantities[0].name) != NULL);
+			CHECK(strstr(rp.notes[k], "some 2500 %") != NULL);
+		}
+	CHECK(reach == 1);
+	report_free(&rp);
+}
+
 int main(void)
 {
 	const char *tmp = getenv("TEST_TMPDIR");
 	test_project();
 	test_uncertainty();
+	test_out_of_reach();
 	cal_spec sp;
 	int rc = spec_load("tests/calibrate/data/recovery.json", &sp);
 	CHECK(rc == 0);
