@@ -73,9 +73,9 @@ static void size_spheres(const pack_options *o, psd *d, const dem_geometry *g)
 		    "--count %ld: too few spheres: they would need radii up to %.3g m, larger than "
 		    "the specimen (smallest extent %.3g m)",
 		    o->count, d->rmax, ext);
-	fatal("spheres of radius up to %.3g m do not fit in the specimen: expected the largest "
-	      "diameter below its smallest extent (%.3g m)",
-	      d->rmax, ext);
+	fatal("spheres of radius up to %.3g m do not fit in the specimen%s%s: expected the "
+	      "largest diameter below its smallest extent (%.3g m)",
+	      d->rmax, o->geometry ? " " : "", o->geometry ? o->geometry : "", ext);
 }
 
 /* Imported spheres must have their centres inside the specimen and fit in

@@ -323,7 +323,7 @@ static void store_contacts(dem_report *rep, const contact_sums *t, size_t n, dou
 	rep->coordination = n ? 2 * t->bonds / (double)n : 0;
 	rep->alpha = rep->coordination > 0 ? 40 * (1 - rep->solid_fraction) / rep->coordination : 0;
 	rep->coordination_core = t->core_spheres > 0 ? t->core_ends / t->core_spheres : 0;
-	rep->coordination_boundary = t->layer_spheres > 0 ? t->layer_ends / t->layer_spheres : 0;
+	rep->coordination_boundary = t->layer_spheres > 0 ? t->layer_ends / t->layer_spheres : NAN;
 	rep->overlap_max = t->ov_max;
 	rep->overlap_mean = t->ov_n > 0 ? t->ov_sum / t->ov_n : 0;
 	rep->wall_overlap_max = t->wall_max;
@@ -479,10 +479,12 @@ void pack_report_print(const dem_assembly *a, FILE *out)
 	        "  coordination     %.2f bonds per sphere at beta = %.2f; alpha = 40 P/N_c = "
 	        "%.3f\n",
 	        r->coordination, r->beta, r->alpha);
-	fprintf(out,
-	        "                   %.2f in the core, %.2f in the boundary layer; %.0f spheres "
-	        "without a bond\n",
-	        r->coordination_core, r->coordination_boundary, r->unbonded);
+	char layer[64] = "no sphere in the boundary layer";
+	if (!isnan(r->coordination_boundary))
+		snprintf(layer, sizeof layer, "%.2f in the boundary layer",
+		         r->coordination_boundary);
+	fprintf(out, "                   %.2f in the core, %s; %.0f spheres without a bond\n",
+	        r->coordination_core, layer, r->unbonded);
 	fprintf(out, "  fabric           anisotropy %.4f in the core\n", r->fabric_anisotropy);
 	fprintf(out,
 	        "  overlaps         max %.3f %%, mean %.3f %% of the smaller radius; "

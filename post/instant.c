@@ -160,7 +160,10 @@ int instant_pick(const char *path, const dem_run *r, const instant *in, size_t *
 			    "%zu, or -1 for the last)",
 			    path, idx, r->nsnap, r->nsnap - 1);
 		k = (size_t)(idx < 0 ? idx + ns : idx);
-		snprintf(what, sizeof what, "snapshot %ld requested", idx);
+		if (idx == -1)
+			snprintf(what, sizeof what, "the last snapshot");
+		else
+			snprintf(what, sizeof what, "snapshot %ld", idx);
 		t = r->snap_t[k];
 	} else {
 		k = nearest_snapshot(r, t);
