@@ -194,10 +194,13 @@ static void plot(const char *dir, const run_ratios *runs, int nruns, const ratio
 		        nruns, ndamaged, min_count, nruns);
 		for (int q = 0; q < nruns; q++) {
 			char text[512];
-			snprintf(text, sizeof text, "%s (σ@_a^{ref} = %.3g MPa, %s%s)",
-			         runs[q].label, 1e-6 * runs[q].sigma_ref,
-			         sigma_given ? "common" : "own",
-			         runs[q].plateau ? "; no peak: strain stop" : "");
+			/* The instant too: where on its curve each run was taken. */
+			snprintf(
+			    text, sizeof text,
+			    "%s at ε_{a} = %.3g %%, σ_{a} = %.3g MPa (σ@_a^{ref} = %.3g MPa, %s%s)",
+			    runs[q].label, 100 * runs[q].strain, 1e-6 * runs[q].stress,
+			    1e-6 * runs[q].sigma_ref, sigma_given ? "common" : "own",
+			    runs[q].plateau ? "; no peak: strain stop" : "");
 			fprintf(d.f, "label[%d] = ", q + 1);
 			plot_quote(d.f, text);
 			fputc('\n', d.f);

@@ -15,7 +15,7 @@ set ylabel 'r = mean σ_n / σ@_a^{ref}'
 set xrange [0:90]
 set xtics 0,10,90
 set yrange [0:*]
-set key bottom right
+set key top left
 # The range Onate et al. 2015 found for cement, for comparison.
 set object 1 rectangle from 0,0.55 to 90,0.65 behind fillcolor rgb '#ececec' fillstyle solid noborder
 # Runs are shifted by a fraction of a degree so error bars do not overlap.

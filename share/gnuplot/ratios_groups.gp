@@ -12,7 +12,7 @@ set xlabel 'angle θ between contact normal and horizontal plane (°)'
 set xrange [0:90]
 set xtics 0,10,90
 set yrange [0:*]
-set key bottom right
+set key top left
 set title ndamaged > 0 ? 'Normal stress: intact (solid) and damaged (dashed) contacts' \
                        : 'Normal stress at intact contacts (none is damaged)'
 set ylabel 'mean σ_n / σ@_a^{ref}'
@@ -24,6 +24,6 @@ if (ndamaged > 0) cmd = cmd . \
 eval cmd
 set title 'Shear stress at bonded contacts in compression'
 set ylabel 'mean τ / σ@_a^{ref}  (τ = |F_s| / A)'
-set key top right
+set key bottom center
 plot for [k=1:nruns] $all index k-1 using 1:4 with linespoints lt k title label[k]
 unset multiplot
