@@ -71,11 +71,12 @@ static void conflicts(report *rp, const fit *f)
 		 * direction that moves it most, as the sensitivities extrapolate. */
 		else if (off / norm > 1)
 			note(rp,
-			     "%s is out of reach of these keys: off by %+.2f %%, it moves by at "
-			     "most "
-			     "%.3g of its target per relative change of the keys, so meeting it "
-			     "would take changing them by some %.0f %%; free a key that moves it, "
-			     "or loosen or drop it (more runs will not help)",
+			     "%s is out of reach of these keys: off by "
+			     "%+.2f %%, it moves by at most %.3g of its "
+			     "target per relative change of the keys, so "
+			     "meeting it would take changing them by some "
+			     "%.0f %%; free a key that moves it, or loosen "
+			     "or drop it (more runs will not help)",
 			     target_name(sp, i, a, sizeof a), 100 * f->err[i], norm,
 			     100 * off / norm);
 	}

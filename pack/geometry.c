@@ -306,13 +306,13 @@ static void boundary_faces(size_t **faces, size_t *nfaces)
 	G->gmshFree(vols);
 }
 
-/* Node tags to a compact vertex array. */
 int geometry_is_step(const char *file)
 {
 	const char *dot = strrchr(file, '.');
 	return dot && (!strcasecmp(dot, ".step") || !strcasecmp(dot, ".stp"));
 }
 
+/* Node tags to a compact vertex array. */
 static int to_trimesh(const size_t *faces, size_t nfaces, double scale, trimesh *m)
 {
 	int ierr;

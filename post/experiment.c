@@ -71,7 +71,7 @@ int experiment_read(const char *path, experiment *e)
 			header = 1, nheader = nf;
 			for (int c = 0; c < EXP_NCOLS; c++)
 				where[c] = -1;
-			for (int k = 0; !rc && k < nf; k++) {
+			for (int k = 0; k < nf; k++) {
 				for (int c = 0; c < EXP_NCOLS; c++)
 					if (strcmp(field[k], names[c]) == 0)
 						where[c] = k;
