@@ -471,6 +471,10 @@ void pack_report_print(const dem_assembly *a, FILE *out)
 		fprintf(out, " %.2fd:%.3f", r->profile_w[k] / (2 * r->mean_radius),
 		        r->profile_phi[k]);
 	fprintf(out, "\n");
+	fprintf(out,
+	        "  mean radius      %.4f mm over all spheres (those filling the wall band "
+	        "are smaller)\n",
+	        1e3 * r->mean_radius);
 	print_diameters(out, "  diameters (mm)   ", r, r->psd_number, r->psd_target_number,
 	                "number");
 	print_diameters(out, "                   ", r, r->psd_volume, r->psd_target_volume,
