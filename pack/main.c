@@ -217,6 +217,13 @@ static void specimen(pack_run *r)
 	r->builtin = geometry_extent(&r->gs, &r->a.geom) == 0;
 	if (!r->builtin && geometry_build(&r->gs, &r->a.geom))
 		fatal(NULL);
+	/* A laboratory specimen of a cubic metre or more: most likely a file
+	 * drawn in millimetres, which carries no unit. */
+	if (!r->builtin && r->a.geom.volume >= 1 && r->gs.scale == 1 &&
+	    !geometry_is_step(r->gs.file))
+		warn("%s: a specimen of %.4g m^3: if it was drawn in millimetres, give --scale "
+		     "0.001",
+		     r->gs.file, r->a.geom.volume);
 }
 
 /* The sizes: the imported spheres as listed, or the distribution scaled to

@@ -302,6 +302,8 @@ static void test_ignored_options(void)
 	                         "ignored\n"},
 	    {"--geometry share/geometry/box_20mm.brep --count 300 --diameter 0.03",
 	     "pack: warning: --diameter does not apply with --geometry: ignored\n"},
+	    {"--geometry share/geometry/cylinder_20x40_mm.step --count 300 --scale 0.001",
+	     "pack: warning: --scale does not apply to a STEP file (read in metres): ignored\n"},
 	    {SMALL " --dist fuzz --radius 0.0008 --fuzz 0.2", ""},
 	};
 	for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
@@ -310,6 +312,18 @@ static void test_ignored_options(void)
 		CHECK_STR(r.err, cases[k][1]);
 		harness_free(&r);
 	}
+	/* A file drawn in millimetres (no unit) read as metres: the specimen's
+	 * size says so. */
+	const char *geo = check_tmp("cli_mm.geo");
+	FILE *f = fopen(geo, "w");
+	CHECK(f &&
+	      fputs("SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 20, 20, 40};\n", f) >= 0 &&
+	      fclose(f) == 0);
+	harness_result r = run_pack("--quiet --geometry %s --count 300 %s", geo, out_path());
+	CHECK(r.status == 0);
+	CHECK_CONTAINS(r.err, "a specimen of 1.6e+04 m^3: if it was drawn in millimetres, give "
+	                      "--scale 0.001");
+	harness_free(&r);
 }
 
 /* --grow-to scales every radius by one factor about the same centres, to
