@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "calibrate/sensitivity.h"
+#include "calibrate/space.h"
 
 /* Eigenvalues and eigenvectors of the symmetric n x n matrix a (cyclic
  * Jacobi rotations; a is destroyed): a's diagonal holds the eigenvalues,
@@ -103,18 +104,6 @@ void sensitivity_analyse(const cal_spec *sp, sensitivity *s)
 			s->target_cos[i][j] = cosine(n, jw[i], 1, jw[j], 1);
 }
 
-/* Whether key k is its class's anchor under the scaling (space.h): the
- * first free key of the class. */
-static int is_anchor(const cal_spec *sp, int k)
-{
-	if (!sp->scaling || sp->key[k].cls == CLS_NONE)
-		return 0;
-	for (int j = 0; j < k; j++)
-		if (sp->key[j].free && sp->key[j].cls == sp->key[k].cls)
-			return 0;
-	return 1;
-}
-
 int sensitivity_run(evaluator *e, const double *v, const outcome *at, sensitivity *s)
 {
 	const cal_spec *sp = e->sp;
@@ -123,6 +112,8 @@ int sensitivity_run(evaluator *e, const double *v, const outcome *at, sensitivit
 	 * (a step of the range from 0), held within the bounds. */
 	double pts[2 * CAL_MAX_FREE][CAL_MAX_KEYS], dv[CAL_MAX_FREE][2];
 	int n = sp->nfree;
+	space sc; /* its anchors: the keys the tied ones keep their ratio to */
+	space_init(&sc, sp);
 	for (int k = 0; k < n; k++) {
 		const cal_key *p = &sp->key[k];
 		double h = v[k] != 0 ? sp->sens_step * fabs(v[k]) : sp->sens_step * (p->hi - p->lo);
@@ -134,7 +125,7 @@ int sensitivity_run(evaluator *e, const double *v, const outcome *at, sensitivit
 			pt[k] = v[k] + dv[k][side];
 			/* The keys tied to an anchor keep their ratio to it, as
 			 * everywhere in the calibration: they move with it. */
-			if (is_anchor(sp, k) && v[k] != 0)
+			if (p->cls != CLS_NONE && sc.anchor[p->cls] == k && v[k] != 0)
 				for (int j = n; j < sp->nkey; j++)
 					if (sp->key[j].cls == p->cls)
 						pt[j] = v[j] * (pt[k] / v[k]);

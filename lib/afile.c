@@ -93,9 +93,11 @@ int afile_commit(const char *tmp, const char *final)
 	unregister(tmp);
 	char dir[NAME_MAX_LEN];
 	snprintf(dir, sizeof dir, "%s", final);
-	fsync_path(dirname(dir), O_RDONLY | O_DIRECTORY);
+	afile_sync_dir(dirname(dir));
 	return 0;
 }
+
+void afile_sync_dir(const char *dir) { fsync_path(dir, O_RDONLY | O_DIRECTORY); }
 
 void afile_discard(const char *tmp)
 {

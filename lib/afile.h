@@ -14,6 +14,9 @@
 int afile_begin(const char *final, char *tmp, size_t n);
 /* fsync tmp, rename it to final and fsync the directory; unregisters tmp. */
 int afile_commit(const char *tmp, const char *final);
+/* fsync a directory, so that the renames in it are on disk (errors
+ * ignored: a file system may not sync directories). */
+void afile_sync_dir(const char *dir);
 /* Remove tmp and unregister it. */
 void afile_discard(const char *tmp);
 /* The signals that ask a program to end: Ctrl-C, a closed terminal or a

@@ -1,6 +1,5 @@
 #include <dirent.h>
 #include <errno.h>
-#include <fcntl.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -87,20 +86,13 @@ char *out_series_begin(const char *dir, const char *name)
 	return stage;
 }
 
-static void sync_dir(const char *dir)
-{
-	int fd = open(dir, O_RDONLY | O_DIRECTORY);
-	if (fd >= 0)
-		fsync(fd), close(fd);
-}
-
 void out_series_commit(const char *dir, const char *stage, const char *marker,
                        int (*ours)(const char *name))
 {
 	char *mark = out_path(dir, marker), *staged_mark = out_path(stage, marker);
 	if (unlink(mark) != 0 && errno != ENOENT)
 		fatal("%s: cannot remove: %s", mark, strerror(errno));
-	sync_dir(dir);
+	afile_sync_dir(dir);
 	remove_files(dir, ours);
 	DIR *d = opendir(stage);
 	if (!d)
@@ -115,10 +107,10 @@ void out_series_commit(const char *dir, const char *stage, const char *marker,
 		free(from), free(to);
 	}
 	closedir(d);
-	sync_dir(dir);
+	afile_sync_dir(dir);
 	if (rename(staged_mark, mark) != 0)
 		fatal("%s: cannot rename to %s: %s", staged_mark, mark, strerror(errno));
-	sync_dir(dir);
+	afile_sync_dir(dir);
 	if (rmdir(stage) != 0)
 		fatal("%s: cannot remove: %s", stage, strerror(errno));
 	free(mark), free(staged_mark);
