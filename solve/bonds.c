@@ -252,7 +252,7 @@ static void record_crack(engine *e, crack_buf *cb, size_t b, int mode, const bat
 	double sign = oi < oj ? 1 : -1;
 	double ai = d * P->r[bd->i] / (P->r[bd->i] + P->r[bd->j]);
 	dem_crack *c = &cb->c[cb->n];
-	cb->bond[cb->n++] = (int32_t)b;
+	cb->bond[cb->n++] = (int64_t)b;
 	*c = (dem_crack){.t = e->clock.t,
 	                 .step = e->clock.step,
 	                 .i = oi < oj ? oi : oj,
@@ -730,10 +730,12 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure, block_done don
 }
 
 /* A share's bond reaching past its particles (up to p1) as a crossing
- * slot. */
+ * slot, its index counted from base: the first bond of the particles whose
+ * slots are listed, so that it fits the slot's 32 bits however many bonds
+ * the whole specimen has over the ranks. */
 typedef struct {
 	bond_split *S;
-	size_t p1, cap;
+	size_t p1, cap, base;
 } cross_ctx;
 
 static void add_cross(void *ctx, size_t b, int32_t i, int32_t j)
@@ -748,16 +750,17 @@ static void add_cross(void *ctx, size_t b, int32_t i, int32_t j)
 		S->ci = xrealloc(S->ci, c->cap * sizeof *S->ci);
 		S->cj = xrealloc(S->cj, c->cap * sizeof *S->cj);
 	}
-	S->cross[S->ncross] = (int32_t)b;
+	S->cross[S->ncross] = (int32_t)(b - c->base);
 	S->ci[S->ncross] = i;
 	S->cj[S->ncross++] = j;
 }
 
-/* The crossing bonds of the shares [s0, s1) as slots, in bond order. */
+/* The crossing bonds of the shares [s0, s1) as slots, in bond order, each
+ * counted from the first bond of share s0. */
 static void cross_slots(engine *e, int s0, int s1)
 {
 	bond_split *S = &e->pairs.split;
-	cross_ctx c = {S, 0, 0};
+	cross_ctx c = {S, 0, 0, S->bfirst[nblocks(S->pfirst[s0])]};
 	for (int k = s0; k < s1; k++) {
 		S->cfirst[k] = S->ncross;
 		c.p1 = S->pfirst[k + 1];
@@ -983,9 +986,13 @@ void bonds_own(engine *e, int s0, int s1)
 		m += (size_t)S->cj[c] >= p0 && (size_t)S->cj[c] < p1;
 	int32_t *cross = xmalloc((m + 1) * sizeof *cross), *ci = xmalloc((m + 1) * sizeof *ci),
 	        *cj = xmalloc((m + 1) * sizeof *cj);
+	/* The slots count their bonds from the first of the shares that
+	 * cross_slots listed: this rank's (b0), or where it holds every
+	 * particle, the specimen's. */
+	int32_t from = e->p.glob ? 0 : (int32_t)b0;
 	m = 0;
 	for (size_t c = c0; c < c1; c++, m++) {
-		cross[m] = S->cross[c] - (int32_t)b0;
+		cross[m] = S->cross[c] - from;
 		ci[m] = S->ci[c];
 		cj[m] = S->cj[c];
 	}
@@ -1068,7 +1075,7 @@ void bonds_collect_cracks(engine *e)
 	}
 	/* Insertion sort of this step's few failures by bond index. */
 	for (size_t k = first + 1; k < cb->n; k++) {
-		int32_t b = cb->bond[k];
+		int64_t b = cb->bond[k];
 		dem_crack c = cb->c[k];
 		size_t q = k;
 		for (; q > first && cb->bond[q - 1] > b; q--) {

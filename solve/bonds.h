@@ -18,7 +18,8 @@ typedef struct engine engine;
 typedef struct {
 	size_t n, cap;
 	dem_crack *c;
-	int32_t *bond; /* the failed bond of each, for sorting */
+	int64_t *bond; /* the failed bond of each in the whole specimen's bond
+	                  order (which may pass 2^31 over many ranks), for sorting */
 	/* On several ranks (ranks_share_cracks): the rows of all ranks, and
 	 * where this rank's go among them, a run each step it found some:
 	 * rows [run_at[k], run_at[k] + run_n[k]). */

@@ -127,9 +127,12 @@ size_t ranks_incoming(const engine *e, int64_t **in)
 	const particles *P = &e->p;
 	int64_t *rows = xmalloc((3 * S->ncross + 1) * sizeof *rows);
 	int *to = xmalloc((S->ncross + 1) * sizeof *to);
+	/* The slots count their bonds from the first of this rank's shares
+	 * (cross_slots, bonds.c). */
+	int64_t base = (int64_t)S->bfirst[nblocks(S->pfirst[R->s0])];
 	for (size_t c = 0; c < S->ncross; c++) {
 		int64_t *row = rows + 3 * c;
-		row[0] = S->cross[c];
+		row[0] = base + S->cross[c];
 		row[1] = (int64_t)particle_global(P, (size_t)S->ci[c]);
 		row[2] = (int64_t)particle_global(P, (size_t)S->cj[c]);
 		to[c] = rank_of(R, (size_t)row[2]);

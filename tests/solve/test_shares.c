@@ -3,10 +3,13 @@
  * threads of the run (crossing bonds, several shares a thread), and more
  * shares than particle blocks (cut down to one a block). The runs load a
  * cylinder until bonds break, so failures, crossing bonds and the bonds'
- * block sums are all compared. */
+ * block sums are all compared. Also: a step's failures sorted by bond
+ * index beyond 32 bits, and the split's balance on a larger specimen. */
 #include <math.h>
+#include <stdint.h>
 #include <string.h>
 
+#include "lib/err.h"
 #include "solve/engine.h"
 #include "solve/ranks.h"
 #include "tests/check.h"
@@ -60,6 +63,27 @@ static void check_balance(engine *e, int shares)
 
 static int same(const void *x, const void *y, size_t n) { return memcmp(x, y, n) == 0; }
 
+/* A step's failures go to e's crack list in the order of their bonds in
+ * the whole specimen, whose indices pass 2^31 over many ranks: one found
+ * at bond 2^31 + 5, then one at bond 7. */
+static void check_crack_order(engine *e)
+{
+	crack_buf *tc = &e->out.thread_cracks[0], *cb = &e->out.cracks;
+	int64_t far = (int64_t)INT32_MAX + 6, near = 7;
+	tc->cap = tc->n + 2;
+	tc->c = xrealloc(tc->c, tc->cap * sizeof *tc->c);
+	tc->bond = xrealloc(tc->bond, tc->cap * sizeof *tc->bond);
+	size_t first = cb->n;
+	tc->c[tc->n] = (dem_crack){.step = 1};
+	tc->bond[tc->n++] = far;
+	tc->c[tc->n] = (dem_crack){.step = 2};
+	tc->bond[tc->n++] = near;
+	bonds_collect_cracks(e);
+	CHECK(cb->n == first + 2);
+	CHECK(cb->bond[first] == near && cb->bond[first + 1] == far);
+	CHECK(cb->c[first].step == 2 && cb->c[first + 1].step == 1);
+}
+
 int main(void)
 {
 	dem_assembly a;
@@ -101,6 +125,7 @@ int main(void)
 		      same(one.out.cracks.bond, e->out.cracks.bond,
 		           one.out.cracks.n * sizeof *one.out.cracks.bond));
 	}
+	check_crack_order(&one);
 	engine_free(&one), engine_free(&many), engine_free(&most);
 	/* About 11 000 spheres, 43 blocks. */
 	lattice l = {.kind = LATTICE_FCC,
