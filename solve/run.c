@@ -443,8 +443,9 @@ int run_engine(engine *e, const dem_assembly *a, const run_opts *o)
 static int run_continue(const run_opts *o, const char *from, dem_run *r);
 
 /* Whether the recovery copy beside the output (read into r) is of a run of
- * this same case on this same assembly that was killed outright; a copy
- * that is not is removed, since this run replaces it. */
+ * this same case on this same assembly that was killed outright (1), of
+ * another run (-1: this run replaces it, once it has started), or absent
+ * (0). */
 static int killed_before(const dem_case *cs, const dem_assembly *a, const char *ckpt, dem_run *r)
 {
 	if (access(ckpt, F_OK) != 0)
@@ -462,8 +463,7 @@ static int killed_before(const dem_case *cs, const dem_assembly *a, const char *
 	if (!differ)
 		return 1;
 	run_free(r);
-	unlink(ckpt);
-	return 0;
+	return -1;
 }
 
 int run_case(const dem_case *cs, dem_assembly *a, const run_opts *o)
@@ -471,7 +471,8 @@ int run_case(const dem_case *cs, dem_assembly *a, const run_opts *o)
 	char ckpt[4200];
 	dem_run r = {0};
 	run_recovery_name(o->output, ckpt, sizeof ckpt);
-	if (killed_before(cs, a, ckpt, &r)) {
+	int before = killed_before(cs, a, ckpt, &r);
+	if (before > 0) {
 		if (!o->quiet)
 			fprintf(stderr,
 			        "%s: %s: a run of this case did not finish; continuing it\n",
@@ -486,6 +487,11 @@ int run_case(const dem_case *cs, dem_assembly *a, const run_opts *o)
 		fatal("%s: %s", cs->source, err_msg());
 	h5_set_threads(e.team); /* the run file's chunks compressed on the step's threads */
 	run_writer *w = create(&e, a, o);
+	/* Another run's recovery copy goes once this run has passed its
+	 * checks and is being written: a restart would take it for this
+	 * run's. */
+	if (before < 0 && par_rank() == 0)
+		unlink(ckpt);
 	assembly_free(a); /* in the run file now; the engine keeps what it needs */
 	int code = bonds_then_loop(&e, w, o);
 	engine_free(&e);

@@ -8,7 +8,8 @@
  * rate, every crack, every snapshot. A run killed where a finished one of
  * the same name lies continues from its copy by --restart. A recovery copy whose checkpoint data
  * have one value changed is refused by its checksum; one left by another
- * case is not continued. */
+ * case is not continued, and is kept until a run of that case passes its
+ * checks. */
 #include <hdf5.h>
 #include <signal.h>
 #include <stdio.h>
@@ -175,6 +176,14 @@ int main(void)
 	finish(pid);
 	char other[2048], args[3000], said[1100];
 	snprintf(json, sizeof json, case_text, apath);
+	/* ... nor removed by one that fails its checks. */
+	char *rate = strstr(json, "\"rate\": 5}");
+	snprintf(other, sizeof other, "%.*s\"rate\": 5e6}%s", (int)(rate - json), json,
+	         rate + strlen("\"rate\": 5}"));
+	snprintf(args, sizeof args, "--output %s %s 2> %s", run,
+	         harness_file("kill-fast.json", other), check_tmp("kill-fast.txt"));
+	CHECK(harness_solve(args) == 1);
+	CHECK(exists(ckpt));
 	snprintf(other, sizeof other, "%.*s, \"threads\": 1}", (int)strlen(json) - 1, json);
 	const char *opath = harness_file("kill-other.json", other);
 	snprintf(said, sizeof said, "%s", check_tmp("kill-other.txt"));
