@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include "lib/afile.h"
@@ -13,10 +14,14 @@
 
 /* Pending temporaries, kept in static storage so the signal handler can use
  * them without allocating. Threads may write files at once (post vtk): a
- * slot is taken and given back under the lock. */
+ * slot is taken and given back under the lock. Each holds the temporary
+ * open with an exclusive flock (or -1 where the file system has none), its
+ * claim on the name: a second program writing the same output is refused
+ * instead of truncating or removing the first one's temporary. */
 enum { MAX_PENDING = 64, NAME_MAX_LEN = 4096 };
 static char pending[MAX_PENDING][NAME_MAX_LEN];
 static volatile sig_atomic_t pending_used[MAX_PENDING];
+static int pending_fd[MAX_PENDING];
 static pthread_mutex_t pending_lock = PTHREAD_MUTEX_INITIALIZER;
 
 const int afile_signals[AFILE_NSIGNALS] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGUSR2, SIGXCPU};
@@ -48,29 +53,57 @@ void afile_install_signal_cleanup(void)
 		signal(afile_signals[k], on_signal);
 }
 
+/* The claim on tmp: the file opened (made if missing, never truncated)
+ * and locked, or -1 when it cannot be opened or locked here (its writer
+ * then says why it cannot write it). -2 when another open file holds it. */
+static int claim(const char *tmp)
+{
+	int fd = open(tmp, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+	if (fd < 0)
+		return -1;
+	if (flock(fd, LOCK_EX | LOCK_NB) == 0)
+		return fd;
+	int busy = errno == EWOULDBLOCK;
+	close(fd);
+	return busy ? -2 : -1;
+}
+
 int afile_begin(const char *final, char *tmp, size_t n)
 {
 	int len = snprintf(tmp, n, "%s.tmp", final);
 	if (len < 0 || (size_t)len >= n || (size_t)len >= NAME_MAX_LEN)
 		return err_set("%s: output file name too long", final);
+	int fd = claim(tmp);
+	if (fd == -2)
+		return err_set("%s: another program is writing it now (%s is in use): wait for "
+		               "it to end, or give another output name",
+		               final, tmp);
 	int rc = -1;
 	pthread_mutex_lock(&pending_lock);
 	for (int k = 0; k < MAX_PENDING && rc; k++)
 		if (!pending_used[k]) {
 			memcpy(pending[k], tmp, (size_t)len + 1);
+			pending_fd[k] = fd;
 			pending_used[k] = 1;
 			rc = 0;
 		}
 	pthread_mutex_unlock(&pending_lock);
+	if (rc && fd >= 0)
+		close(fd);
 	return rc ? err_set("%s: too many output files open at once", final) : 0;
 }
 
+/* tmp no longer pending, and its claim given up (after its rename or
+ * removal, so that no other program takes the name before). */
 static void unregister(const char *tmp)
 {
 	pthread_mutex_lock(&pending_lock);
 	for (int k = 0; k < MAX_PENDING; k++)
-		if (pending_used[k] && strcmp(pending[k], tmp) == 0)
+		if (pending_used[k] && strcmp(pending[k], tmp) == 0) {
+			if (pending_fd[k] >= 0)
+				close(pending_fd[k]);
 			pending_used[k] = 0;
+		}
 	pthread_mutex_unlock(&pending_lock);
 }
 
