@@ -103,6 +103,10 @@ int main(void)
 	expect("{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE "}",
 	       "bad.json: key 'stop': missing: the run never ends (give 'stop' or an 'until' in "
 	       "the last stage)");
+	expect(
+	    "{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE ", \"stop\": {\"stress_axial\": 1e6}}",
+	    "bad.json: key 'stop': no rule: expected strain_axial, stress_drop, time or steps (a "
+	    "stress to reach is a stage's 'until' rule)");
 	expect("{\"assembly\": \"a.h5\", " MAT ", \"loading\": []}",
 	       "bad.json: key 'loading': missing: expected a non-empty array of stage objects");
 	expect("{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE ", \"stop\": {\"stress_drop\": 1.5}}",

@@ -110,6 +110,55 @@ int main(void)
 	        "\"strain_rate\", \"rate\": 0}}], \"stop\": {\"strain_axial\": 0.01}}",
 	        "loading stage 1: axial.rate 0: the ends stand still, so its strain rule can "
 	        "never hold");
+	/* Rules the loading moves away from, or holds short of: the run would
+	 * never end. */
+	const char *head = "{\"assembly\": \"-\", \"material\": {\"name\": \"m\", \"law\": "
+	                   "\"linear\", \"density\": 2500, \"E\": 1e10, \"nu\": 0.2, "
+	                   "\"tensile_strength\": 1e12, \"shear_strength\": 1e12}, \"loading\": ";
+	const char *never[][2] = {
+	    {"[{\"axial\": {\"mode\": \"strain_rate\", \"rate\": -2}}], \"stop\": "
+	     "{\"strain_axial\": 0.01}}",
+	     "loading stage 1: axial.rate -2: the ends open, so the axial strain falls from 0 "
+	     "and never reaches 0.01"},
+	    {"[{\"axial\": {\"mode\": \"velocity\", \"velocity\": 0.01}}], \"stop\": "
+	     "{\"strain_axial\": -0.01}}",
+	     "axial.velocity 0.01: the ends close, so the axial strain grows from 0 and never "
+	     "reaches -0.01"},
+	    {"[{\"axial\": {\"mode\": \"strain_rate\", \"rate\": 1}, \"until\": "
+	     "{\"strain_axial\": 0.01}}, {\"axial\": {\"mode\": \"strain_rate\", \"rate\": 1}, "
+	     "\"until\": {\"strain_axial\": 0.005}}], \"stop\": {\"strain_axial\": -0.01}}",
+	     "loading stage 2: axial.rate 1: the ends close, so the axial strain grows from "
+	     "0.01 and never reaches 0.005"},
+	    {"[{\"axial\": {\"mode\": \"stress\", \"stress\": 1e6}, \"until\": "
+	     "{\"stress_axial\": 2e6}}, {\"axial\": {\"mode\": \"strain_rate\", \"rate\": "
+	     "1}}], \"stop\": {\"strain_axial\": 0.01}}",
+	     "loading stage 1: axial.stress 1e+06 Pa: the servo holds the stress there"},
+	    {"[{\"axial\": {\"mode\": \"strain_rate\", \"rate\": 1}}], \"stop\": "
+	     "{\"strain_axial\": 0}}",
+	     "stop.strain_axial 0: the run starts at that strain"},
+	};
+	for (size_t k = 0; k < sizeof never / sizeof never[0]; k++) {
+		char text[2048];
+		snprintf(text, sizeof text, "%s%s", head, never[k][0]);
+		refused(text, never[k][1]);
+	}
+	/* ... but not the rules they reach: pulling to a negative strain, a
+	 * servo's target and beyond it on a later stage. */
+	const char *ends[] = {
+	    "[{\"axial\": {\"mode\": \"strain_rate\", \"rate\": -2}}], \"stop\": "
+	    "{\"strain_axial\": -0.001}}",
+	    "[{\"axial\": {\"mode\": \"stress\", \"stress\": 1e6}, \"until\": "
+	    "{\"stress_axial\": 1e6}}, {\"axial\": {\"mode\": \"strain_rate\", \"rate\": "
+	    "1}}], \"stop\": {\"strain_axial\": 0.01}}",
+	};
+	for (size_t k = 0; k < sizeof ends / sizeof ends[0]; k++) {
+		char text[2048];
+		snprintf(text, sizeof text, "%s%s", head, ends[k]);
+		harness_case(&c, text);
+		CHECK(engine_setup(&e, &c, &a, &(engine_opts){.quiet = 1}) == 0);
+		engine_free(&e);
+		case_free(&c);
+	}
 
 	/* A particle a thousand kilometres away: refused, not a search grid of
 	 * 1e19 bytes. */
