@@ -224,6 +224,10 @@ static void specimen(pack_run *r)
 		warn("%s: a specimen of %.4g m^3: if it was drawn in millimetres, give --scale "
 		     "0.001",
 		     r->gs.file, r->a.geom.volume);
+	if (r->builtin && r->a.geom.volume >= 1)
+		warn("a specimen of %.4g m^3: its sizes are in metres (a 25 mm diameter is "
+		     "--diameter 0.025)",
+		     r->a.geom.volume);
 }
 
 /* The sizes: the imported spheres as listed, or the distribution scaled to
@@ -332,6 +336,10 @@ static void place_spheres(pack_run *r)
 	}
 	packer_fill(&r->S, &r->cell, &r->d, &r->a.geom, r->surf, &r->z, &r->pp, &r->st);
 	jam_free(&r->cell);
+	if (r->S.n == 0)
+		fatal("no sphere of radius %g to %g m fits in the specimen (%g m^3): expected "
+		      "smaller spheres (--rmin, --rmax, --mean-radius) or a larger specimen",
+		      r->d.rmin, r->d.rmax, r->a.geom.volume);
 	r->a.report.time_cell = r->st.time_cell;
 	r->a.report.time_fill = r->st.time_fill;
 }

@@ -324,6 +324,18 @@ static void test_ignored_options(void)
 	CHECK_CONTAINS(r.err, "a specimen of 1.6e+04 m^3: if it was drawn in millimetres, give "
 	                      "--scale 0.001");
 	harness_free(&r);
+	/* So do a built-in shape's sizes given in millimetres. */
+	r = run_pack("--quiet --diameter 25 --height 50 --count 300 %s", out_path());
+	CHECK(r.status == 0);
+	CHECK_CONTAINS(r.err, "a specimen of 2.454e+04 m^3: its sizes are in metres (a 25 mm "
+	                      "diameter is --diameter 0.025)");
+	harness_free(&r);
+	/* Spheres too large for any to fit: said, not an HDF5 error. */
+	refused(1,
+	        "pack: no sphere of radius 0.004 to 0.0049 m fits in the specimen (1e-06 m^3): "
+	        "expected smaller spheres (--rmin, --rmax, --mean-radius) or a larger specimen\n",
+	        0,
+	        "--shape box --length 0.01 --width 0.01 --height 0.01 --rmin 0.004 --rmax 0.0049");
 }
 
 /* --grow-to scales every radius by one factor about the same centres, to
