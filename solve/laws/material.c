@@ -14,6 +14,32 @@ int contact_conventions_parse(cfg *c, int *conventions)
 	return cfg_choice_or(ct, "conventions", conventions, words, CONTACT_SOLVE);
 }
 
+/* Strengths given in MPa where the laws read Pa: below a millionth of the
+ * modulus, which no rock, concrete or cement has (the shipped materials'
+ * strengths are 1e-4 to 1e-2 of it); 0, for none, is taken, and so is any
+ * strength beside a modulus that is itself no material's (1e14 Pa, a
+ * hundred times diamond's, and above). */
+static int check_strengths(cfg *c)
+{
+	static const char *const keys[] = {
+	    "tensile_strength", "shear_strength", "cohesion", "LCS1", "LCS2", "LCS3"};
+	const char *ek = cfg_has(c, "E0") ? "E0" : cfg_has(c, "E") ? "E" : NULL;
+	double E, v;
+	if (!ek || cfg_number(c, ek, &E, "Pa", CFG_POS, INFINITY))
+		return ek ? -1 : 0;
+	for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++) {
+		if (!cfg_has(c, keys[k]) || cfg_number(c, keys[k], &v, "Pa", 0, INFINITY))
+			continue;
+		if (v > 0 && v < 1e-6 * E && E < 1e14)
+			return cfg_error(
+			    c, keys[k],
+			    "value %g Pa: expected at least a millionth of %s (%g Pa): "
+			    "strengths are in Pa (%g MPa is %g Pa), 0 for none",
+			    v, ek, E, v, 1e6 * v);
+	}
+	return 0;
+}
+
 int material_parse(cfg *c, material *m)
 {
 	memset(m, 0, sizeof *m);
@@ -46,6 +72,11 @@ int material_parse(cfg *c, material *m)
 	m->params = m->law->parse(c);
 	if (!m->params)
 		return -1;
+	if (check_strengths(c)) {
+		m->law->free(m->params);
+		m->params = NULL;
+		return -1;
+	}
 	m->name = xstrdup(name);
 	return 0;
 }

@@ -107,6 +107,15 @@ int main(void)
 	    "{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE ", \"stop\": {\"stress_axial\": 1e6}}",
 	    "bad.json: key 'stop': no rule: expected strain_axial, stress_drop, time or steps (a "
 	    "stress to reach is a stage's 'until' rule)");
+	/* Strengths given in MPa. */
+	expect("{\"assembly\": \"a.h5\", \"material\": {\"name\": \"m\", \"law\": \"onate\", "
+	       "\"density\": 1700, \"E0\": 3.8e9, \"nu\": 0.2, \"tensile_strength\": 4.8e6, "
+	       "\"shear_strength\": 8.5, \"mu1\": 0.3, \"mu2\": 0.4, \"LCS1\": 8.5e6, \"LCS2\": "
+	       "9e6, \"LCS3\": 11e6, \"YRC1\": 3, \"YRC2\": 9, \"YRC3\": 24, \"delta_n\": 0.2, "
+	       "\"delta_s\": 0.2}, " ONE_STAGE ", \"stop\": {\"steps\": 10}}",
+	       "bad.json: key 'material.shear_strength': value 8.5 Pa: expected at least a "
+	       "millionth of E0 (3.8e+09 Pa): strengths are in Pa (8.5 MPa is 8.5e+06 Pa), 0 for "
+	       "none");
 	expect("{\"assembly\": \"a.h5\", " MAT ", \"loading\": []}",
 	       "bad.json: key 'loading': missing: expected a non-empty array of stage objects");
 	expect("{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE ", \"stop\": {\"stress_drop\": 1.5}}",
