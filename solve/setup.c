@@ -246,6 +246,13 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 		return -1;
 	specimen_frame(e, a);
 	e->pairs.skin = cs->skin > 0 ? cs->skin : 0.25 * e->frame.r_mean;
+	/* The lists hold the pairs within 2 r + skin: a skin of many radii
+	 * (a length meant in mm) makes them grow as its cube. */
+	if (cs->skin > 4 * e->frame.r_mean)
+		return err_set("neighbours.skin %g m: expected at most two mean sphere diameters "
+		               "(%g m; the default is a quarter of the mean radius, %g m): lengths "
+		               "are in m",
+		               cs->skin, 4 * e->frame.r_mean, 0.25 * e->frame.r_mean);
 	if (check_compact(e))
 		return -1;
 	if (cs->surface_bin > 0 && cs->surface_bin < 0.2 * e->frame.r_mean)

@@ -98,6 +98,8 @@ int main(void)
 	                 "surface.bin 1e-12 m: expected at least a tenth of the mean sphere "
 	                 "diameter (0.002 m)");
 
+	refused_at_setup("2500", "1e10", "1", "\"neighbours\": {\"skin\": 0.3},",
+	                 "neighbours.skin 0.3 m: expected at most two mean sphere diameters ");
 	refused_at_setup("2500", "1e10", "1e6", "", "loading stage 1: the ends would move ");
 	refused_at_setup("2500", "1e10", "1e6", "", "(lower its axial.rate)");
 	/* A density that makes the time step absurd is blamed, not the rate. */
@@ -193,8 +195,9 @@ int main(void)
 	        "loading stage 1: axial.thickness 1 m: expected less than half the specimen's "
 	        "height");
 
-	/* A skin so wide that no neighbour rebuild (and its time-step check) comes. */
-	snprintf(json, sizeof json, case_text, "\"neighbours\": {\"skin\": 1},", "layers");
+	/* A skin so wide (the widest taken) that no neighbour rebuild (and its
+	 * time-step check) comes. */
+	snprintf(json, sizeof json, case_text, "\"neighbours\": {\"skin\": 0.004},", "layers");
 	/* A NaN velocity: the bond it poisons is named. */
 	harness_case(&c, json);
 	harness_engine(&e, &c, &a);
