@@ -154,6 +154,9 @@ static int parse_numerics(cfg *c, dem_case *k)
 	    sub_number(c, "surface", "update_every", &every, 100, "steps", 1, 1e12) ||
 	    sub_number(c, "surface", "bin", &k->surface_bin, 0, "m", CFG_POS, INFINITY))
 		return -1;
+	if (every != floor(every))
+		return cfg_error(c, "surface.update_every",
+		                 "value %g: expected a whole number of steps", every);
 	k->surface_every = (long)every;
 	cfg *d = cfg_object_opt(c, "damping");
 	if (!d && err_msg()[0])

@@ -405,6 +405,12 @@ static int run_loop(engine *e, run_writer *w, const run_opts *o)
 	              (double[2]){(double)engine_bytes(e), (double)report_peak_rss()});
 	if (L.code == RUN_FAILED && par_rank() == 0)
 		fprintf(stderr, "%s: %s\n", err_program_name(), L.status);
+	size_t next = e->out.snapshot_strain_next, n = e->cs->nsnapshot_strains;
+	if (L.code == RUN_OK && next < n && par_rank() == 0 && !o->quiet)
+		fprintf(stderr,
+		        "%s: warning: output.snapshot_strains: %zu of %zu not reached (the first: "
+		        "%g; each is taken once the strain has passed the one before)\n",
+		        err_program_name(), n - next, n, e->cs->snapshot_strains[next]);
 	if (par_rank() == 0)
 		report_print(e, L.step0, L.status, o);
 	return L.code;

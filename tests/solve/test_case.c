@@ -107,6 +107,9 @@ int main(void)
 	    "{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE ", \"stop\": {\"stress_axial\": 1e6}}",
 	    "bad.json: key 'stop': no rule: expected strain_axial, stress_drop, time or steps (a "
 	    "stress to reach is a stage's 'until' rule)");
+	expect("{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE
+	       ", \"surface\": {\"update_every\": 2.5}, \"stop\": {\"steps\": 10}}",
+	       "bad.json: key 'surface.update_every': value 2.5: expected a whole number of steps");
 	/* Strengths given in MPa. */
 	expect("{\"assembly\": \"a.h5\", \"material\": {\"name\": \"m\", \"law\": \"onate\", "
 	       "\"density\": 1700, \"E0\": 3.8e9, \"nu\": 0.2, \"tensile_strength\": 4.8e6, "
