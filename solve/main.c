@@ -98,6 +98,13 @@ static int solve_main(int argc, char **argv)
 		o.output = restart;
 		path_role outs[] = {{"--report", report}}, ins[] = {{"--restart", restart}};
 		cli_check_outputs(&spec, outs, 1, ins, 1);
+		/* The run's case and material files are not known here: any file
+		 * but an earlier report is kept. */
+		if (report && !report_replaceable(report))
+			cli_usage_error(&spec,
+			                "--report %s: a file that is not a run report is there: "
+			                "expected a new file name, or an earlier report",
+			                report);
 		return run_restart(&o);
 	}
 	if (npos != 1)

@@ -3,7 +3,9 @@
 #include <stdio.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
+#include "lib/cfg.h"
 #include "lib/err.h"
 #include "lib/json.h"
 #include "solve/ranks.h"
@@ -202,4 +204,16 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 		json_num(pc, phase_names[k], e->tm.cpu[k]);
 	if (json_write(o->report, j))
 		fatal(NULL);
+}
+
+int report_replaceable(const char *path)
+{
+	if (access(path, F_OK) != 0)
+		return 1;
+	cJSON *j = cfg_load_json(path);
+	int ours = cJSON_IsObject(j) && cJSON_IsString(cJSON_GetObjectItem(j, "status")) &&
+	           cJSON_GetObjectItem(j, "particles") != NULL;
+	cJSON_Delete(j);
+	err_clear();
+	return ours;
 }

@@ -15,5 +15,8 @@ void report_start(void);
 /* The largest resident size so far, bytes. */
 long report_peak_rss(void);
 void report_print(const engine *e, int64_t step0, const char *status, const run_opts *o);
+/* Whether path may take the report: missing, or a report written before
+ * (a JSON object with the report's "status" and "particles"). */
+int report_replaceable(const char *path);
 
 #endif
