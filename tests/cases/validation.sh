@@ -2,7 +2,8 @@
 # tools/validation on hand-made runs: the table row of each case carries
 # the published value, ours, the relative error and whether the target is
 # met; a case without summary.json is listed as not run; the text outside
-# the markers is kept; the curve image is written.
+# the markers is kept; the curve image is written. Run again on a subset,
+# it rewrites that subset's rows and keeps the others' rows and curves.
 # Usage: validation.sh SOURCE_DIR TMP_DIR
 set -eu
 src=$1 tmp=$2
@@ -34,4 +35,19 @@ grep -q '^hand text$' "$doc" && grep -q '^tail text$' "$doc" || fail "hand-writt
 ! grep -q '^old$' "$doc" || fail "old block replaced"
 grep -q '(validation/cement-bts.png)' "$doc" || fail "image link"
 [ -s "$tmp/doc/validation/cement-bts.png" ] || fail "image written"
+# concrete-ucs again, now at 37 MPa; cement-bts named but its run gone.
+cat > "$tmp/runs/concrete-ucs/summary.json" <<'JSON'
+{"spheres": 2000, "peak_stress": 37e6, "wall_time": 30, "kinetic_elastic_ratio": 0.002}
+JSON
+rm "$tmp/runs/cement-bts/summary.json"
+"$src/tools/validation" --runs "$tmp/runs" --doc "$doc" \
+	--published "$src/share/validation/published.json" concrete-ucs cement-bts 2> "$tmp/said"
+grep -q '^| concrete-ucs | peak_stress (MPa) | 37 | – | 37 | +0.0 % | yes (±10 %) |' "$doc" \
+	|| fail "concrete-ucs row updated"
+grep -q '^| cement-bts | bts_strength (MPa) | 2.9 | 3 | 3.19 |' "$doc" || fail "cement-bts row kept"
+grep -q 'cement-bts: no .*summary.json: its row kept' "$tmp/said" || fail "kept row said"
+grep -q '^| shale-ucs |.*not run' "$doc" || fail "shale-ucs row kept"
+[ "$(grep -c '^| [a-z]' "$doc")" -eq 4 ] || fail "one header and three rows"
+grep -q '(validation/cement-bts.png)' "$doc" || fail "cement-bts image kept"
+[ "$(grep '^| [a-z]' "$doc" | sed -n 2p | cut -d' ' -f2)" = cement-bts ] || fail "rows' order kept"
 echo "validation: ok"
