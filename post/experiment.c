@@ -42,6 +42,15 @@ static int split(char *line, char **field, int max)
 
 enum { MAX_FIELDS = 64 };
 
+/* A column this reader uses (others are ignored, duplicates too). */
+static int used(const char *name)
+{
+	for (int c = 0; c < EXP_NCOLS; c++)
+		if (strcmp(name, names[c]) == 0)
+			return 1;
+	return strcmp(name, "stress_axial_MPa") == 0;
+}
+
 int experiment_read(const char *path, experiment *e)
 {
 	memset(e, 0, sizeof *e);
@@ -71,6 +80,15 @@ int experiment_read(const char *path, experiment *e)
 			header = 1, nheader = nf;
 			for (int c = 0; c < EXP_NCOLS; c++)
 				where[c] = -1;
+			/* A column used twice: which of the two is meant is unknown. */
+			for (int k = 0; !rc && k < nf; k++)
+				for (int q = k + 1; !rc && q < nf; q++)
+					if (used(field[k]) && strcmp(field[k], field[q]) == 0)
+						rc = err_set(
+						    "%s: line %zu: column '%s' is named twice "
+						    "in the header (fields %d and %d): "
+						    "expected each column once",
+						    path, lineno, field[k], k + 1, q + 1);
 			for (int k = 0; k < nf; k++) {
 				for (int c = 0; c < EXP_NCOLS; c++)
 					if (strcmp(field[k], names[c]) == 0)
@@ -82,7 +100,9 @@ int experiment_read(const char *path, experiment *e)
 			for (int k = 0; k < nf; k++)
 				both += strcmp(field[k], "stress_axial") == 0 ||
 				        strcmp(field[k], "stress_axial_MPa") == 0;
-			if (both > 1)
+			if (rc)
+				break;
+			else if (both > 1)
 				rc = err_set("%s: line %zu: the header names stress_axial and "
 				             "stress_axial_MPa: expected one of them",
 				             path, lineno);

@@ -4,8 +4,9 @@
  * positive, as in run.h5) and stress_axial (Pa) or stress_axial_MPa.
  * Lines starting with '#' and blank lines are skipped; an empty field is
  * a missing value; every row has the header's number of fields; a file
- * without rows, with both stress columns, or whose stress_axial stays
- * below 1 kPa (MPa under the Pa column) is refused. */
+ * without rows, with both stress columns, naming a recognised column
+ * twice, or whose stress_axial stays below 1 kPa (MPa under the Pa
+ * column) is refused. */
 #ifndef DEM_POST_EXPERIMENT_H
 #define DEM_POST_EXPERIMENT_H
 

@@ -128,7 +128,8 @@ int main(void)
 	         exp);
 	expect(1, msg, "curve", args);
 	/* A row of more fields than the header (decimal commas), no points, MPa
-	 * under the Pa column, both stress columns: one message each. */
+	 * under the Pa column, both stress columns, a column named twice: one
+	 * message each. */
 	const char *bad[][2] = {
 	    {"strain_axial,stress_axial_MPa\n0,001,5\n",
 	     "line 2: 3 fields, the header has 2 (a decimal comma? the separator is the comma, "
@@ -138,7 +139,13 @@ int main(void)
 	     "column 'stress_axial' (Pa): at most 9 Pa: values in MPa go in a column named "
 	     "stress_axial_MPa"},
 	    {"strain_axial,stress_axial,stress_axial_MPa\n0.001,5e6,5\n",
-	     "line 1: the header names stress_axial and stress_axial_MPa: expected one of them"}};
+	     "line 1: the header names stress_axial and stress_axial_MPa: expected one of them"},
+	    {"# a column twice\nstrain_axial,stress_axial_MPa,strain_axial\n0.001,5,0.002\n",
+	     "line 2: column 'strain_axial' is named twice in the header (fields 1 and 3): "
+	     "expected each column once"},
+	    {"stress_axial_MPa,strain_axial,stress_axial_MPa\n5,0.001,6\n",
+	     "line 1: column 'stress_axial_MPa' is named twice in the header (fields 1 and 3): "
+	     "expected each column once"}};
 	for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
 		f = fopen(exp, "w");
 		fputs(bad[k][0], f);
