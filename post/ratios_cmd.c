@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "lib/cli.h"
 #include "lib/err.h"
@@ -45,6 +46,31 @@ static void split_labels(const char *list, char **labels, int n)
 	if (k != n)
 		fatal("--labels %s: %d labels for %d run files (one per run, comma-separated)",
 		      list, k, n);
+}
+
+/* A run file given twice would be counted twice: refused, whether by
+ * the same name or by two names of one file (a link, ./run.h5). Files
+ * that cannot be read are left to load_run's message. */
+static void distinct_runs(char **pos, int n)
+{
+	struct stat st[MAX_RUNS];
+	int ok[MAX_RUNS];
+	for (int q = 0; q < n; q++)
+		ok[q] = stat(pos[q], &st[q]) == 0;
+	for (int q = 1; q < n; q++)
+		for (int p = 0; p < q; p++) {
+			if (strcmp(pos[p], pos[q]) == 0)
+				fatal(
+				    "%s: given twice (run files %d and %d): expected each run once "
+				    "(it would be counted twice)",
+				    pos[q], p + 1, q + 1);
+			if (ok[p] && ok[q] && st[p].st_dev == st[q].st_dev &&
+			    st[p].st_ino == st[q].st_ino)
+				fatal(
+				    "%s: the same file as %s (run files %d and %d): expected each "
+				    "run once (it would be counted twice)",
+				    pos[q], pos[p], p + 1, q + 1);
+		}
 }
 
 static void compute_run(run_ratios *rr, const instant *in, const ratio_bins *bins, double sigma_ref)
@@ -272,6 +298,7 @@ int post_ratios(int argc, char **argv)
 		ratio_bins_solid_angle(&bins, (int)ceil(90.0 / width - 1e-9));
 	else
 		ratio_bins_width(&bins, width);
+	distinct_runs(pos, nruns);
 	run_ratios runs[MAX_RUNS] = {0};
 	char *names[MAX_RUNS] = {0};
 	if (labels)

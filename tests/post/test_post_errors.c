@@ -110,6 +110,18 @@ int main(void)
 	    "post: unexpected argument '%s' (usage: post curve [options] RUN.h5; see --help)\n",
 	    run);
 	expect(2, msg, "curve", args);
+	/* one run given twice to ratios, by its name or by another name of it */
+	snprintf(msg, sizeof msg,
+	         "post: %s: given twice (run files 1 and 2): expected each run once (it would "
+	         "be counted twice)\n",
+	         run);
+	expect(1, msg, "ratios", args);
+	snprintf(args, sizeof args, "%s %s/./run.h5", run, dir);
+	snprintf(msg, sizeof msg,
+	         "post: %s/./run.h5: the same file as %s (run files 1 and 2): expected each run "
+	         "once (it would be counted twice)\n",
+	         dir, run);
+	expect(1, msg, "ratios", args);
 	/* experimental points */
 	f = fopen(exp, "w");
 	fputs("# test\nstrain_axial,stress_axial_MPa\n0.001,12\n0.002,2O\n", f);
