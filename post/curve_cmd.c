@@ -5,7 +5,14 @@
  * (every energy_* column). Experimental points can be overlaid
  * (post/experiment.h). History columns used: strain_axial, stress_axial
  * (required), strain_radial, strain_volumetric (else eps_a + 2 eps_r
- * when the radial strain is there), pressure, energy_*. */
+ * when the radial strain is there), pressure, energy_*.
+ * A Brazilian test (the case's test "bts") is judged by its splitting
+ * tensile stress sigma_t = 2P/(pi D t), P the history's force_axial, D
+ * and t the disc's diameter and thickness (/geometry diameter, height):
+ * curve.csv gets it as a last column, stress_tensile, and the figures draw
+ * it in place of the axial stress (the load over the disc's face area),
+ * without the radial and volumetric strains, which mean nothing for a
+ * disc loaded across a diameter. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,23 +22,57 @@
 #include "lib/err.h"
 #include "post/crackmap.h"
 #include "post/experiment.h"
+#include "post/frame.h"
 #include "post/load.h"
 #include "post/output.h"
 #include "post/plot.h"
 #include "post/post.h"
 
-static void write_csv(const char *path, const dem_run *r)
+/* What the figures draw as the stress: the axial stress, or a Brazilian
+ * test's splitting tensile stress (Pa, one per history row). */
+typedef struct {
+	int bts;              /* a Brazilian test: no radial or volumetric strain drawn */
+	const double *stress; /* Pa */
+	double *tensile;      /* sigma_t (malloc'd), NULL when not a Brazilian test */
+} curve_stress;
+
+static void stress_of(curve_stress *cs, const char *path, const dem_run *r)
+{
+	cs->bts = load_is_bts(r);
+	cs->stress = run_column_data(r, "stress_axial");
+	cs->tensile = NULL;
+	if (!cs->bts)
+		return;
+	const double *fa = run_column_data(r, "force_axial");
+	double D = r->assembly.geom.diameter, t = r->assembly.geom.height;
+	if (!fa || !(D > 0) || !(t > 0)) {
+		printf("%s: a Brazilian test without %s: the figures draw the axial stress, not "
+		       "the splitting tensile stress 2P/(pi D t)\n",
+		       path,
+		       fa ? "the disc's diameter and thickness (/geometry)"
+		          : "a force_axial column in the history");
+		return;
+	}
+	cs->tensile = xmalloc((r->nrows ? r->nrows : 1) * sizeof *cs->tensile);
+	for (size_t k = 0; k < r->nrows; k++)
+		cs->tensile[k] = 2 * fa[k] / (POST_PI * D * t);
+	cs->stress = cs->tensile;
+}
+
+/* Every history column, then stress_tensile for a Brazilian test. */
+static void write_csv(const char *path, const dem_run *r, const curve_stress *cs)
 {
 	out_text o;
 	out_text_open(&o, path);
-	for (int c = 0; c < r->ncols; c++) {
-		out_csv_str(o.f, r->col_name[c]);
-		fputc(c + 1 < r->ncols ? ',' : '\n', o.f);
+	int n = r->ncols + (cs->tensile != NULL);
+	for (int c = 0; c < n; c++) {
+		out_csv_str(o.f, c < r->ncols ? r->col_name[c] : "stress_tensile");
+		fputc(c + 1 < n ? ',' : '\n', o.f);
 	}
 	for (size_t k = 0; k < r->nrows; k++)
-		for (int c = 0; c < r->ncols; c++) {
-			out_csv_num(o.f, r->col[c][k]);
-			fputc(c + 1 < r->ncols ? ',' : '\n', o.f);
+		for (int c = 0; c < n; c++) {
+			out_csv_num(o.f, c < r->ncols ? r->col[c][k] : cs->tensile[k]);
+			fputc(c + 1 < n ? ',' : '\n', o.f);
 		}
 	out_text_commit(&o);
 }
@@ -62,15 +103,16 @@ static void curve_row(FILE *f, const double *ea, const double *sa, const double 
 	}
 }
 
-/* $curve rows (curve_row);
+/* $curve rows (curve_row), the stress that of cs;
  * and has_radial, has_volumetric, pc (MPa, the largest confining
- * pressure, 0 without a pressure column). */
-static void curve_data(FILE *f, const char *path, const dem_run *r)
+ * pressure, 0 without a pressure column), bts (1: the stress is a
+ * Brazilian test's splitting tensile stress). */
+static void curve_data(FILE *f, const char *path, const dem_run *r, const curve_stress *cs)
 {
 	const double *ea = required(path, r, "strain_axial");
-	const double *sa = required(path, r, "stress_axial");
-	const double *er = run_column_data(r, "strain_radial");
-	const double *ev = run_column_data(r, "strain_volumetric");
+	const double *sa = cs->stress;
+	const double *er = cs->bts ? NULL : run_column_data(r, "strain_radial");
+	const double *ev = cs->bts ? NULL : run_column_data(r, "strain_volumetric");
 	const double *pc = run_column_data(r, "pressure");
 	double pmax = 0;
 	fputs("$curve << EOD\n", f);
@@ -79,17 +121,19 @@ static void curve_data(FILE *f, const char *path, const dem_run *r)
 		if (pc)
 			pmax = fmax(pmax, pc[k]);
 	}
-	fprintf(f, "EOD\nhas_radial = %d\nhas_volumetric = %d\npc = %.6g\n", er != NULL, er || ev,
-	        1e-6 * pmax);
+	fprintf(f, "EOD\nhas_radial = %d\nhas_volumetric = %d\npc = %.6g\nbts = %d\n", er != NULL,
+	        er || ev, 1e-6 * pmax, cs->tensile != NULL);
 }
 
-/* $exp rows as $curve, has_exp and exp_label. */
-static void experiment_data(FILE *f, const experiment *e, const char *label)
+/* $exp rows as $curve, has_exp and exp_label; of a Brazilian test, the
+ * axial strain and the stress only. */
+static void experiment_data(FILE *f, const experiment *e, const char *label, const curve_stress *cs)
 {
 	fputs("$exp << EOD\n", f);
 	for (size_t k = 0; e && k < e->n; k++)
 		curve_row(f, e->col[EXP_STRAIN_AXIAL], e->col[EXP_STRESS_AXIAL],
-		          e->col[EXP_STRAIN_RADIAL], e->col[EXP_STRAIN_VOLUMETRIC], k);
+		          cs->bts ? NULL : e->col[EXP_STRAIN_RADIAL],
+		          cs->bts ? NULL : e->col[EXP_STRAIN_VOLUMETRIC], k);
 	fprintf(f, "EOD\nhas_exp = %d\nexp_label = ", e != NULL);
 	plot_quote(f, label);
 	fputc('\n', f);
@@ -133,10 +177,17 @@ static void draw(const char *dir, const char *name, const char *script, plot_dat
 }
 
 static void plot_curves(const char *dir, const char *path, const dem_run *r, const experiment *e,
-                        const char *label)
+                        const char *label, const curve_stress *cs)
 {
 	const char *scripts[] = {"stress_strain", "volumetric"};
 	for (int p = 0; p < 2; p++) {
+		if (p == 1 && cs->bts) {
+			printf(
+			    "%s: a Brazilian test: volumetric.png not drawn (a disc loaded "
+			    "across a diameter has no radial or volumetric strain to speak of)\n",
+			    path);
+			continue;
+		}
 		if (p == 1 && !run_column_data(r, "strain_radial") &&
 		    !run_column_data(r, "strain_volumetric")) {
 			printf(
@@ -147,19 +198,18 @@ static void plot_curves(const char *dir, const char *path, const dem_run *r, con
 		}
 		plot_data d;
 		plot_begin(&d);
-		curve_data(d.f, path, r);
-		experiment_data(d.f, e, label);
+		curve_data(d.f, path, r, cs);
+		experiment_data(d.f, e, label, cs);
 		draw(dir, scripts[p], scripts[p], &d);
 	}
 	plot_data d;
 	plot_begin(&d);
 	crackmap_count_data(d.f, r);
 	const double *ea = run_column_data(r, "strain_axial");
-	const double *sa = run_column_data(r, "stress_axial");
 	fputs("$stress << EOD\n", d.f);
 	for (size_t k = 0; k < r->nrows; k++)
-		fprintf(d.f, "%.10g %.10g\n", 100 * ea[k], 1e-6 * sa[k]);
-	fputs("EOD\nwith_stress = 1\n", d.f);
+		fprintf(d.f, "%.10g %.10g\n", 100 * ea[k], 1e-6 * cs->stress[k]);
+	fprintf(d.f, "EOD\nwith_stress = 1\nbts = %d\n", cs->tensile != NULL);
 	draw(dir, "bonds", "cracks_count", &d);
 	plot_begin(&d);
 	if (energy_data(d.f, r)) {
@@ -188,7 +238,9 @@ int post_curve(int argc, char **argv)
 	                  "The history of a run: curve.csv (every history column) and figures:\n"
 	                  "stress_strain.png (axial stress against axial and radial strain),\n"
 	                  "volumetric.png, bonds.png (broken bonds by mode against axial strain)\n"
-	                  "and energy.png, with experimental points overlaid if given.",
+	                  "and energy.png, with experimental points overlaid if given. A\n"
+	                  "Brazilian test (test bts) adds stress_tensile = 2P/(pi D t) to the\n"
+	                  "CSV and draws it in place of the axial stress.",
 	                  opts, (int)(sizeof opts / sizeof opts[0]), argc, argv);
 	if (plot_set_format(format))
 		fatal(NULL);
@@ -205,14 +257,17 @@ int post_curve(int argc, char **argv)
 			fatal(NULL);
 		ep = &e;
 	}
+	curve_stress cs;
+	stress_of(&cs, file, &r);
 	char *dir = out_dir(out, file);
 	char *csv = out_path(dir, "curve.csv");
-	write_csv(csv, &r);
-	printf("wrote %s (%zu rows, %d columns)\n", csv, r.nrows, r.ncols);
+	write_csv(csv, &r, &cs);
+	printf("wrote %s (%zu rows, %d columns)\n", csv, r.nrows, r.ncols + (cs.tensile != NULL));
 	if (!no_png)
-		plot_curves(dir, file, &r, ep, exp_label);
+		plot_curves(dir, file, &r, ep, exp_label, &cs);
 	if (ep)
 		experiment_free(ep);
+	free(cs.tensile);
 	free(csv), free(dir);
 	run_free(&r);
 	return 0;

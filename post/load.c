@@ -8,6 +8,7 @@
 
 #include "lib/err.h"
 #include "lib/h5.h"
+#include "lib/vec3.h"
 #include "post/load.h"
 #include "post/plot.h"
 
@@ -70,6 +71,33 @@ char *load_caption(const char *path, const dem_run *r)
 	fclose(f);
 	cJSON_Delete(c);
 	return text;
+}
+
+int load_is_bts(const dem_run *r)
+{
+	cJSON *c = r->prov.config ? cJSON_Parse(r->prov.config) : NULL;
+	const cJSON *test = cJSON_GetObjectItemCaseSensitive(c, "test");
+	int bts = cJSON_IsString(test) && strcmp(test->valuestring, "bts") == 0;
+	cJSON_Delete(c);
+	return bts;
+}
+
+void load_axis(const dem_run *r, double a[3])
+{
+	cJSON *c = r->prov.config ? cJSON_Parse(r->prov.config) : NULL;
+	const cJSON *axis = cJSON_GetObjectItemCaseSensitive(c, "axis");
+	double v[3] = {0, 0, 0};
+	if (cJSON_IsArray(axis) && cJSON_GetArraySize(axis) == 3)
+		for (int k = 0; k < 3; k++) {
+			const cJSON *x = cJSON_GetArrayItem(axis, k);
+			v[k] = cJSON_IsNumber(x) ? x->valuedouble : 0;
+		}
+	cJSON_Delete(c);
+	if (v3_norm(v) == 0)
+		v3_copy(v, r->assembly.geom.axis);
+	if (v3_norm(v) == 0)
+		v[2] = 1;
+	v3_scale(a, v, 1 / v3_norm(v));
 }
 
 void load_run(const char *cmd, const char *path, dem_run *r)

@@ -35,9 +35,9 @@ typedef struct {
 	double a[3], e1[3], e2[3], c[3];
 } sframe;
 
-static void frame_from(sframe *f, const synth_opts *o)
+static void frame_from(sframe *f, const double axis[3], const synth_opts *o)
 {
-	v3_scale(f->a, o->axis, 1 / v3_norm(o->axis));
+	v3_scale(f->a, axis, 1 / v3_norm(axis));
 	v3_copy(f->c, o->center);
 	int least = 0;
 	for (int k = 1; k < 3; k++)
@@ -353,6 +353,8 @@ static int write_cracks(run_writer *w, const dem_assembly *a, const dem_bonds *b
 	return rc;
 }
 
+static int is_bts(const synth_opts *o) { return v3_norm(o->load) > 0; }
+
 static const run_column columns[] = {
     {"t", "s"},
     {"step", ""},
@@ -366,6 +368,7 @@ static const run_column columns[] = {
     {"energy_fracture", "J"},
     {"bonds_broken_tension", ""},
     {"bonds_broken_shear", ""},
+    {"force_axial", "N"}, /* Brazilian tests only: the last */
 };
 enum { NCOLS = sizeof columns / sizeof columns[0] };
 
@@ -391,7 +394,8 @@ static int write_history(run_writer *w, const dem_bonds *b, const bond_law *m, c
 		                     1e-3 * s * e * volume,
 		                     2e-4 * (nt + ns),
 		                     nt,
-		                     ns};
+		                     ns,
+		                     s * PI * 0.25 * o->diameter * o->diameter};
 		if (run_history(w, row))
 			return -1;
 	}
@@ -402,23 +406,30 @@ int synth_run(const char *path, const synth_opts *o)
 {
 	rng g;
 	rng_seed(&g, o->seed);
-	sframe f;
-	frame_from(&f, o);
+	/* f: the loading; shape: the specimen (the same but for a disc). */
+	sframe f, shape;
+	frame_from(&shape, o->axis, o);
+	frame_from(&f, is_bts(o) ? o->load : o->axis, o);
 	dem_assembly a;
-	make_assembly(&a, o, &f, &g);
+	make_assembly(&a, o, &shape, &g);
+	if (is_bts(o))
+		strcpy(a.geom.shape, "disc");
 	dem_bonds b;
 	find_bonds(&a, &b);
 	bond_law *m = malloc((b.n ? b.n : 1) * sizeof *m);
 	for (size_t k = 0; k < b.n; k++)
 		bond_model(&a, &b, k, &f, o, &g, &m[k]);
 	dem_provenance prov;
-	char config[160];
+	char config[400], load[120] = "";
+	if (is_bts(o))
+		snprintf(load, sizeof load, ",\"axis\":[%.17g,%.17g,%.17g]", f.a[0], f.a[1],
+		         f.a[2]);
 	snprintf(config, sizeof config,
-	         "{\"test\":\"ucs\",\"synthetic\":true,\"material\":{\"name\":\"synthetic\","
-	         "\"density\":%.17g}}",
-	         SYNTH_DENSITY);
+	         "{\"test\":\"%s\",\"synthetic\":true,\"material\":{\"name\":\"synthetic\","
+	         "\"density\":%.17g}%s}",
+	         is_bts(o) ? "bts" : "ucs", SYNTH_DENSITY, load);
 	prov_init(&prov, "solve", config, o->seed);
-	run_writer *w = run_create(path, &prov, &a, columns, NCOLS);
+	run_writer *w = run_create(path, &prov, &a, columns, NCOLS - !is_bts(o));
 	int rc = !w || run_write_bonds(w, &b) || write_history(w, &b, m, o);
 	for (int s = 0; !rc && s < o->nsnap; s++)
 		rc = write_snapshot(w, &a, &b, m, &f, o,

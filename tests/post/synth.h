@@ -12,7 +12,13 @@
  * band so the cracks draw a shear band. The axial stress follows
  * sigma_p (e / e_p) exp(1 - e / e_p), peaking at e_p. The configuration
  * names a material of density SYNTH_DENSITY. Everything is deterministic
- * for a seed. */
+ * for a seed.
+ * With a non-zero `load`, the run is a Brazilian test instead: the
+ * specimen is a disc of axis `axis`, diameter `diameter` and thickness
+ * `height`, loaded along `load` (a diameter: normal to the axis) by the
+ * same strain field about that direction; the case has "test": "bts" and
+ * "axis": load, as solve's cases do, and the history a force_axial column,
+ * P = sigma_a pi D^2 / 4 (solve's axial stress of a disc). */
 #ifndef DEM_TESTS_POST_SYNTH_H
 #define DEM_TESTS_POST_SYNTH_H
 
@@ -25,7 +31,8 @@ typedef struct {
 	double radius;      /* m, mean particle radius */
 	double diameter;    /* m, cylinder */
 	double height;      /* m */
-	double axis[3];     /* loading axis (normalised) */
+	double axis[3];     /* loading axis (normalised); a disc's axis with `load` */
+	double load[3];     /* a Brazilian test's loading diameter; 0: not one */
 	double center[3];   /* m */
 	int nsnap;          /* snapshots, evenly in strain from 0 */
 	int nrows;          /* history rows */

@@ -1,9 +1,10 @@
 /* post curve on a synthetic run: curve.csv is the history table, and the
  * four figures are real images with the curves in their colours;
- * experimental points add black markers. Each figure's gnuplot script is
- * left beside it and draws it again; --format pdf and svg draw vector
- * figures, an unknown format is refused. A gnuplot that fails, or draws
- * nothing, is one message, and no figure, script or temporary is left. */
+ * experimental points add black markers. A Brazilian test's figures draw
+ * its splitting tensile stress, which curve.csv adds as a last column. Each figure's gnuplot script
+ * is left beside it and draws it again; --format pdf and svg draw vector figures, an unknown format
+ * is refused. A gnuplot that fails, or draws nothing, is one message, and no figure, script or
+ * temporary is left. */
 #include <dirent.h>
 #include <math.h>
 #include <sys/stat.h>
@@ -71,6 +72,101 @@ static void failing_gnuplot(const char *dir, const char *run, const char *body, 
 	if (d)
 		closedir(d);
 	CHECK(d != NULL && left == 0);
+}
+
+/* Rows of datablock `name` of a gnuplot input text: the largest value of
+ * its column col (1-based) and the number of rows. */
+static size_t datablock_max(const char *text, const char *name, int col, double *max)
+{
+	char head[64];
+	snprintf(head, sizeof head, "%s << EOD\n", name);
+	const char *p = text ? strstr(text, head) : NULL;
+	size_t rows = 0;
+	*max = -INFINITY;
+	for (p = p ? p + strlen(head) : NULL; p && *p && strncmp(p, "EOD", 3); rows++) {
+		const char *q = p;
+		for (int c = 1; c < col; c++)
+			q += strcspn(q, " \n"), q += *q == ' ';
+		*max = fmax(*max, strtod(q, NULL));
+		p = strchr(p, '\n');
+		p = p ? p + 1 : NULL;
+	}
+	return rows;
+}
+
+/* A Brazilian test: curve.csv keeps every history column and adds
+ * stress_tensile = 2P/(pi D t); stress_strain.png draws that stress alone
+ * (no radial strain), bonds.png too, and volumetric.png is not drawn. */
+static void check_bts(const char *parent)
+{
+	char dir[1100], run[1200], path[1300];
+	snprintf(dir, sizeof dir, "%s/bts", parent);
+	snprintf(run, sizeof run, "%s/run.h5", dir);
+	char cmd[2400];
+	snprintf(cmd, sizeof cmd, "rm -rf '%s' && mkdir -p '%s'", dir, dir);
+	CHECK(system(cmd) == 0);
+	synth_opts o = synth_defaults();
+	o.nparticles = 150;
+	o.diameter = 12e-3, o.height = 5e-3;
+	o.center[2] = 0;
+	o.load[0] = 1; /* across a diameter of a disc of axis z */
+	CHECK(synth_run(run, &o) == 0);
+	dem_run r;
+	CHECK(run_read(run, &r) == 0);
+	post_result res = harness_post("curve %s", run);
+	CHECK(res.status == 0);
+	CHECK_CONTAINS(res.out, "a Brazilian test: volumetric.png not drawn");
+	harness_free(&res);
+	snprintf(path, sizeof path, "%s/volumetric.png", dir);
+	CHECK(!harness_exists(path));
+
+	const double *fa = run_column_data(&r, "force_axial");
+	CHECK(fa != NULL);
+	double D = r.assembly.geom.diameter, t = r.assembly.geom.height, peak = 0;
+	snprintf(path, sizeof path, "%s/curve.csv", dir);
+	char *text = harness_slurp(path), *save = NULL, buf[64];
+	size_t row = 0;
+	int bad = 0;
+	for (char *line = strtok_r(text, "\n", &save); fa && line;
+	     line = strtok_r(NULL, "\n", &save)) {
+		if (row++ == 0) {
+			for (int c = 0; c < r.ncols; c++)
+				bad += strcmp(harness_field(line, c, buf, sizeof buf),
+				              r.col_name[c]) != 0;
+			bad += strcmp(harness_field(line, r.ncols, buf, sizeof buf),
+			              "stress_tensile") != 0;
+			continue;
+		}
+		for (int c = 0; c < r.ncols; c++) {
+			double want = r.col[c][row - 2];
+			double got = strtod(harness_field(line, c, buf, sizeof buf), NULL);
+			bad += fabs(got - want) > 1e-9 * fabs(want);
+		}
+		double want = 2 * fa[row - 2] / (3.14159265358979323846 * D * t);
+		double got = strtod(harness_field(line, r.ncols, buf, sizeof buf), NULL);
+		bad += fabs(got - want) > 1e-9 * fabs(want);
+		peak = fmax(peak, want);
+	}
+	CHECK(row == r.nrows + 1);
+	CHECK(bad == 0);
+	free(text);
+
+	/* The figures' stress is sigma_t (MPa), under its name. */
+	double max;
+	snprintf(path, sizeof path, "%s/stress_strain.gp", dir);
+	text = harness_slurp(path);
+	CHECK(datablock_max(text, "$curve", 2, &max) == r.nrows);
+	CHECK(fabs(max - 1e-6 * peak) < 1e-6 * max);
+	CHECK(text && strstr(text, "bts = 1"));
+	free(text);
+	snprintf(path, sizeof path, "%s/bonds.gp", dir);
+	text = harness_slurp(path);
+	CHECK(datablock_max(text, "$stress", 2, &max) == r.nrows);
+	CHECK(fabs(max - 1e-6 * peak) < 1e-6 * max);
+	free(text);
+	CHECK(pixels(dir, "stress_strain.png", 0x0072B2) > 300); /* sigma_t */
+	CHECK(pixels(dir, "stress_strain.png", 0xD55E00) == 0);  /* no radial strain */
+	run_free(&r);
 }
 
 int main(void)
@@ -162,5 +258,6 @@ int main(void)
 	failing_gnuplot(dir, run, "exit 0", ".png: gnuplot failed");
 	failing_gnuplot(dir, run, "kill -9 $$", ".png: gnuplot failed");
 	run_free(&r);
+	check_bts(dir);
 	return check_done();
 }
