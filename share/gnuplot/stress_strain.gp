@@ -16,7 +16,7 @@ set ylabel (bts ? 'splitting tensile stress σ_t = 2P/(π D t) (MPa)' : 'axial s
 set yrange [0:*]
 set key bottom right
 cmd = "plot $curve using 1:2 with lines lt 1 title (bts ? 'σ_t = 2P/(π D t)' : 'axial strain ε_a')"
-if (has_radial) cmd = cmd . ", $curve using 3:2 with lines lt 2 title 'radial strain ε_r'"
+if (has_radial) cmd = cmd . ", $curve using 3:2 with lines lt 2 dt (12,6) title 'radial strain ε_r'"
 if (has_exp) cmd = cmd . ", $exp using 1:2 with points pt 6 ps 1.2 lc rgb '#000000' title exp_label . (bts ? '' : ' (axial)')"
 if (has_exp && !bts) cmd = cmd . ", $exp using 3:2 with points pt 4 ps 1.2 lc rgb '#555555' title exp_label . ' (radial)'"
 eval cmd
