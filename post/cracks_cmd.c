@@ -1,8 +1,7 @@
 /* post cracks: the crack log of a run as a table (cracks.csv), as discs in
  * a VTK time series (vtk/cracks.pvd) and as figures: the unrolled lateral
- * surface, an axial section, crack counts by mode against axial strain
- * and a histogram of crack orientations (post/crackmap.h for the
- * definitions). */
+ * surface, an axial section (of a Brazilian disc, its face), crack counts by mode against axial
+ * strain and a histogram of crack orientations (post/crackmap.h for the definitions). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,6 +21,7 @@ typedef struct {
 	double psi;       /* deg, section angle */
 	double thickness; /* m, section slab */
 	double width;     /* deg, orientation bins */
+	int disc;         /* section: a Brazilian disc's face, not an axial section */
 } map_opts;
 
 static const char *mode_name(int mode) { return mode == CRACK_TENSION ? "tension" : "shear"; }
@@ -75,14 +75,36 @@ static void surface_data(FILE *f, const dem_run *r, const specimen *sp, double d
 	fprintf(f, "depth = %.10g\n", 1e3 * depth);
 }
 
-/* $tension and $shear: crack traces in the section, u h du dh (mm). */
-static void section_data(FILE *f, const dem_run *r, const specimen *sp, const map_opts *o)
+/* The plane of a Brazilian disc's face through its centre: unit vectors
+ * e (across the loading diameter) and v (along it, from the loading axis
+ * made normal to the disc's axis a) and m = a, its normal; 0, or -1 when
+ * the loading axis is along the disc's axis. */
+static int face_plane(const dem_run *r, const specimen *sp, double e[3], double v[3], double m[3])
+{
+	double load[3];
+	load_axis(r, load);
+	v3_copy(m, sp->f.a);
+	v3_reject(v, load, m);
+	if (v3_norm(v) < 1e-6)
+		return -1;
+	v3_scale(v, v, 1 / v3_norm(v));
+	v3_cross(e, v, m); /* seen from +a: e to the right, v up */
+	return 0;
+}
+
+/* $tension and $shear: crack traces in the section, u h du dh (mm): the
+ * axial section at psi, or for a Brazilian test (disc = 1) the disc's
+ * face, h then along the loading diameter from the centre. */
+static void section_data(FILE *f, const dem_run *r, const specimen *sp, const map_opts *o, int disc)
 {
 	const frame *fr = &sp->f;
-	double e[3], m[3], c = cos(o->psi / POST_DEG), s = sin(o->psi / POST_DEG);
+	double e[3], v[3], m[3], c = cos(o->psi / POST_DEG), s = sin(o->psi / POST_DEG);
 	for (int k = 0; k < 3; k++)
 		e[k] = c * fr->e1[k] + s * fr->e2[k];
+	v3_copy(v, fr->a);
 	v3_cross(m, fr->a, e); /* normal of the section plane */
+	if (disc)
+		face_plane(r, sp, e, v, m);
 	for (int mode = CRACK_TENSION; mode <= CRACK_SHEAR; mode++) {
 		fprintf(f, "$%s << EOD\n", mode_name(mode));
 		for (size_t k = 0; k < r->ncracks; k++) {
@@ -93,17 +115,17 @@ static void section_data(FILE *f, const dem_run *r, const specimen *sp, const ma
 				continue;
 			crack_place p;
 			crack_place_of(sp, q, &p);
-			double nu = v3_dot(q->normal, e), nh = v3_dot(q->normal, fr->a);
+			double nu = v3_dot(q->normal, e), nh = v3_dot(q->normal, v);
 			double len = hypot(nu, nh), tu = 1, th = 0; /* trace direction */
 			if (len > 1e-9)
 				tu = -nh / len, th = nu / len;
-			double u = v3_dot(d, e), rc = q->radius;
+			double u = v3_dot(d, e), h = disc ? v3_dot(d, v) : p.height, rc = q->radius;
 			fprintf(f, "%.6g %.6g %.6g %.6g\n", 1e3 * (u - rc * tu),
-			        1e3 * (p.height - rc * th), 2e3 * rc * tu, 2e3 * rc * th);
+			        1e3 * (h - rc * th), 2e3 * rc * tu, 2e3 * rc * th);
 		}
 		fputs("EOD\n", f);
 	}
-	fprintf(f, "thickness = %.10g\npsi = %.10g\n", 1e3 * o->thickness, o->psi);
+	fprintf(f, "thickness = %.10g\npsi = %.10g\ndisc = %d\n", 1e3 * o->thickness, o->psi, disc);
 }
 
 /* $hist: bin centre, width (deg), tension and shear counts. */
@@ -146,8 +168,8 @@ static void plot_maps(const char *dir, const dem_run *r, const specimen *sp, con
 	draw(dir, "cracks_surface", &d, 1100, 750);
 	plot_begin(&d);
 	specimen_vars(d.f, sp, r);
-	section_data(d.f, r, sp, o);
-	draw(dir, "cracks_section", &d, 700, 900);
+	section_data(d.f, r, sp, o, o->disc);
+	draw(dir, "cracks_section", &d, o->disc ? 800 : 700, o->disc ? 850 : 900);
 	plot_begin(&d);
 	specimen_vars(d.f, sp, r);
 	crackmap_count_data(d.f, r);
@@ -165,7 +187,7 @@ static int crack_file(const char *name) { return out_series_name(name, "cracks",
 int post_cracks(int argc, char **argv)
 {
 	const char *out = NULL;
-	map_opts o = {0, 0, 0, 10};
+	map_opts o = {0, 0, 0, 10, 0};
 	int no_png = 0, no_vtk = 0;
 	long threads = 0;
 	const char *format = "png";
@@ -176,7 +198,8 @@ int post_cracks(int argc, char **argv)
 	    {"section-angle", CLI_NUM, &o.psi, "A", "deg",
 	     "section map: angle of the axial section plane around the axis", -360, 360},
 	    {"section-thickness", CLI_NUM, &o.thickness, "D", "m",
-	     "section map: slab thickness; 0: 2 mean diameters", 0, 1e3},
+	     "section map: slab thickness; 0: 2 mean diameters (a Brazilian disc: all of it)", 0,
+	     1e3},
 	    {"bin-width", CLI_NUM, &o.width, "DEG", "deg", "orientation histogram bin width", 1,
 	     90},
 	    {"no-png", CLI_FLAG, &no_png, NULL, "", "no figures", 0, 0},
@@ -190,9 +213,10 @@ int post_cracks(int argc, char **argv)
 	    "The crack log of a run: cracks.csv (every bond failure with its mode,\n"
 	    "time, axial strain, forces, place and orientation), vtk/cracks.pvd (one\n"
 	    "disc per crack, appearing at its time), and figures: cracks_surface.png\n"
-	    "(unrolled lateral surface), cracks_section.png (axial section),\n"
-	    "cracks_count.png (cracks by mode against axial strain) and\n"
-	    "cracks_orientation.png (histogram of crack orientations).",
+	    "(unrolled lateral surface), cracks_section.png (axial section; a\n"
+	    "Brazilian disc's face), cracks_count.png (cracks by mode against\n"
+	    "axial strain) and cracks_orientation.png (histogram of crack\n"
+	    "orientations).",
 	    opts, (int)(sizeof opts / sizeof opts[0]), argc, argv);
 	if (plot_set_format(format))
 		fatal(NULL);
@@ -203,8 +227,22 @@ int post_cracks(int argc, char **argv)
 	specimen_of(&sp, &r.assembly);
 	if (o.depth == 0)
 		o.depth = 4 * sp.mean_radius;
+	/* A Brazilian disc splits along its loading diameter, through its
+	 * thickness: its section is its face, every crack of the thickness. */
+	double e[3], v[3], m[3];
+	o.disc = load_is_bts(&r);
+	if (o.disc && face_plane(&r, &sp, e, v, m)) {
+		printf("%s: a Brazilian test loaded along the disc's axis: cracks_section.png is "
+		       "an axial section\n",
+		       file);
+		o.disc = 0;
+	}
+	if (o.disc && o.psi != 0)
+		printf("%s: a Brazilian test: cracks_section.png shows the disc's face; "
+		       "--section-angle is not used\n",
+		       file);
 	if (o.thickness == 0)
-		o.thickness = 4 * sp.mean_radius;
+		o.thickness = o.disc ? sp.height + 2 * sp.mean_radius : 4 * sp.mean_radius;
 	char *dir = out_dir(out, file);
 	char *csv = out_path(dir, "cracks.csv");
 	write_csv(csv, &r, &sp);

@@ -1,7 +1,8 @@
 /* post cracks on a synthetic run: the table holds every crack row of
  * run.h5 with its orientation, the VTK series ends with one disc per
  * crack row, and the four figures are real images showing tension and
- * shear cracks in their colours. A run without cracks draws nothing. */
+ * shear cracks in their colours. A run without cracks draws nothing. A
+ * Brazilian disc's section is its face. */
 #include <math.h>
 
 #include "lib/runfile.h"
@@ -55,6 +56,81 @@ static void check_png(const char *dir, const char *name, int w, int h)
 	CHECK(count[0] > 50 && count[1] > 50);
 }
 
+/* Rows "u h du dh" of datablock `name` in text, into row[][4]; count. */
+static size_t section_rows(const char *text, const char *name, double (*row)[4], size_t max)
+{
+	char head[64];
+	snprintf(head, sizeof head, "%s << EOD\n", name);
+	const char *p = text ? strstr(text, head) : NULL;
+	size_t n = 0;
+	for (p = p ? p + strlen(head) : NULL; p && *p && strncmp(p, "EOD", 3); n++) {
+		char *end = (char *)p;
+		for (int c = 0; c < 4; c++)
+			if (n < max)
+				row[n][c] = strtod(end, &end);
+		p = strchr(p, '\n');
+		p = p ? p + 1 : NULL;
+	}
+	return n;
+}
+
+/* A Brazilian test: the section is the disc's face, seen along the disc's
+ * axis with the loading diameter up, holding every crack of the
+ * thickness (the default slab), each at its place in that plane, its
+ * trace normal to the in-plane part of its normal. */
+static void check_disc_face(const char *parent)
+{
+	char dir[1100], run[1200], path[1300];
+	snprintf(dir, sizeof dir, "%s/bts", parent);
+	snprintf(run, sizeof run, "%s/bts.h5", parent);
+	synth_opts o = synth_defaults();
+	o.diameter = 14e-3, o.height = 5e-3, o.nparticles = 300;
+	o.center[2] = 0;
+	o.load[0] = 1; /* the disc of axis z loaded along x */
+	CHECK(synth_run(run, &o) == 0);
+	dem_run r;
+	CHECK(run_read(run, &r) == 0);
+	CHECK(r.ncracks > 20);
+	post_result res = harness_post("cracks --no-vtk --out %s %s", dir, run);
+	CHECK(res.status == 0);
+	harness_free(&res);
+	check_png(dir, "cracks_section.png", 800, 850);
+	snprintf(path, sizeof path, "%s/cracks_section.gp", dir);
+	char *text = harness_slurp(path);
+	CHECK(text && strstr(text, "disc = 1"));
+	size_t nmax = r.ncracks + 1;
+	double(*rows)[4] = malloc(2 * nmax * sizeof *rows);
+	size_t nt = section_rows(text, "$tension", rows, nmax);
+	size_t ns = section_rows(text, "$shear", rows + nmax, nmax);
+	CHECK(nt + ns == r.ncracks);
+	/* In the face: u across the loading diameter (-y seen from +z), h
+	 * along it (x), from the centre, in mm. */
+	int missing = 0, skew = 0;
+	double hmin = INFINITY, hmax = -INFINITY;
+	for (size_t k = 0; k < r.ncracks && nt <= nmax && ns <= nmax; k++) {
+		const dem_crack *c = &r.cracks[k];
+		double u = -1e3 * (c->x[1] - o.center[1]), h = 1e3 * (c->x[0] - o.center[0]);
+		int shear = c->mode == CRACK_SHEAR, found = 0;
+		const double(*b)[4] = rows + (shear ? nmax : 0);
+		for (size_t q = 0; q < (shear ? ns : nt) && !found; q++) {
+			double mu = b[q][0] + 0.5 * b[q][2], mh = b[q][1] + 0.5 * b[q][3];
+			if (fabs(mu - u) > 1e-3 || fabs(mh - h) > 1e-3)
+				continue;
+			found = 1;
+			double nu = -c->normal[1], nh = c->normal[0];
+			skew += fabs(b[q][2] * nu + b[q][3] * nh) > 1e-3 * hypot(nu, nh);
+		}
+		missing += !found;
+		hmin = fmin(hmin, h), hmax = fmax(hmax, h);
+	}
+	CHECK(missing == 0);
+	CHECK(skew == 0);
+	CHECK(hmax - hmin > 0.5 * 1e3 * o.diameter); /* cracks along the diameter */
+	free(rows);
+	free(text);
+	run_free(&r);
+}
+
 int main(void)
 {
 	char dir[1024], run[1100], path[1200];
@@ -103,5 +179,6 @@ int main(void)
 	CHECK(!harness_exists(path));
 	snprintf(path, sizeof path, "%s/calm/cracks.csv", dir);
 	CHECK(harness_exists(path));
+	check_disc_face(dir);
 	return check_done();
 }
