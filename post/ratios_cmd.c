@@ -216,8 +216,16 @@ static void plot(const char *dir, const run_ratios *runs, int nruns, const ratio
 				size_t c = runs[q].stat[RATIO_DAMAGED * bins->n + k].count;
 				ndamaged += (long)c >= min_count ? c : 0;
 			}
-		fprintf(d.f, "nruns = %d\nndamaged = %zu\nmin_count = %ld\narray label[%d]\n",
-		        nruns, ndamaged, min_count, nruns);
+		/* The legend sits below the plot, a row per run and one for the
+		 * band of the paper (ratios.png) or two for the line styles of
+		 * intact and damaged contacts (ratios_groups.png, when there are
+		 * damaged ones): the figure grows by its rows. */
+		int key_rows = nruns + (p == 0 ? 1 : ndamaged > 0 ? 2 : 0);
+		int height = 600 + 21 * key_rows;
+		fprintf(d.f,
+		        "nruns = %d\nndamaged = %zu\nmin_count = %ld\nkey_rows = %d\ncanvas_h = "
+		        "%d\narray label[%d]\n",
+		        nruns, ndamaged, min_count, key_rows, height, nruns);
 		for (int q = 0; q < nruns; q++) {
 			char text[512];
 			/* The instant too: where on its curve each run was taken. */
@@ -232,7 +240,7 @@ static void plot(const char *dir, const run_ratios *runs, int nruns, const ratio
 			fputc('\n', d.f);
 		}
 		char *fig = plot_file(dir, scripts[p]);
-		if (plot_draw(&d, scripts[p], fig, p == 0 ? 900 : 1400, 650))
+		if (plot_draw(&d, scripts[p], fig, p == 0 ? 900 : 1400, height))
 			fatal(NULL);
 		printf("wrote %s\n", fig);
 		free(fig);
