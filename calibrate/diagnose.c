@@ -133,17 +133,30 @@ static void noise(report *rp)
 		}
 }
 
+int report_bound(const cal_key *p, double v)
+{
+	if (v < p->lo)
+		return -2;
+	if (v > p->hi)
+		return 2;
+	double x = p->log ? log(v) : v, lo = p->log ? log(p->lo) : p->lo,
+	       hi = p->log ? log(p->hi) : p->hi, tol = 0.01 * (hi - lo);
+	return x <= lo + tol ? -1 : x >= hi - tol ? 1 : 0;
+}
+
 static void at_bounds(report *rp, const double *v)
 {
 	const cal_spec *sp = rp->sp;
 	for (int k = 0; k < sp->nfree; k++) {
 		const cal_key *p = &sp->key[k];
-		double x = p->log ? log(v[k]) : v[k], lo = p->log ? log(p->lo) : p->lo,
-		       hi = p->log ? log(p->hi) : p->hi, tol = 0.01 * (hi - lo);
-		if (x <= lo + tol || x >= hi - tol)
+		int b = report_bound(p, v[k]);
+		if (b == -1 || b == 1)
 			note(rp, "%s ended at its %s bound (%g)%s", p->name,
-			     x <= lo + tol ? "lower" : "upper", x <= lo + tol ? p->lo : p->hi,
+			     b < 0 ? "lower" : "upper", b < 0 ? p->lo : p->hi,
 			     rp->met ? "" : ": the bounds may keep the targets out of reach");
+		else if (b)
+			note(rp, "%s ended at %g, %s its bounds [%g, %g]", p->name, v[k],
+			     b < 0 ? "below" : "above", p->lo, p->hi);
 	}
 }
 

@@ -99,9 +99,12 @@ static void params_md(FILE *f, const report *rp)
 			snprintf(u, sizeof u,
 			         isfinite(rp->sens->sigma[k]) ? "±%.3g %%" : "not identified",
 			         100 * rp->sens->sigma[k]);
+		static const char *const where[] = {", below them", ", at the lower bound", "",
+		                                    ", at the upper bound", ", above them"};
 		if (p->free)
-			fprintf(f, "| %s | %.6g | %.6g | [%g, %g]%s | %s |", p->name, p->start,
-			        b->v[k], p->lo, p->hi, p->log ? " log" : "", u);
+			fprintf(f, "| %s | %.6g | %.6g | [%g, %g]%s%s | %s |", p->name, p->start,
+			        b->v[k], p->lo, p->hi, p->log ? " log" : "",
+			        where[report_bound(p, b->v[k]) + 2], u);
 		else
 			fprintf(f,
 			        "| %s | %.6g | %.6g | keeps its template ratio to the free %s | |",
@@ -258,6 +261,8 @@ static int report_json(const report *rp, const char *path)
 		if (p->free) {
 			json_num(o, "min", p->lo);
 			json_num(o, "max", p->hi);
+			static const char *const bound[] = {"below", "lower", "", "upper", "above"};
+			json_str(o, "bound", bound[report_bound(p, b->v[k]) + 2]);
 			json_num(o, "uncertainty", rp->sens->ran ? rp->sens->sigma[k] : NAN);
 			if (rp->sens->ran) {
 				double col[CAL_MAX_TARGETS];

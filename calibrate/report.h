@@ -28,6 +28,10 @@ typedef struct {
 	int nnotes;
 } report;
 
+/* Where the value v of free key p lies: 0 within its bounds, -1 or 1 at
+ * its lower or upper bound (within 1 % of the range, of the logarithms on
+ * a log scale), -2 or 2 below or above them. */
+int report_bound(const cal_key *p, double v);
 /* The warnings and the diagnosis (report->notes). */
 void report_diagnose(report *rp);
 /* Write material.json, report.md, report.json and path.csv in dir, and

@@ -71,8 +71,10 @@ static void show(const ctx *c, const path_point *p)
 static double penalty(const ctx *c) { return fmax(100, 4 * c->worst_f); }
 
 /* Evaluate the point z at the round's scales: the objective NLopt sees
- * (the prediction of the best scaled copy, with the scaling). */
-static double eval_z(ctx *c, const double *z)
+ * (the prediction of the best scaled copy, with the scaling). A point
+ * whose values would leave a key's bounds is run projected onto them: what
+ * is run, logged and predicted is the projection. */
+static double eval_z(ctx *c, const double *zin)
 {
 	const cal_spec *sp = c->e->sp;
 	search_result *r = c->r;
@@ -85,6 +87,9 @@ static double eval_z(ctx *c, const double *z)
 	memset(&p, 0, sizeof p);
 	p.round = c->round;
 	snprintf(p.stage, sizeof p.stage, "%s", c->stage);
+	double z[CAL_MAX_FREE];
+	memcpy(z, zin, (size_t)c->s->nz * sizeof *z);
+	space_project(c->s, c->S, c->K, z);
 	space_values(c->s, c->S, c->K, z, p.v);
 	/* NLopt starts each stage where the last ended: that point is known. */
 	int again = -1;

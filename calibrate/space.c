@@ -65,6 +65,28 @@ void space_values(const space *s, double S, double K, const double *z, double *v
 			break;
 		}
 	}
+	for (int k = 0; k < sp->nfree; k++)
+		v[k] = fmin(fmax(v[k], sp->key[k].lo), sp->key[k].hi);
+}
+
+int space_project(const space *s, double S, double K, double *z)
+{
+	const cal_spec *sp = s->sp;
+	int moved = 0;
+	for (int j = 0; j < s->nz; j++) {
+		const cal_key *p = &sp->key[s->zkey[j]];
+		double lo = s->lo[j], hi = s->hi[j];
+		if (s->kind[j] == Z_RATIO) {
+			const cal_key *a = &sp->key[s->anchor[p->cls]];
+			double va = scale_of(p->cls, S, K) * a->tmpl;
+			lo = fmax(lo, log(p->lo / va));
+			hi = fmin(hi, log(p->hi / va));
+		}
+		double x = fmin(fmax(z[j], lo), hi);
+		moved += x != z[j];
+		z[j] = x;
+	}
+	return moved;
 }
 
 void space_coords(const space *s, const double *v, double *S, double *K, double *z)

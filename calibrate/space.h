@@ -19,7 +19,7 @@ typedef struct {
 	int nz;
 	int zkey[CAL_MAX_FREE]; /* the key of each search variable */
 	zkind kind[CAL_MAX_FREE];
-	double lo[CAL_MAX_FREE], hi[CAL_MAX_FREE]; /* bounds of z */
+	double lo[CAL_MAX_FREE], hi[CAL_MAX_FREE]; /* bounds of z (a ratio's: at any anchor) */
 	double step[CAL_MAX_FREE];                 /* initial step of the search */
 	double xtol[CAL_MAX_FREE];                 /* a round ends on steps below this */
 	int anchor[3];                             /* per scale_class: key index or -1 */
@@ -27,8 +27,16 @@ typedef struct {
 
 void space_init(space *s, const cal_spec *sp);
 /* The value of every key (sp->nkey) at the scales S, K (the anchors'
- * values over their template values; 1 when a class has no anchor) and z. */
+ * values over their template values; 1 when a class has no anchor) and z.
+ * A free key is held within its bounds [min, max]; after space_project
+ * that changes nothing but a rounding. */
 void space_values(const space *s, double S, double K, const double *z, double *v);
+/* Project z onto the bounds at the scales S, K: a search variable that
+ * would put its free key outside [min, max] (a ratio whose box, at any
+ * anchor value, is wider than the bounds at this one) is moved to the
+ * bound; the scaled copies of the projected point (space_scale_box) keep
+ * the ratios as run. The number of variables moved. */
+int space_project(const space *s, double S, double K, double *z);
 /* The scales and search variables of the values v. */
 void space_coords(const space *s, const double *v, double *S, double *K, double *z);
 /* The changes of ln S and ln K from the point (S, K, z) that keep every

@@ -85,6 +85,86 @@ static void test_space(const cal_spec *sp)
 	CHECK_NEAR(box[3], log(100e9 / 40e9), 1e-12);
 }
 
+/* A free strength tied to the anchor as a ratio: its box, [min / anchor
+ * max, max / anchor min], is wider than its bounds at any one anchor
+ * value. Every value run stays within the bounds, and a point projected
+ * onto them is a point whose scaled copies are what the scaling predicts. */
+static void test_bounds(void)
+{
+	static cal_spec sp;
+	sp.law = "onate", sp.scaling = 1, sp.step = 0.5, sp.xtol = 0.02;
+	sp.nfree = sp.nkey = 2;
+	sp.key[0] = (cal_key){.name = "tensile_strength",
+	                      .cls = CLS_STRESS,
+	                      .free = 1,
+	                      .lo = 1e6,
+	                      .hi = 20e6,
+	                      .start = 5e6,
+	                      .tmpl = 5e6,
+	                      .log = 1};
+	sp.key[1] = (cal_key){.name = "shear_strength",
+	                      .cls = CLS_STRESS,
+	                      .free = 1,
+	                      .lo = 3e6,
+	                      .hi = 100e6,
+	                      .start = 16e6,
+	                      .tmpl = 16e6,
+	                      .log = 1};
+	space s;
+	space_init(&s, &sp);
+	CHECK(s.nz == 1 && s.kind[0] == Z_RATIO);
+	double v[CAL_MAX_KEYS];
+	for (int i = 0; i <= 8; i++)
+		for (int j = 0; j <= 8; j++) {
+			/* The anchor over its bounds, the ratio over its box. */
+			double S = exp(log(0.2) + i / 8.0 * log(20.0));
+			double z[1] = {s.lo[0] + j / 8.0 * (s.hi[0] - s.lo[0])};
+			space_values(&s, S, 1, z, v);
+			CHECK(v[1] >= 3e6 && v[1] <= 100e6);
+			CHECK(v[0] >= 1e6 && v[0] <= 20e6);
+		}
+	/* The strength at its maximum, the ratio at its box's: the shear
+	 * strength would be 2e9, 20 times its maximum. */
+	double S = 4, z[1] = {s.hi[0]};
+	CHECK(space_project(&s, S, 1, z) == 1);
+	CHECK_NEAR(z[0], log(100e6 / 20e6), 1e-12);
+	space_values(&s, S, 1, z, v);
+	CHECK_REL(v[1], 100e6, 1e-12);
+	CHECK(v[1] <= 100e6);
+	/* Its scaled copies keep the ratio as run, within the bounds. */
+	double box[4];
+	CHECK(space_scale_box(&s, S, 1, z, box) == 0);
+	CHECK_NEAR(box[1], 0, 1e-12);
+	CHECK_NEAR(box[0], log(1e6 / 20e6), 1e-12);
+	double w[CAL_MAX_KEYS];
+	space_values(&s, S * exp(-1), 1, z, w);
+	CHECK_REL(w[1], v[1] * exp(-1), 1e-12);
+	CHECK_REL(w[0], v[0] * exp(-1), 1e-12);
+	/* A point within the bounds is not moved. */
+	z[0] = log(16.0 / 5);
+	CHECK(space_project(&s, 1, 1, z) == 0 && z[0] == log(16.0 / 5));
+
+	/* The report: a key at its bound is said to be, one beyond it is not. */
+	const cal_key *p = &sp.key[1];
+	CHECK(report_bound(p, 50e6) == 0);
+	CHECK(report_bound(p, 99e6) == 1 && report_bound(p, 100e6) == 1);
+	CHECK(report_bound(p, 3e6) == -1);
+	CHECK(report_bound(p, 1.80155e8) == 2 && report_bound(p, 1.8e6) == -2);
+	sensitivity sens = {.ran = 0};
+	path_point pt = {.v = {5e6, 1.80155e8}, .ok = 1, .fit = {.met = 1}};
+	search_result r = {.path = &pt, .npath = 1, .best = 0, .status = SEARCH_MET};
+	report rp = {.sp = &sp, .r = &r, .sens = &sens, .met = 1};
+	report_diagnose(&rp);
+	int above = 0;
+	for (int k = 0; k < rp.nnotes; k++) {
+		CHECK(!strstr(rp.notes[k], "ended at its upper bound"));
+		above += strstr(rp.notes[k], "shear_strength ended at 1.80155e+08, above its "
+		                             "bounds [3e+06, 1e+08]") != NULL;
+	}
+	CHECK(above == 1);
+	report_free(&rp);
+}
+
 static void test_runlog(const cal_spec *sp, const char *dir)
 {
 	char path[4096];
@@ -188,6 +268,7 @@ int main(void)
 	test_project();
 	test_uncertainty();
 	test_out_of_reach();
+	test_bounds();
 	cal_spec sp;
 	int rc = spec_load("tests/calibrate/data/recovery.json", &sp);
 	CHECK(rc == 0);
