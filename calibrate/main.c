@@ -148,7 +148,8 @@ int main(int argc, char **argv)
 	    {"no-confirm", CLI_FLAG, &no_confirm, NULL, "",
 	     "skip the confirming runs on the full specimens", 0, 0},
 	    {"no-png", CLI_FLAG, &no_png, NULL, "", "no figures (they need gnuplot)", 0, 0},
-	    {"quiet", CLI_FLAG, &quiet, NULL, "", "print nothing but errors and the report", 0, 0},
+	    {"quiet", CLI_FLAG, &quiet, NULL, "",
+	     "print nothing but warnings, errors and the report", 0, 0},
 	};
 	static const char summary[] =
 	    "Calibrate a material's micro parameters to measured properties: run the\n"
@@ -183,6 +184,11 @@ int main(int argc, char **argv)
 		fatal(NULL);
 	if (runs)
 		sp.runs = runs;
+	space s;
+	space_init(&s, &sp);
+	char shortfall[1024];
+	if (search_budget_short(&s, shortfall, sizeof shortfall))
+		warn("%s", shortfall);
 	char *outdir = out ? xstrdup(out) : default_out(pos[0]);
 	char *bindir = bin ? xstrdup(bin) : own_dir();
 	check_program(bindir, "pack");
@@ -193,8 +199,6 @@ int main(int argc, char **argv)
 	/* Threads waiting at a barrier sleep: runs side by side share the cores. */
 	setenv("OMP_WAIT_POLICY", "passive", 0);
 
-	space s;
-	space_init(&s, &sp);
 	evaluator e;
 	if (eval_init(&e, &sp, outdir, bindir, (int)jobs, keep))
 		fatal(NULL);

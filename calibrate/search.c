@@ -198,6 +198,38 @@ static void run_nlopt(ctx *c, nlopt_algorithm alg, double *z, int maxeval, doubl
 		memcpy(z, c->best_z, n * sizeof *z);
 }
 
+long search_global_points(const space *s)
+{
+	return s->sp->global_points ? s->sp->global_points : 8L * (s->nz + 1);
+}
+
+int search_budget_short(const space *s, char *buf, size_t n)
+{
+	const cal_spec *sp = s->sp;
+	if (s->nz == 0 || sp->global == GLOBAL_NEVER)
+		return 0;
+	/* Each point runs every test once. */
+	long points = search_global_points(s), per = sp->ntest, need = (points + 2) * per;
+	if (sp->runs >= need)
+		return 0;
+	char dflt[96] = "";
+	if (!sp->global_points)
+		snprintf(dflt, sizeof dflt,
+		         ", by default 8 x (n + 1) = %ld for n = %d search variable%s", points,
+		         s->nz, s->nz == 1 ? "" : "s");
+	snprintf(buf, n,
+	         "%s: the budget of %ld runs cannot finish the global stage%s: the start and the "
+	         "global stage's %ld points (search.global_points%s) take up to %ld runs at %ld "
+	         "per point (one per "
+	         "test), so the local stage would never start; give budget.runs (or --runs) of at "
+	         "least %ld, fewer search.global_points, or \"search\": {\"global\": \"never\"}",
+	         sp->source, sp->runs,
+	         sp->global == GLOBAL_AUTO ? " when the start is poor (search.global \"auto\")"
+	                                   : "",
+	         points, dflt, (points + 1) * per, per, need);
+	return 1;
+}
+
 static const nlopt_algorithm local_algorithms[] = {NLOPT_LN_BOBYQA, NLOPT_LN_COBYLA,
                                                    NLOPT_LN_SBPLX};
 
@@ -230,9 +262,8 @@ int search_run(evaluator *e, const space *s, int quiet, search_result *r)
 			    (sp->global == GLOBAL_AUTO && (!p0->ok || worst > sp->global_above))) {
 				c.stage = "global";
 				r->global_used = 1;
-				long points =
-				    sp->global_points ? sp->global_points : 8 * (s->nz + 1);
-				run_nlopt(&c, NLOPT_GN_DIRECT_L, z, (int)points, 1);
+				run_nlopt(&c, NLOPT_GN_DIRECT_L, z, (int)search_global_points(s),
+				          1);
 			}
 		}
 		long left = (sp->runs - e->runs[PHASE_SEARCH]) / eval_runs_per_point(e) + 1;

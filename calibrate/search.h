@@ -10,6 +10,8 @@
 #ifndef DEM_CALIBRATE_SEARCH_H
 #define DEM_CALIBRATE_SEARCH_H
 
+#include <stddef.h>
+
 #include "calibrate/eval.h"
 #include "calibrate/objective.h"
 #include "calibrate/space.h"
@@ -36,6 +38,14 @@ typedef struct {
 	int rounds;
 	int global_used;
 } search_result;
+
+/* Points of the global stage: search.global_points, by default
+ * 8 * (n + 1) for n search variables. */
+long search_global_points(const space *s);
+/* When the global stage may run (search.global) and the budget of runs
+ * cannot take the start, its points and one point of the local stage: 1,
+ * with a warning naming the numbers and what to change in buf; else 0. */
+int search_budget_short(const space *s, char *buf, size_t n);
 
 /* Search from the start values; 0, or -1 with err_set() on an error (the
  * start fails, the log cannot be written) or when a signal stopped it

@@ -75,6 +75,23 @@ write '{"key": "E0", "min": 1e9, "max": 1e11}' "$tests" "$target" '"search": {"s
 sed -i 's/"truth.json"/"exponential.json"/' "$tmp/cal.json"
 expect_nothing_run "cal.json: key 'search.scaling': value true: the law 'exponential' has no exact scaling"
 
+# A budget too small for the global stage: a warning at the start, before
+# anything is run (here --bin stops it there), with the numbers.
+write "$free" "$tests" "$target" '"budget": {"runs": 10}, "search": {"global": "always"}'
+set +e
+"$bin/calibrate" --quiet --no-png --bin "$tmp/nowhere" --out "$tmp/out" "$tmp/cal.json" \
+	> /dev/null 2> "$tmp/stderr"
+set -e
+grep -qF "calibrate: warning: $tmp/cal.json: the budget of 10 runs cannot finish the global stage: the start and the global stage's 16 points (search.global_points, by default 8 x (n + 1) = 16 for n = 1 search variable) take up to 17 runs" "$tmp/stderr" ||
+	{ cat "$tmp/stderr" >&2; fail "no warning of a budget too small for the global stage"; }
+grep -qF "give budget.runs (or --runs) of at least 18" "$tmp/stderr" || fail "no least budget"
+write "$free" "$tests" "$target" '"budget": {"runs": 18}, "search": {"global": "always"}'
+set +e
+"$bin/calibrate" --quiet --no-png --bin "$tmp/nowhere" --out "$tmp/out" "$tmp/cal.json" \
+	> /dev/null 2> "$tmp/stderr"
+set -e
+! grep -q "warning" "$tmp/stderr" || { cat "$tmp/stderr" >&2; fail "a warning for a budget that suffices"; }
+
 # A case that solve refuses: the start fails, with solve's message.
 sed 's/"test": "ucs"/"no_such_key": 1, "test": "ucs"/' "$data/ucs.json" > "$tmp/ucs.json"
 write "$free" "$tests" "$target"

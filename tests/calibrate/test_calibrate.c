@@ -11,6 +11,7 @@
 #include "calibrate/report.h"
 #include "calibrate/runlog.h"
 #include "calibrate/scaling.h"
+#include "calibrate/search.h"
 #include "calibrate/sensitivity.h"
 #include "calibrate/space.h"
 #include "calibrate/spec.h"
@@ -165,6 +166,33 @@ static void test_bounds(void)
 	report_free(&rp);
 }
 
+/* A budget that cannot finish the global stage and start the local one is
+ * named, with the numbers and what to change. */
+static void test_budget(void)
+{
+	static cal_spec sp;
+	sp.law = "onate", sp.source = "cal.json", sp.step = 0.5, sp.xtol = 0.02;
+	sp.nfree = sp.nkey = 1, sp.ntest = 2, sp.runs = 20, sp.global = GLOBAL_AUTO;
+	sp.key[0] = (cal_key){.name = "nu", .free = 1, .lo = 0.1, .hi = 0.4, .start = 0.2};
+	space s;
+	space_init(&s, &sp);
+	CHECK(s.nz == 1 && search_global_points(&s) == 16);
+	char buf[1024];
+	/* The start, 16 points and a local one, 2 runs each: 36 runs. */
+	CHECK(search_budget_short(&s, buf, sizeof buf) == 1);
+	CHECK(strstr(buf, "cal.json: the budget of 20 runs cannot finish the global stage"));
+	CHECK(strstr(buf, "16 points (search.global_points, by default 8 x (n + 1) = 16 for n = "
+	                  "1 search variable)"));
+	CHECK(strstr(buf, "the local stage would never start"));
+	CHECK(strstr(buf, "at least 36"));
+	sp.runs = 36;
+	CHECK(search_budget_short(&s, buf, sizeof buf) == 0);
+	sp.runs = 20, sp.global_points = 8;
+	CHECK(search_budget_short(&s, buf, sizeof buf) == 0);
+	sp.global_points = 0, sp.global = GLOBAL_NEVER;
+	CHECK(search_budget_short(&s, buf, sizeof buf) == 0);
+}
+
 static void test_runlog(const cal_spec *sp, const char *dir)
 {
 	char path[4096];
@@ -269,6 +297,7 @@ int main(void)
 	test_uncertainty();
 	test_out_of_reach();
 	test_bounds();
+	test_budget();
 	cal_spec sp;
 	int rc = spec_load("tests/calibrate/data/recovery.json", &sp);
 	CHECK(rc == 0);
