@@ -42,6 +42,38 @@ const char *quantity_list(void)
 
 int quantity_positive(const quantity *q) { return q->a != 0 || q->b != 0; }
 
+/* A target for a rock, a concrete or a cement (share/doc/calibrate.md): a
+ * stress of 1 kPa or more, a modulus of 1 MPa or more, a strain of at most
+ * 1; a value in MPa or GPa, or a strain in percent, falls outside. */
+int quantity_plausible(const quantity *q, double v, char *buf, size_t n)
+{
+	int pa = strcmp(q->unit, "Pa") == 0;
+	if (pa && q->a == 1 && q->b == 0 && v < 1e3) {
+		snprintf(buf, n,
+		         "%g Pa is too small for a stress of a rock, a concrete or a cement: "
+		         "expected Pa, at least 1e3 (1 kPa); did you mean %ge6 (%g MPa)?",
+		         v, v, v);
+		return -1;
+	}
+	if (pa && q->a == 0 && q->b == 1 && v < 1e6) {
+		/* Rocks have moduli of 0.1 to 150 GPa: 28 is in GPa, 4000 in MPa. */
+		int gpa = v < 200;
+		snprintf(buf, n,
+		         "%g Pa is too small for a modulus of a rock, a concrete or a cement: "
+		         "expected Pa, at least 1e6 (1 MPa); did you mean %ge%d (%g %s)?",
+		         v, v, gpa ? 9 : 6, v, gpa ? "GPa" : "MPa");
+		return -1;
+	}
+	if (strcmp(q->unit, "-") == 0 && q->a == 1 && q->b == -1 && v > 1) {
+		snprintf(buf, n,
+		         "a strain above 1 (100 %%): expected a fraction, not a percent; did you "
+		         "mean %g (%g %%)?",
+		         v / 100, v);
+		return -1;
+	}
+	return 0;
+}
+
 int quantity_test_kind(const char *test)
 {
 	if (strcmp(test, "bts") == 0)

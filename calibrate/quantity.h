@@ -9,6 +9,8 @@
 #ifndef DEM_CALIBRATE_QUANTITY_H
 #define DEM_CALIBRATE_QUANTITY_H
 
+#include <stddef.h>
+
 typedef struct {
 	const char *name;  /* key of summary.json */
 	const char *label; /* what it is, for reports */
@@ -33,6 +35,11 @@ const char *quantity_list(void);
 /* Whether the quantity's value must be positive (it scales: a or b != 0),
  * so that its error is measured on a log scale. */
 int quantity_positive(const quantity *q);
+/* Whether a target's value v is plausible in the quantity's SI unit for a
+ * rock, a concrete or a cement: a stress at least 1e3 Pa, a modulus at
+ * least 1e6 Pa, a strain at most 1 (the others: any value). 0 when it
+ * is; -1 with what is expected, and the value it may have meant, in buf. */
+int quantity_plausible(const quantity *q, double v, char *buf, size_t n);
 /* The kind of test (QTY_*) a case's "test" word names. */
 int quantity_test_kind(const char *test);
 

@@ -352,6 +352,10 @@ static int parse_targets(cfg *c, cal_spec *s)
 			return cfg_error(t, "value",
 			                 "value 0: expected a non-zero number (the "
 			                 "tolerance is relative to it)");
+		char why[512];
+		if (!tg->from_truth && quantity_plausible(q, tg->value, why, sizeof why))
+			return cfg_error(t, "value", "value %g (test '%s', %s): %s", tg->value,
+			                 ts->name, q->name, why);
 		s->ntarget++;
 	}
 	for (int j = 0; j < s->ntest; j++) {

@@ -63,6 +63,15 @@ write "$free" "$tests" '{"test": "ucs", "quantity": "bts_strength", "value": 1e6
 expect_nothing_run "cal.json: key 'targets[0].quantity': value \"bts_strength\": not measured by a \"ucs\" test"
 write "$free" "$tests" '{"test": "ucs", "quantity": "peak_stress", "value": -1e6}'
 expect_nothing_run "cal.json: key 'targets[0].value': value -1000000: expected a positive number (Pa)"
+# Targets in MPa, GPa or percent, not in SI.
+write "$free" "$tests" '{"test": "ucs", "quantity": "peak_stress", "value": 10}'
+expect_nothing_run "cal.json: key 'targets[0].value': value 10 (test 'ucs', peak_stress): 10 Pa is too small for a stress of a rock, a concrete or a cement: expected Pa, at least 1e3 (1 kPa); did you mean 10e6 (10 MPa)?"
+write "$free" "$tests" "$target"', {"test": "ucs", "quantity": "young_modulus", "value": 4000}'
+expect_nothing_run "cal.json: key 'targets[1].value': value 4000 (test 'ucs', young_modulus): 4000 Pa is too small for a modulus of a rock, a concrete or a cement: expected Pa, at least 1e6 (1 MPa); did you mean 4000e6 (4000 MPa)?"
+write "$free" "$tests" '{"test": "ucs", "quantity": "young_modulus", "value": 28}'
+expect_nothing_run "did you mean 28e9 (28 GPa)?"
+write "$free" "$tests" '{"test": "ucs", "quantity": "strain_at_peak", "value": 5}'
+expect_nothing_run "cal.json: key 'targets[0].value': value 5 (test 'ucs', strain_at_peak): a strain above 1 (100 %): expected a fraction, not a percent; did you mean 0.05 (5 %)?"
 write "$free" '{"name": "ucs", "case": "ucs.json", "search": {"specimen": "none.json"}}' "$target"
 expect_nothing_run "cal.json: key 'tests[0].search.specimen': value \"none.json\": no readable file"
 write "$free" "$tests" "$target" '"search": {"method": "newton"}'
