@@ -75,12 +75,26 @@ static int load_object(cfg *c, const char *key, int required, cJSON **out, char 
 	free(text);
 	if (cJSON_IsString(v)) {
 		char *path = path_beside(cfg_source(c), v->valuestring);
+		if (access(path, R_OK) != 0) {
+			char *full = path_absolute(path);
+			cfg_error(c, key,
+			          "value \"%s\": no readable file %s: expected a material file "
+			          "(its name relative to the calibration file's directory) or a "
+			          "material object",
+			          v->valuestring, full);
+			free(full), free(path);
+			cJSON_Delete(v);
+			return -1;
+		}
 		cfg *m = cfg_load(path);
 		snprintf(what, n, "%s", path);
 		free(path);
-		cJSON_Delete(v);
-		if (!m)
+		if (!m) {
+			cfg_error(c, key, "value \"%s\": %s", v->valuestring, err_msg());
+			cJSON_Delete(v);
 			return -1;
+		}
+		cJSON_Delete(v);
 		char *t = cfg_text(m);
 		cfg_free(m);
 		*out = cJSON_Parse(t);

@@ -41,6 +41,9 @@ expect_nothing_run() {
 	[ ! -e "$tmp/out" ] || fail "an output directory for a bad file: $1"
 }
 
+write "$free" "$tests" "$target"
+sed -i 's/"truth.json"/"none.json"/' "$tmp/cal.json"
+expect_nothing_run "cal.json: key 'material': value \"none.json\": no readable file $tmp/none.json: expected a material file (its name relative to the calibration file's directory) or a material object"
 write "$free" "$tests" "$target" '"budgett": {"runs": 3}'
 expect_nothing_run "cal.json: key 'budgett': unknown key"
 write "$free" "$tests" '{"test": "ucs", "quantity": "peak_strength", "value": 1e6}'
