@@ -30,24 +30,6 @@ static char *join(const char *dir, const char *name)
 	return p;
 }
 
-/* A test's case as calibrate runs it: the material is set per point, the
- * assembly is given on the command line, and no snapshot is taken but the
- * first and the last (solve always writes those). */
-static cJSON *case_as_run(const cal_test *t)
-{
-	cJSON *j = cfg_load_json(t->case_file);
-	if (!j)
-		return NULL;
-	cJSON_DeleteItemFromObjectCaseSensitive(j, "material");
-	cJSON *out = cJSON_GetObjectItemCaseSensitive(j, "output");
-	if (cJSON_IsObject(out)) {
-		cJSON_DeleteItemFromObjectCaseSensitive(out, "snapshot_every");
-		cJSON_DeleteItemFromObjectCaseSensitive(out, "snapshot_every_strain");
-		cJSON_DeleteItemFromObjectCaseSensitive(out, "snapshot_strains");
-	}
-	return j;
-}
-
 int eval_init(evaluator *e, const cal_spec *sp, const char *out, const char *bin, int parallel,
               int keep_runs)
 {
@@ -63,7 +45,7 @@ int eval_init(evaluator *e, const cal_spec *sp, const char *out, const char *bin
 	    make_dir(out) || make_dir(runs) || make_dir(specimens) || runlog_open(&e->log, log, sp);
 	free(runs), free(specimens), free(log);
 	for (int t = 0; t < sp->ntest && !rc; t++) {
-		e->cases[t] = case_as_run(&sp->test[t]);
+		e->cases[t] = spec_case_as_run(&sp->test[t]);
 		rc = e->cases[t] ? 0 : -1;
 	}
 	return rc;

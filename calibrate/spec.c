@@ -9,6 +9,7 @@
 #include "lib/cfg.h"
 #include "lib/err.h"
 #include "lib/path.h"
+#include "solve/case.h"
 #include "solve/laws/material.h"
 
 cJSON *spec_material_number(cJSON *m, const char *key)
@@ -310,6 +311,50 @@ static int parse_tests(cfg *c, cal_spec *s)
 	return 0;
 }
 
+cJSON *spec_case_as_run(const cal_test *t)
+{
+	cJSON *j = cfg_load_json(t->case_file);
+	if (!j)
+		return NULL;
+	cJSON_DeleteItemFromObjectCaseSensitive(j, "material");
+	cJSON *out = cJSON_GetObjectItemCaseSensitive(j, "output");
+	if (cJSON_IsObject(out)) {
+		cJSON_DeleteItemFromObjectCaseSensitive(out, "snapshot_every");
+		cJSON_DeleteItemFromObjectCaseSensitive(out, "snapshot_every_strain");
+		cJSON_DeleteItemFromObjectCaseSensitive(out, "snapshot_strains");
+	}
+	return j;
+}
+
+/* Each test's case as solve reads it, with the template as its material
+ * (its bounds are checked apart): a bad key is found before anything is
+ * packed or run, and named with the calibration file and the test. */
+static int check_cases(cfg *c, const cal_spec *s)
+{
+	for (int k = 0; k < s->ntest; k++) {
+		const cal_test *t = &s->test[k];
+		cJSON *j = spec_case_as_run(t);
+		if (!j)
+			return cfg_error(cfg_item(c, "tests", (size_t)k), "case", "%s", err_msg());
+		cJSON_AddItemToObject(j, "material", cJSON_Duplicate(s->material, 1));
+		/* solve is given the specimen's assembly on its command line. */
+		cJSON_DeleteItemFromObjectCaseSensitive(j, "assembly");
+		cJSON_AddStringToObject(j, "assembly", "the search specimen");
+		char *text = cJSON_PrintUnformatted(j);
+		cJSON_Delete(j);
+		char what[8400];
+		snprintf(what, sizeof what, "%s: test '%s': case %s", s->source, t->name,
+		         t->case_file);
+		dem_case dc;
+		int rc = case_parse_text(text, what, &dc);
+		free(text);
+		if (rc)
+			return -1;
+		case_free(&dc);
+	}
+	return 0;
+}
+
 static int parse_targets(cfg *c, cal_spec *s)
 {
 	long n = cfg_list(c, "targets");
@@ -521,7 +566,7 @@ int spec_load(const char *path, cal_spec *s)
 		}
 	}
 	rc = rc || load_material(c, s) || parse_free(c, s) || parse_tests(c, s) ||
-	     parse_search(c, s) || assign_classes(c, s) || load_truth(c, s) ||
+	     check_cases(c, s) || parse_search(c, s) || assign_classes(c, s) || load_truth(c, s) ||
 	     parse_targets(c, s) || check_bounds(c, s) || cfg_check_unused(c);
 	cfg_free(c);
 	return rc ? -1 : 0;

@@ -76,6 +76,12 @@ typedef struct {
 int spec_load(const char *path, cal_spec *s);
 void spec_free(cal_spec *s);
 
+/* A test's case as calibrate runs it, without its material (set per
+ * point): no snapshot but the first and the last (solve always writes
+ * those); the assembly is given on solve's command line. NULL with
+ * err_set() when the file cannot be read. */
+cJSON *spec_case_as_run(const cal_test *t);
+
 /* The number value of a (possibly dotted) key of a material object; NULL
  * when absent or not a number. */
 cJSON *spec_material_number(cJSON *m, const char *key);

@@ -1,7 +1,8 @@
 #!/bin/sh
-# Bad calibration files and a case that fails: exit status 1 and one message
-# naming the file, the key, the value and what was expected; nothing is run
-# (no output directory) when the file itself is at fault.
+# Bad calibration files (and the cases they name) and a start that fails:
+# exit status 1 and one message naming the file, the key, the value and what
+# was expected; nothing is run (no output directory) when the files are at
+# fault.
 # Usage: errors.sh BIN_DIR DATA_DIR TMP_DIR
 set -eu
 bin=$1 data=$2 tmp=$3
@@ -104,10 +105,17 @@ set +e
 set -e
 ! grep -q "warning" "$tmp/stderr" || { cat "$tmp/stderr" >&2; fail "a warning for a budget that suffices"; }
 
-# A case that solve refuses: the start fails, with solve's message.
+# A case that solve refuses: found before anything is packed or run, and
+# named with the calibration file and the test.
 sed 's/"test": "ucs"/"no_such_key": 1, "test": "ucs"/' "$data/ucs.json" > "$tmp/ucs.json"
 write "$free" "$tests" "$target"
+expect_nothing_run "cal.json: test 'ucs': case $tmp/ucs.json: key 'no_such_key': unknown key"
+cp "$data/ucs.json" "$tmp/ucs.json"
+
+# A start that fails (an assembly solve cannot read): solve's message.
+echo "not an assembly" > "$tmp/bogus.h5"
+write "$free" '{"name": "ucs", "case": "ucs.json", "search": {"assembly": "bogus.h5"}}' "$target"
 expect 1 "cal.json: the start fails: test 'ucs' (run $tmp/out/runs/"
-grep -q "no_such_key" "$tmp/stderr" || fail "the message does not quote solve's"
+grep -q "bogus.h5: not a readable HDF5 file" "$tmp/stderr" || fail "the message does not quote solve's"
 rm -rf "$tmp"
 echo "calibrate: bad calibration files and a failing case refused as expected"
