@@ -332,25 +332,31 @@ static int draw_response(const study *s, const group *g, const char *dir)
 	return rc;
 }
 
-/* The columns strain_axial and stress_axial of a run's curve.csv, as
- * ($curves) rows in % and MPa, at most about 1000 of them, after a
- * dataset separator when sep; 0 (and nothing written) when the run has
- * none. */
-static int curve_rows(FILE *out, const char *path, int sep)
+/* The columns strain_axial and stress_axial (stress_tensile, the
+ * splitting tensile stress, for a Brazilian test's: *tensile set) of a
+ * run's curve.csv, as ($curves) rows in % and MPa, at most about 1000 of
+ * them, after a dataset separator when sep; 0 (and nothing written) when
+ * the run has none. */
+static int curve_rows(FILE *out, const char *path, int sep, int *tensile)
 {
 	FILE *f = fopen(path, "r");
 	if (!f)
 		return 0;
 	char *line = NULL;
 	size_t cap = 0;
-	int ce = -1, cs = -1, n = 0;
+	int ce = -1, cs = -1, ct = -1, n = 0;
 	if (getline(&line, &cap, f) > 0) {
 		int c = 0;
 		for (char *save = NULL, *t = strtok_r(line, ",\n", &save); t;
 		     t = strtok_r(NULL, ",\n", &save), c++) {
 			ce = strcmp(t, "strain_axial") ? ce : c;
 			cs = strcmp(t, "stress_axial") ? cs : c;
+			ct = strcmp(t, "stress_tensile") ? ct : c;
 		}
+	}
+	if (ct >= 0) {
+		cs = ct;
+		*tensile = 1;
 	}
 	long rows = 0;
 	while (ce >= 0 && cs >= 0 && getline(&line, &cap, f) > 0)
@@ -388,13 +394,13 @@ static int draw_curves(const study *s, const char *dir)
 {
 	plot_data d;
 	plot_begin(&d);
-	int n = 0, *lt = xmalloc((size_t)s->npoints * sizeof *lt + 1);
+	int n = 0, tensile = 0, *lt = xmalloc((size_t)s->npoints * sizeof *lt + 1);
 	char **title = xcalloc((size_t)s->npoints + 1, sizeof *title);
 	fputs("$curves << EOD\n", d.f);
 	for (int k = 0; k < s->npoints; k++) {
 		const study_point *pt = &s->point[k];
 		char *path = point_file(dir, pt, "curve.csv");
-		int found = curve_rows(d.f, path, n > 0);
+		int found = curve_rows(d.f, path, n > 0, &tensile);
 		free(path);
 		if (!found)
 			continue;
@@ -425,7 +431,7 @@ static int draw_curves(const study *s, const char *dir)
 	free(lt);
 	fputs("title_text = ", d.f);
 	plot_quote(d.f, s->title);
-	fputc('\n', d.f);
+	fprintf(d.f, "\ntensile = %d\n", tensile);
 	if (!n) {
 		plot_discard(&d);
 		return 0;

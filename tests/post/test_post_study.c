@@ -268,6 +268,17 @@ static void test_table(void)
 	char *fig = harness_slurp(study_file("response.png"));
 	CHECK(fig && !strncmp(fig, png, 4));
 	free(fig);
+	/* Its curves are the splitting tensile stress (curve.csv's
+	 * stress_tensile), so labelled. */
+	write_text(point_path("interaction_range-1.2_seed-1", "curve.csv"),
+	           "t,strain_axial,stress_axial,stress_tensile\n0,0,0,0\n1,0.001,5e6,2.2e6\n"
+	           "2,0.002,10e6,4.4e6\n");
+	r = plan("--table");
+	CHECK(r.status == 0);
+	harness_free(&r);
+	char *script = harness_slurp(study_file("curves.gp"));
+	CHECK(script && strstr(script, "\ntensile = 1\n") && strstr(script, "\n0.2 4.4\n"));
+	free(script);
 	/* No modulus at all: that panel is drawn empty. */
 	unlink(study_file("response.png"));
 	for (int k = 0; k < 3; k++)
