@@ -30,7 +30,7 @@ char *path_absolute(const char *name)
 		return xstrdup(name);
 	size_t n = strlen(cwd) + strlen(name) + 2;
 	char *out = xmalloc(n);
-	snprintf(out, n, "%s/%s", cwd, name);
+	snprintf(out, n, "%s/%s", strcmp(cwd, "/") ? cwd : "", name);
 	return out;
 }
 

@@ -1,6 +1,6 @@
-/* Names beside the file that gives them, names as shell words, and make
- * dependency files: the exact text make reads, escapes, and the empty rule
- * per prerequisite. */
+/* Names beside the file that gives them, names as shell words, absolute
+ * names, and make dependency files: the exact text make reads, escapes,
+ * and the empty rule per prerequisite. */
 #include <stdlib.h>
 #include <unistd.h>
 
@@ -44,6 +44,15 @@ int main(void)
 		CHECK_STR(w, words[k][1]);
 		free(w);
 	}
+
+	/* A missing file's absolute name, from the root too. */
+	char here[4096];
+	CHECK(getcwd(here, sizeof here) != NULL);
+	CHECK(chdir("/") == 0);
+	char *abs = path_absolute("no-such-dir/x");
+	CHECK_STR(abs, "/no-such-dir/x");
+	free(abs);
+	CHECK(chdir(here) == 0);
 
 	char dir[] = "/tmp/dem-depfile-XXXXXX";
 	CHECK(mkdtemp(dir) != NULL);
