@@ -25,6 +25,11 @@ typedef struct {
 	 * rows [run_at[k], run_at[k] + run_n[k]). */
 	size_t all, nruns, runcap;
 	size_t *run_at, *run_n;
+	/* The most rows not yet written that one rank holds (all, on one
+	 * rank), and each rank's ([ranks], on several): what decides when
+	 * they are written, so that neither a rank's memory nor how often
+	 * the ranks write grows with the rank count. */
+	size_t most, *held;
 } crack_buf;
 
 /* What a bond computed in this step adds to its block's sums and to its two

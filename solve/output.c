@@ -168,6 +168,8 @@ int output_cracks(engine *e, run_writer *w)
 	        : run_cracks(w, cb->c, cb->n))
 		return -1;
 	e->out.crack_rows += cb->all;
-	cb->n = cb->all = cb->nruns = 0;
+	cb->n = cb->all = cb->nruns = cb->most = 0;
+	if (cb->held)
+		memset(cb->held, 0, (size_t)e->ranks.size * sizeof *cb->held);
 	return 0;
 }

@@ -690,7 +690,7 @@ void ranks_share_cracks(engine *e, size_t first)
 	rank_split *R = &e->ranks;
 	crack_buf *cb = &e->out.cracks;
 	if (R->size == 1) {
-		cb->all = cb->n;
+		cb->all = cb->most = cb->n;
 		return;
 	}
 	size_t mine = cb->n - first;
@@ -708,11 +708,17 @@ void ranks_share_cracks(engine *e, size_t first)
 		cb->run_n[cb->nruns++] = mine;
 	}
 	cb->all = at[R->size];
+	if (!cb->held)
+		cb->held = xcalloc((size_t)R->size, sizeof *cb->held);
+	for (int q = 0; q < R->size; q++) {
+		cb->held[q] += at[q + 1] - at[q];
+		cb->most = cb->held[q] > cb->most ? cb->held[q] : cb->most;
+	}
 	free(at);
 	R->sec[RANKS_GATHERS] += timer_now() - t0;
 #else
 	(void)first;
-	e->out.cracks.all = e->out.cracks.n;
+	e->out.cracks.all = e->out.cracks.most = e->out.cracks.n;
 #endif
 }
 

@@ -357,7 +357,7 @@ void engine_free(engine *e)
 		free(e->out.thread_cracks[t].c), free(e->out.thread_cracks[t].bond);
 	free(e->out.thread_cracks);
 	free(e->out.cracks.c), free(e->out.cracks.bond);
-	free(e->out.cracks.run_at), free(e->out.cracks.run_n);
+	free(e->out.cracks.run_at), free(e->out.cracks.run_n), free(e->out.cracks.held);
 	if (e->lp)
 		e->law->free(e->lp);
 	memset(e, 0, sizeof *e);
