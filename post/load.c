@@ -23,11 +23,23 @@ static void readable_or_die(const char *path)
 static void unfinished(const char *cmd, const char *path)
 {
 	size_t len = strlen(path);
-	if (len > 4 && strcmp(path + len - 4, ".tmp") == 0)
-		fatal("%s: the temporary file of a program still writing it, or killed: post %s "
-		      "reads finished files (after a killed solve, continue the run with solve "
-		      "--restart %.*s)",
-		      path, cmd, (int)(len - 4), path);
+	if (len <= 4 || strcmp(path + len - 4, ".tmp") != 0)
+		return;
+	char final[4096], ckpt[4200];
+	snprintf(final, sizeof final, "%.*s", (int)(len - 4), path);
+	snprintf(ckpt, sizeof ckpt, "%s.ckpt", final);
+	const char *was = "the temporary file of a program still writing it, or killed";
+	if (access(ckpt, F_OK) == 0)
+		fatal("%s: %s: post %s reads finished files (a killed solve continues with solve "
+		      "--restart %s)",
+		      path, was, cmd, final);
+	if (access(final, F_OK) == 0)
+		fatal("%s: %s: post %s reads finished files, such as %s beside it (an earlier "
+		      "one)",
+		      path, was, cmd, final);
+	fatal("%s: %s: post %s reads finished files (a solve killed before its first "
+	      "checkpoint starts again with the same command)",
+	      path, was, cmd);
 }
 
 file_kind load_kind(const char *cmd, const char *path)

@@ -1,5 +1,7 @@
 /* Bad input to post: one exact message on stderr, a non-zero exit status
  * and no output left behind (the output directory is not even made). */
+#include <unistd.h>
+
 #include "lib/runfile.h"
 #include "tests/check.h"
 #include "tests/post/harness.h"
@@ -79,14 +81,30 @@ int main(void)
 		fputs("half an HDF5 file\n", k);
 		fclose(k);
 	}
+	/* ... with nothing beside it, with an earlier finished run, with the
+	 * recovery copy that continues it. */
+	char ckpt[1200];
+	snprintf(ckpt, sizeof ckpt, "%s.ckpt", stem);
 	for (int c = 0; c < 5; c++) {
-		snprintf(
-		    msg, sizeof msg,
-		    "post: %s: the temporary file of a program still writing it, or killed: "
-		    "post %s reads finished files (after a killed solve, continue the run with "
-		    "solve --restart %s)\n",
-		    killed, commands[c], stem);
+		const char *was = "the temporary file of a program still writing it, or killed";
+		snprintf(msg, sizeof msg,
+		         "post: %s: %s: post %s reads finished files (a solve killed before its "
+		         "first checkpoint starts again with the same command)\n",
+		         killed, was, commands[c]);
 		expect(1, msg, commands[c], killed);
+		CHECK(link(empty, stem) == 0);
+		snprintf(msg, sizeof msg,
+		         "post: %s: %s: post %s reads finished files, such as %s beside it (an "
+		         "earlier one)\n",
+		         killed, was, commands[c], stem);
+		expect(1, msg, commands[c], killed);
+		CHECK(link(empty, ckpt) == 0);
+		snprintf(msg, sizeof msg,
+		         "post: %s: %s: post %s reads finished files (a killed solve continues "
+		         "with solve --restart %s)\n",
+		         killed, was, commands[c], stem);
+		expect(1, msg, commands[c], killed);
+		unlink(stem), unlink(ckpt);
 	}
 	/* an empty run: nothing was written after the start */
 	snprintf(msg, sizeof msg,
