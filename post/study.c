@@ -1,6 +1,7 @@
 /* The study file (post/study.h): read, its keys and values checked, its
  * points made, and every point checked as solve and pack will read it. */
 #include <ctype.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -55,7 +56,11 @@ static int value_text(cfg *c, const char *key, const cJSON *v, char *out, size_t
 	for (const char *p = s; ok && *p; p++)
 		ok = isalnum((unsigned char)*p) || strchr("._+-", *p);
 	if (!ok) {
-		char *t = cJSON_PrintUnformatted(v);
+		/* A number beyond a double's range was read as infinite, and
+		 * the list passes through JSON text, which writes it as null. */
+		char *t = cJSON_IsNull(v)
+		              ? xstrdup("null (or a number beyond the range of a double)")
+		              : cJSON_PrintUnformatted(v);
 		int rc = cfg_error(c, key,
 		                   "value %s: expected a number, true, false or a word of at most "
 		                   "%zu letters, digits and . _ + -",
@@ -97,9 +102,10 @@ static int range_values(cfg *r, study_param *p)
 		double n = floor((to - from) / step * (1 + 1e-9)) + 1;
 		if (n > STUDY_MAX_VALUES)
 			return cfg_error(r, "step",
-			                 "value %g: %.0f values from %g to %g: expected at "
+			                 "value %g: %.3g values from %g to %g: expected at "
 			                 "most %d",
-			                 step, n, from, to, STUDY_MAX_VALUES);
+			                 step, isfinite(n) ? n : DBL_MAX, from, to,
+			                 STUDY_MAX_VALUES);
 		count = (long)n;
 	}
 	if (log_scale && (from <= 0 || to <= 0))

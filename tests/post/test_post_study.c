@@ -327,6 +327,13 @@ static void test_errors(void)
 	     "point translational-0.1: case: key 'dampin': unknown key"},
 	    {"\"vary\": [{\"key\": \"material.E\", \"values\": [1e9]}], \"extra\": 1",
 	     "key 'extra': unknown key"},
+	    {"\"vary\": [{\"key\": \"material.E\", \"values\": [1e9, 1e400]}]",
+	     "key 'vary[0].values': value null (or a number beyond the range of a double): "
+	     "expected a number"},
+	    {"\"vary\": [{\"key\": \"material.E\", \"range\": {\"from\": 1, \"to\": 1e300, "
+	     "\"step\": 1e-10}}]",
+	     "key 'vary[0].range.step': value 1e-10: 1.8e+308 values from 1 to 1e+300: "
+	     "expected at most 64"},
 	};
 	for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
 		write_study(bad[k].vary);
