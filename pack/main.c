@@ -112,6 +112,14 @@ static double grow_spheres(const pack_options *o, spheres *S, const dem_geometry
 		      "solid fraction above that (or 0)",
 		      o->grow_to, phi);
 	double f = cbrt(o->grow_to / phi);
+	/* Growth is for dense packings (from 0.6 or so to 0.75: a factor of
+	 * 1.08); a loose one would grow spheres through each other and past
+	 * the specimen. */
+	if (f > 1.25)
+		fatal("--grow-to %g: the spheres fill %.4f of the specimen, so their radii would "
+		      "grow %.3g times: expected a dense packing (a factor of at most 1.25, from "
+		      "a solid fraction of %.3g): pack or import more spheres first",
+		      o->grow_to, phi, f, o->grow_to / (1.25 * 1.25 * 1.25));
 	for (size_t i = 0; i < S->n; i++)
 		S->r[i] *= f;
 	return f;

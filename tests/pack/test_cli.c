@@ -370,6 +370,18 @@ static void test_grow(void)
 	assembly_free(&x);
 	assembly_free(&y);
 	refused(1, "pack: --grow-to 0.3: the spheres already fill 0.", 1, SMALL " --grow-to 0.3");
+	/* One sphere imported into a cylinder would grow past the cylinder. */
+	const char *one = check_tmp("cli_one.txt");
+	FILE *t = fopen(one, "w");
+	CHECK(t && fputs("0 0 0.01 0.001\n", t) >= 0 && fclose(t) == 0);
+	char args[1200];
+	snprintf(args, sizeof args, "--diameter 0.025 --height 0.05 --import %s --grow-to 0.6",
+	         one);
+	refused(1,
+	        "pack: --grow-to 0.6: the spheres fill 0.0002 of the specimen, so their radii "
+	        "would grow 15.2 times: expected a dense packing (a factor of at most 1.25, from "
+	        "a solid fraction of 0.307): pack or import more spheres first\n",
+	        0, args);
 }
 
 static void test_config(void)
