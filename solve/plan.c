@@ -33,14 +33,24 @@ static const char *speed_key(const stage *s)
 	return s->axial == AXIAL_VELOCITY ? "axial.velocity" : "axial.rate";
 }
 
-/* Whether the axial strain, starting at strain0, reaches target while the
- * ends close at speed v (m/s; negative: they open; NaN: not known before
- * the run, as under a servo): it grows as they close (engine_strain), and
- * a rule holds once it has crossed its target from where it started
- * (boundary.c). */
+/* Whether the axial strain, starting at strain0 (NaN: not known before the
+ * run), reaches target while the ends close at speed v (m/s; negative:
+ * they open; NaN: not known before the run, as under a servo): it grows
+ * as they close (engine_strain), and a rule holds once it has crossed its
+ * target from where it started (boundary.c). */
 static int strain_reachable(double target, double strain0, double v)
 {
-	return isnan(v) || (target - strain0) * v > 0;
+	return isnan(v) || isnan(strain0) || (target - strain0) * v > 0;
+}
+
+/* Where a stage that ended on its until rule u left the axial strain (or,
+ * with stress set, the stress): that rule's target when it is u's only
+ * rule, else not known before the run (NaN). */
+static double ended_at(const stop_rule *u, int stress)
+{
+	int rules = !isnan(u->strain_axial) + !isnan(u->stress_axial) + !isnan(u->stress_drop) +
+	            !isnan(u->time) + (u->steps != 0);
+	return rules == 1 ? (stress ? u->stress_axial : u->strain_axial) : NAN;
 }
 
 /* Whether the axial stress, starting at stress0, reaches target under a
@@ -164,11 +174,10 @@ int plan_check(const engine *e, int quiet)
 		total += n;
 		if (n > longest_n)
 			longest_n = n, longest = k;
-		if (!isnan(s->until.strain_axial))
-			strain0 = s->until.strain_axial;
-		stress0 = s->axial == AXIAL_STRESS        ? s->target
-		          : !isnan(s->until.stress_axial) ? s->until.stress_axial
-		                                          : NAN;
+		strain0 = ended_at(&s->until, 0);
+		stress0 = ended_at(&s->until, 1);
+		if (isnan(stress0) && s->axial == AXIAL_STRESS)
+			stress0 = s->target;
 		vmax = fmax(vmax, fabs(v));
 		stop_v = stop_v != 0 ? stop_v : v;
 	}

@@ -145,8 +145,13 @@ int main(void)
 		refused(text, never[k][1]);
 	}
 	/* ... but not the rules they reach: pulling to a negative strain, a
-	 * servo's target and beyond it on a later stage. */
+	 * servo's target and beyond it on a later stage, unloading to a strain
+	 * below where a stress rule left it (not known before the run). */
 	const char *ends[] = {
+	    "[{\"axial\": {\"mode\": \"strain_rate\", \"rate\": 1}, \"until\": "
+	    "{\"stress_axial\": 1e6}}, {\"axial\": {\"mode\": \"strain_rate\", \"rate\": -1}, "
+	    "\"until\": {\"strain_axial\": 0.0001}}, {\"axial\": {\"mode\": \"strain_rate\", "
+	    "\"rate\": 1}}], \"stop\": {\"strain_axial\": 0.01}}",
 	    "[{\"axial\": {\"mode\": \"strain_rate\", \"rate\": -2}}], \"stop\": "
 	    "{\"strain_axial\": -0.001}}",
 	    "[{\"axial\": {\"mode\": \"stress\", \"stress\": 1e6}, \"until\": "
