@@ -68,7 +68,7 @@ static int claim(const char *tmp)
 	return busy ? -2 : -1;
 }
 
-int afile_begin(const char *final, char *tmp, size_t n)
+static int begin(const char *final, char *tmp, size_t n, int hold)
 {
 	int len = snprintf(tmp, n, "%s.tmp", final);
 	if (len < 0 || (size_t)len >= n || (size_t)len >= NAME_MAX_LEN)
@@ -78,6 +78,10 @@ int afile_begin(const char *final, char *tmp, size_t n)
 		return err_set("%s: another program is writing it now (%s is in use): wait for "
 		               "it to end, or give another output name",
 		               final, tmp);
+	if (fd >= 0 && !hold) {
+		close(fd);
+		fd = -1;
+	}
 	int rc = -1;
 	pthread_mutex_lock(&pending_lock);
 	for (int k = 0; k < MAX_PENDING && rc; k++)
@@ -92,6 +96,10 @@ int afile_begin(const char *final, char *tmp, size_t n)
 		close(fd);
 	return rc ? err_set("%s: too many output files open at once", final) : 0;
 }
+
+int afile_begin(const char *final, char *tmp, size_t n) { return begin(final, tmp, n, 1); }
+
+int afile_begin_shared(const char *final, char *tmp, size_t n) { return begin(final, tmp, n, 0); }
 
 /* tmp no longer pending, and its claim given up (after its rename or
  * removal, so that no other program takes the name before). */

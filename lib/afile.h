@@ -12,6 +12,11 @@
  * for removal at exit or on a signal. Returns 0, or -1 if the name is too
  * long. */
 int afile_begin(const char *final, char *tmp, size_t n);
+/* As afile_begin for a file that the processes of an MPI run write
+ * together: the name is checked for another program's claim, but not held
+ * (a whole-file lock held by one process could stall the MPI-IO layer's
+ * own locks on a network file system). */
+int afile_begin_shared(const char *final, char *tmp, size_t n);
 /* fsync tmp, rename it to final and fsync the directory; unregisters tmp. */
 int afile_commit(const char *tmp, const char *final);
 /* fsync a directory, so that the renames in it are on disk (errors

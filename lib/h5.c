@@ -70,7 +70,8 @@ void h5_bcast(void *buf, size_t n)
 
 int h5_begin_shared(const char *final, char *tmp, size_t tmpsize)
 {
-	int rc = h5_rank() == 0 ? afile_begin(final, tmp, tmpsize) : 0;
+	int rc =
+	    h5_rank() == 0 ? (procs_ ? afile_begin_shared : afile_begin)(final, tmp, tmpsize) : 0;
 	if (!rc && h5_rank() > 0)
 		snprintf(tmp, tmpsize, "%s.tmp", final);
 	h5_bcast(&rc, sizeof rc);
