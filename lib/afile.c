@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "lib/afile.h"
@@ -55,17 +56,54 @@ void afile_install_signal_cleanup(void)
 
 /* The claim on tmp: the file opened (made if missing, never truncated)
  * and locked, or -1 when it cannot be opened or locked here (its writer
- * then says why it cannot write it). -2 when another open file holds it. */
+ * then says why it cannot write it). -2 when another open file holds it.
+ * A lock taken on a file that its holder renamed or removed meanwhile is
+ * on another file than tmp now: taken again. */
 static int claim(const char *tmp)
 {
-	int fd = open(tmp, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+	for (int tries = 0; tries < 100; tries++) {
+		int fd = open(tmp, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+		if (fd < 0)
+			return -1;
+		if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+			int busy = errno == EWOULDBLOCK;
+			close(fd);
+			return busy ? -2 : -1;
+		}
+		struct stat held, named;
+		if (fstat(fd, &held) == 0 && stat(tmp, &named) == 0 &&
+		    held.st_dev == named.st_dev && held.st_ino == named.st_ino)
+			return fd;
+		close(fd);
+	}
+	return -1;
+}
+
+static int held_error(const char *final, const char *tmp)
+{
+	return err_set("%s: another program is writing it now (%s is in use): wait for it to "
+	               "end, or give another output name",
+	               final, tmp);
+}
+
+int afile_check_free(const char *final)
+{
+	char tmp[NAME_MAX_LEN];
+	snprintf(tmp, sizeof tmp, "%s.tmp", final);
+	return afile_held(final) ? held_error(final, tmp) : 0;
+}
+
+int afile_held(const char *final)
+{
+	char tmp[NAME_MAX_LEN];
+	if (snprintf(tmp, sizeof tmp, "%s.tmp", final) >= (int)sizeof tmp)
+		return 0;
+	int fd = open(tmp, O_RDONLY | O_CLOEXEC);
 	if (fd < 0)
-		return -1;
-	if (flock(fd, LOCK_EX | LOCK_NB) == 0)
-		return fd;
-	int busy = errno == EWOULDBLOCK;
+		return 0;
+	int held = flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
 	close(fd);
-	return busy ? -2 : -1;
+	return held;
 }
 
 static int begin(const char *final, char *tmp, size_t n, int hold)
@@ -75,9 +113,7 @@ static int begin(const char *final, char *tmp, size_t n, int hold)
 		return err_set("%s: output file name too long", final);
 	int fd = claim(tmp);
 	if (fd == -2)
-		return err_set("%s: another program is writing it now (%s is in use): wait for "
-		               "it to end, or give another output name",
-		               final, tmp);
+		return held_error(final, tmp);
 	if (fd >= 0 && !hold) {
 		close(fd);
 		fd = -1;

@@ -17,6 +17,13 @@ int afile_begin(const char *final, char *tmp, size_t n);
  * (a whole-file lock held by one process could stall the MPI-IO layer's
  * own locks on a network file system). */
 int afile_begin_shared(const char *final, char *tmp, size_t n);
+/* Whether another program is writing final now: its temporary claimed
+ * (only where the file system has flock; on NFS, and on Lustre without
+ * its flock option, the claim is best effort). */
+int afile_held(const char *final);
+/* 0, or -1 with the message that afile_begin would give when another
+ * program is writing final. */
+int afile_check_free(const char *final);
 /* fsync tmp, rename it to final and fsync the directory; unregisters tmp. */
 int afile_commit(const char *tmp, const char *final);
 /* fsync a directory, so that the renames in it are on disk (errors

@@ -18,13 +18,22 @@
 #define FORMAT_VERSION 3
 #define FORMAT_OLDEST 1
 
-/* HDF5 closes the files still open when the process exits. After a write
+/* Said before main, since it must be said before the library's first use:
+ * HDF5 closes the files still open when the process exits. After a write
  * that failed (a full disk), its close of such a file crashes inside the
  * library (HDF5 1.10), turning a clear error message into a segmentation
  * fault. Every file this toolchain writes is closed explicitly, or is a
- * temporary that an error removes, so the library is told not to: before
- * main, since it must be said before the library's first use. */
-__attribute__((constructor)) static void h5_no_atexit(void) { H5dont_atexit(); }
+ * temporary that an error removes, so the library is told not to. And
+ * HDF5's own file locking is off (overriding a site's
+ * HDF5_USE_FILE_LOCKING): a file being written is claimed by its writer
+ * (afile.h) before HDF5 opens it, and HDF5's lock would conflict with that
+ * claim; it also comes too late (HDF5 truncates a file it creates before
+ * locking it). */
+__attribute__((constructor)) static void h5_before_main(void)
+{
+	H5dont_atexit();
+	setenv("HDF5_USE_FILE_LOCKING", "FALSE", 1);
+}
 
 /* No error stack printed (the callers report); and HDF5's free lists, which
  * otherwise keep every block freed while writing (several MB for a snapshot
@@ -78,26 +87,12 @@ int h5_begin_shared(const char *final, char *tmp, size_t tmpsize)
 	return rc;
 }
 
-/* HDF5's own lock off: a file being written is claimed by its writer
- * (afile.h) before HDF5 opens it, and HDF5's lock would conflict with that
- * claim; it also comes too late (HDF5 truncates a file it creates before
- * locking it). */
-static void no_hdf5_lock(hid_t fapl)
-{
-#if H5_VERSION_GE(1, 10, 7)
-	H5Pset_file_locking(fapl, 0, 1);
-#else
-	(void)fapl;
-#endif
-}
-
 /* The file-access list of every file written: the oldest format that holds
  * what is written (HDF5 1.8), and the shared file's driver. */
 static hid_t access_list(int shared)
 {
 	hid_t fapl = shared ? procs_->fapl() : H5Pcreate(H5P_FILE_ACCESS);
 	H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST);
-	no_hdf5_lock(fapl);
 	return fapl;
 }
 
@@ -271,10 +266,7 @@ hid_t h5_open(const char *path, const char *format, int readwrite)
 		return err_set("%s: cannot read: %s", path, strerror(errno));
 	if (H5Fis_hdf5(path) <= 0)
 		return err_set("%s: not a readable HDF5 file (truncated or another format)", path);
-	hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-	no_hdf5_lock(fapl);
-	hid_t f = H5Fopen(path, readwrite ? H5F_ACC_RDWR : H5F_ACC_RDONLY, fapl);
-	H5Pclose(fapl);
+	hid_t f = H5Fopen(path, readwrite ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT);
 	if (f < 0)
 		return err_set("%s: cannot open HDF5 file", path);
 	return check_format(f, path, format);

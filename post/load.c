@@ -6,6 +6,7 @@
 
 #include <cjson/cJSON.h>
 
+#include "lib/afile.h"
 #include "lib/err.h"
 #include "lib/h5.h"
 #include "lib/vec3.h"
@@ -18,8 +19,8 @@ static void readable_or_die(const char *path)
 		fatal("%s: cannot read: %s", path, strerror(errno));
 }
 
-/* A file that did not read, named like the temporary of a program that
- * has not finished writing it: say so. */
+/* A temporary file (NAME.tmp) is not read: what it is, and where the
+ * finished file is or will be. */
 static void unfinished(const char *cmd, const char *path)
 {
 	size_t len = strlen(path);
@@ -28,7 +29,11 @@ static void unfinished(const char *cmd, const char *path)
 	char final[4096], ckpt[4200];
 	snprintf(final, sizeof final, "%.*s", (int)(len - 4), path);
 	snprintf(ckpt, sizeof ckpt, "%s.ckpt", final);
-	const char *was = "the temporary file of a program still writing it, or killed";
+	if (afile_held(final))
+		fatal("%s: a program is writing it now: post %s reads finished files (%s, once it "
+		      "is done)",
+		      path, cmd, final);
+	const char *was = "left by a program killed while writing it";
 	if (access(ckpt, F_OK) == 0)
 		fatal("%s: %s: post %s reads finished files (a killed solve continues with solve "
 		      "--restart %s)",
@@ -37,14 +42,13 @@ static void unfinished(const char *cmd, const char *path)
 		fatal("%s: %s: post %s reads finished files, such as %s beside it (an earlier "
 		      "one)",
 		      path, was, cmd, final);
-	fatal("%s: %s: post %s reads finished files (a solve killed before its first "
-	      "checkpoint starts again with the same command)",
-	      path, was, cmd);
+	fatal("%s: %s: post %s reads finished files (run that program again)", path, was, cmd);
 }
 
 file_kind load_kind(const char *cmd, const char *path)
 {
 	readable_or_die(path);
+	unfinished(cmd, path);
 	h5_quiet();
 	hid_t f = H5Fis_hdf5(path) > 0 ? H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT) : -1;
 	char *fmt = f >= 0 && H5Aexists(f, "format") > 0 ? h5_read_attr_str(f, "format") : NULL;
@@ -55,8 +59,6 @@ file_kind load_kind(const char *cmd, const char *path)
 	if (known)
 		kind = strcmp(fmt, RUN_FORMAT) == 0 ? FILE_RUN : FILE_ASSEMBLY;
 	free(fmt);
-	if (!known)
-		unfinished(cmd, path);
 	if (!known)
 		fatal("%s: not a run file (solve) or an assembly file (pack): post %s reads one of "
 		      "them",
@@ -115,13 +117,13 @@ void load_axis(const dem_run *r, double a[3])
 void load_run(const char *cmd, const char *path, dem_run *r)
 {
 	readable_or_die(path);
+	unfinished(cmd, path);
 	if (run_read(path, r) == 0) {
 		char *caption = load_caption(path, r);
 		plot_set_footer(caption);
 		free(caption);
 		return;
 	}
-	unfinished(cmd, path);
 	if (!strstr(err_msg(), "\"" ASSEMBLY_FORMAT "\""))
 		fatal(NULL);
 	fatal("%s (an assembly written by pack: post %s reads a run file written by solve)",

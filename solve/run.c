@@ -486,6 +486,10 @@ int run_case(const dem_case *cs, dem_assembly *a, const run_opts *o)
 	char ckpt[4200];
 	dem_run r = {0};
 	run_recovery_name(o->output, ckpt, sizeof ckpt);
+	/* Not a run another solve is writing, before its recovery copy is
+	 * taken for a killed one's or setup takes its time. */
+	if (afile_check_free(o->output))
+		fatal(NULL);
 	int before = killed_before(cs, a, ckpt, &r);
 	if (before > 0) {
 		if (!o->quiet)
@@ -618,6 +622,8 @@ int run_restart(const run_opts *o)
 {
 	dem_run r;
 	char from[4200];
+	if (afile_check_free(o->restart))
+		fatal(NULL);
 	restart_source(o->restart, from, sizeof from, &r);
 	return run_continue(o, from, &r);
 }

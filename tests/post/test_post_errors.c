@@ -1,5 +1,7 @@
 /* Bad input to post: one exact message on stderr, a non-zero exit status
  * and no output left behind (the output directory is not even made). */
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include "lib/runfile.h"
@@ -86,10 +88,9 @@ int main(void)
 	char ckpt[1200];
 	snprintf(ckpt, sizeof ckpt, "%s.ckpt", stem);
 	for (int c = 0; c < 5; c++) {
-		const char *was = "the temporary file of a program still writing it, or killed";
+		const char *was = "left by a program killed while writing it";
 		snprintf(msg, sizeof msg,
-		         "post: %s: %s: post %s reads finished files (a solve killed before its "
-		         "first checkpoint starts again with the same command)\n",
+		         "post: %s: %s: post %s reads finished files (run that program again)\n",
 		         killed, was, commands[c]);
 		expect(1, msg, commands[c], killed);
 		CHECK(link(empty, stem) == 0);
@@ -105,6 +106,15 @@ int main(void)
 		         killed, was, commands[c], stem);
 		expect(1, msg, commands[c], killed);
 		unlink(stem), unlink(ckpt);
+		/* ... and one a program holds (afile.h): still being written. */
+		int fd = open(killed, O_RDWR);
+		CHECK(fd >= 0 && flock(fd, LOCK_EX) == 0);
+		snprintf(msg, sizeof msg,
+		         "post: %s: a program is writing it now: post %s reads finished files (%s, "
+		         "once it is done)\n",
+		         killed, commands[c], stem);
+		expect(1, msg, commands[c], killed);
+		close(fd);
 	}
 	/* an empty run: nothing was written after the start */
 	snprintf(msg, sizeof msg,

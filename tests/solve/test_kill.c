@@ -9,7 +9,7 @@
  * the same name lies continues from its copy by --restart. A recovery copy whose checkpoint data
  * have one value changed is refused by its checksum; one left by another
  * case is not continued, and is kept until a run of that case passes its
- * checks. */
+ * checks; a run still going is not taken for a killed one. */
 #include <hdf5.h>
 #include <signal.h>
 #include <stdio.h>
@@ -168,13 +168,21 @@ int main(void)
 	CHECK(!exists(ckpt));
 	CHECK(harness_same_runs(ref, run) == 0);
 
-	/* A recovery copy of another case is not continued. */
+	/* A recovery copy of another case is not continued. But first: the
+	 * same command while that run is going is refused at once, its copy
+	 * not taken for a killed run's. */
 	pid = start("--output", run, cpath);
 	for (int k = 0; k < 3000 && !exists(ckpt); k++)
 		sleep_s(0.002);
+	char other[2048], args[3000], said[1100];
+	snprintf(said, sizeof said, "%s", check_tmp("kill-busy.txt"));
+	snprintf(args, sizeof args, "--output %s %s 2> %s", run, cpath, said);
+	CHECK(harness_solve(args) == 1);
+	char *busy = harness_slurp(said);
+	CHECK(strstr(busy, "another program is writing it now") && !strstr(busy, "continuing"));
+	free(busy);
 	kill(pid, SIGKILL);
 	finish(pid);
-	char other[2048], args[3000], said[1100];
 	snprintf(json, sizeof json, case_text, apath);
 	/* ... nor removed by one that fails its checks. */
 	char *rate = strstr(json, "\"rate\": 5}");
