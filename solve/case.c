@@ -206,14 +206,13 @@ static int parse_loading(cfg *c, dem_case *k)
 		return -1;
 	if (parse_stop(st, &k->stop, 0))
 		return -1;
-	if (st && stop_empty(&k->stop))
-		return cfg_error(c, "stop",
-		                 "no rule: expected strain_axial, stress_drop, time or steps (a "
-		                 "stress to reach is a stage's 'until' rule)");
 	if (stop_empty(&k->stop) && stop_empty(&k->stages[n - 1].until))
-		return cfg_error(c, "stop",
-		                 "missing: the run never ends (give 'stop' or an 'until' "
-		                 "in the last stage)");
+		return cfg_error(
+		    c, "stop",
+		    st ? "no rule: expected strain_axial, stress_drop, time or steps (a "
+		         "stress to reach is a stage's 'until' rule)"
+		       : "missing: the run never ends (give 'stop' or an 'until' "
+		         "in the last stage)");
 	return 0;
 }
 

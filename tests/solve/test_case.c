@@ -103,6 +103,12 @@ int main(void)
 	expect("{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE "}",
 	       "bad.json: key 'stop': missing: the run never ends (give 'stop' or an 'until' in "
 	       "the last stage)");
+	/* An empty stop object is taken when the last stage's until ends the
+	 * run. */
+	expect("{\"assembly\": \"a.h5\", " MAT ", \"loading\": [{\"axial\": {\"mode\": "
+	       "\"strain_rate\", \"rate\": 0.1}, \"until\": {\"strain_axial\": 0.002}}], "
+	       "\"stop\": {}}",
+	       "(loaded without error)");
 	expect(
 	    "{\"assembly\": \"a.h5\", " MAT ", " ONE_STAGE ", \"stop\": {\"stress_axial\": 1e6}}",
 	    "bad.json: key 'stop': no rule: expected strain_axial, stress_drop, time or steps (a "
