@@ -414,7 +414,16 @@ static int run_loop(engine *e, run_writer *w, const run_opts *o)
 	              (double[2]){(double)engine_bytes(e), (double)report_peak_rss()});
 	if (L.code == RUN_FAILED && par_rank() == 0)
 		fprintf(stderr, "%s: %s\n", err_program_name(), L.status);
+	/* The last snapshot, written as the run ends, holds the strains it has
+	 * crossed since the one before (a stop rule may end the run in the
+	 * step that crosses one). */
 	size_t next = e->out.snapshot_strain_next, n = e->cs->nsnapshot_strains;
+	const double *at = e->cs->snapshot_strains, strain = engine_strain(e);
+	for (; next < n; next++) {
+		double from = next ? at[next - 1] : 0;
+		if (!(from <= at[next] ? strain >= at[next] : strain <= at[next]))
+			break;
+	}
 	if (L.code == RUN_OK && next < n && par_rank() == 0 && !o->quiet)
 		fprintf(stderr,
 		        "%s: warning: output.snapshot_strains: %zu of %zu not reached (the first: "
