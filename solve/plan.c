@@ -6,8 +6,9 @@
  * 100 /s, else on the time step, which the material's density and
  * stiffness set); a stage that no rule can end, so that the run would
  * never end: its ends stand still, or move away from the strain its rules
- * aim at, while only strain rules could end it, or a stress servo holds
- * the stress short of the only stress rules.
+ * aim at, while only strain rules (or a stress drop, before anything has
+ * compressed the specimen) could end it, or a stress servo holds the
+ * stress short of the only stress rules.
  * Announced: a program of more than 1e8 steps, estimated from the stages'
  * step counts, times and strain targets at their rates; a Verlet skin that
  * the ends cross in fewer than ten steps (a neighbour rebuild every few
@@ -65,12 +66,14 @@ static int stress_reachable(double target, double stress0, double servo)
 
 /* Whether a rule can end a stage (or the run) whose ends close at speed v
  * from the axial strain strain0 (and, under a stress servo, drive the
- * stress from stress0 to servo). */
-static int can_end(const stop_rule *r, double v, double strain0, double stress0, double servo)
+ * stress from stress0 to servo); a stress drop only after a compressive
+ * peak, so when this or an earlier stage compresses (compressed). */
+static int can_end(const stop_rule *r, double v, double strain0, double stress0, double servo,
+                   int compressed)
 {
 	return !isnan(r->time) || r->steps ||
 	       (!isnan(r->stress_axial) && stress_reachable(r->stress_axial, stress0, servo)) ||
-	       !isnan(r->stress_drop) ||
+	       (!isnan(r->stress_drop) && compressed) ||
 	       (!isnan(r->strain_axial) && strain_reachable(r->strain_axial, strain0, v));
 }
 
@@ -92,7 +95,8 @@ static double rule_steps(const engine *e, const stop_rule *r, double strain0, do
  * stop rule can hold under it, into an error; 0 when one can. strain0 and
  * stress0: where the stage starts, as far as known before the run (NaN:
  * not known). */
-static int check_ends(const engine *e, int k, const stage *s, double strain0, double stress0)
+static int check_ends(const engine *e, int k, const stage *s, double strain0, double stress0,
+                      int compressed)
 {
 	const stop_rule *stop = &e->cs->stop;
 	int servo = s->axial == AXIAL_STRESS;
@@ -105,7 +109,8 @@ static int check_ends(const engine *e, int k, const stage *s, double strain0, do
 	/* Under a servo the strain is not known before the run; a strain rule
 	 * of the run's stop is taken to be for later stages, if any. */
 	double v_stop = servo && k + 1 < e->cs->nstages ? 0 : v;
-	if (can_end(&s->until, v, strain0, stress0, target) || can_end(stop, v_stop, 0, 0, target))
+	if (can_end(&s->until, v, strain0, stress0, target, compressed) ||
+	    can_end(stop, v_stop, 0, 0, target, compressed))
 		return 0;
 	if (servo)
 		return err_set("loading stage %d: axial.stress %g Pa: the servo holds the stress "
@@ -151,7 +156,7 @@ int plan_check(const engine *e, int quiet)
 {
 	const dem_case *cs = e->cs;
 	double total = 0, strain0 = 0, stress0 = 0, vmax = 0, stop_v = 0;
-	int longest = 0;
+	int longest = 0, compressed = 0;
 	double longest_n = -1;
 	if (cs->stop.strain_axial == 0)
 		return err_set(
@@ -167,7 +172,9 @@ int plan_check(const engine *e, int quiet)
 			    k + 1, s->thickness, e->frame.height0);
 		if (check_speed(e, k, s))
 			return -1;
-		if (check_ends(e, k, s, strain0, stress0))
+		compressed |= (s->axial == AXIAL_STRESS && s->target > 0) ||
+		              (moves(s) && boundary_closing_speed(e, s) > 0);
+		if (check_ends(e, k, s, strain0, stress0, compressed))
 			return -1;
 		double v = moves(s) ? boundary_closing_speed(e, s) : 0;
 		double n = rule_steps(e, &s->until, strain0, v);

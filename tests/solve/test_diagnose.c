@@ -122,6 +122,10 @@ int main(void)
 	     "{\"strain_axial\": 0.01}}",
 	     "loading stage 1: axial.rate -2: the ends open, so the axial strain falls from 0 "
 	     "and never reaches 0.01"},
+	    {"[{\"axial\": {\"mode\": \"strain_rate\", \"rate\": -1}}], \"stop\": "
+	     "{\"strain_axial\": 0.03, \"stress_drop\": 0.7}}",
+	     "loading stage 1: axial.rate -1: the ends open, so the axial strain falls from 0 "
+	     "and never reaches 0.03"},
 	    {"[{\"axial\": {\"mode\": \"velocity\", \"velocity\": 0.01}}], \"stop\": "
 	     "{\"strain_axial\": -0.01}}",
 	     "axial.velocity 0.01: the ends close, so the axial strain grows from 0 and never "
