@@ -17,11 +17,12 @@
 #include "post/post.h"
 
 typedef struct {
-	double depth;     /* m, lateral surface layer */
-	double psi;       /* deg, section angle */
-	double thickness; /* m, section slab */
-	double width;     /* deg, orientation bins */
-	int disc;         /* section: a Brazilian disc's face, not an axial section */
+	double depth;            /* m, lateral surface layer */
+	double psi;              /* deg, section angle */
+	double thickness;        /* m, section slab */
+	double width;            /* deg, orientation bins */
+	int disc;                /* section: a Brazilian disc's face, not an axial section */
+	double e[3], v[3], m[3]; /* the section's plane: across, up, its normal */
 } map_opts;
 
 static const char *mode_name(int mode) { return mode == CRACK_TENSION ? "tension" : "shear"; }
@@ -92,19 +93,26 @@ static int face_plane(const dem_run *r, const specimen *sp, double e[3], double 
 	return 0;
 }
 
-/* $tension and $shear: crack traces in the section, u h du dh (mm): the
- * axial section at psi, or for a Brazilian test (disc = 1) the disc's
- * face, h then along the loading diameter from the centre. */
-static void section_data(FILE *f, const dem_run *r, const specimen *sp, const map_opts *o, int disc)
+/* The plane of the axial section at psi (deg): unit vectors e (across),
+ * v = a (up) and m, its normal. */
+static void axial_plane(const specimen *sp, double psi, double e[3], double v[3], double m[3])
 {
 	const frame *fr = &sp->f;
-	double e[3], v[3], m[3], c = cos(o->psi / POST_DEG), s = sin(o->psi / POST_DEG);
+	double c = cos(psi / POST_DEG), s = sin(psi / POST_DEG);
 	for (int k = 0; k < 3; k++)
 		e[k] = c * fr->e1[k] + s * fr->e2[k];
 	v3_copy(v, fr->a);
-	v3_cross(m, fr->a, e); /* normal of the section plane */
-	if (disc)
-		face_plane(r, sp, e, v, m);
+	v3_cross(m, fr->a, e);
+}
+
+/* $tension and $shear: crack traces in the section o->e, o->v, o->m, u h
+ * du dh (mm): the axial section at psi, or for a Brazilian test (o->disc)
+ * the disc's face, h then along the loading diameter from the centre. */
+static void section_data(FILE *f, const dem_run *r, const specimen *sp, const map_opts *o)
+{
+	const frame *fr = &sp->f;
+	const double *e = o->e, *v = o->v, *m = o->m;
+	int disc = o->disc;
 	for (int mode = CRACK_TENSION; mode <= CRACK_SHEAR; mode++) {
 		fprintf(f, "$%s << EOD\n", mode_name(mode));
 		for (size_t k = 0; k < r->ncracks; k++) {
@@ -168,7 +176,7 @@ static void plot_maps(const char *dir, const dem_run *r, const specimen *sp, con
 	draw(dir, "cracks_surface", &d, 1100, 750);
 	plot_begin(&d);
 	specimen_vars(d.f, sp, r);
-	section_data(d.f, r, sp, o, o->disc);
+	section_data(d.f, r, sp, o);
 	draw(dir, "cracks_section", &d, o->disc ? 800 : 700, o->disc ? 850 : 900);
 	plot_begin(&d);
 	specimen_vars(d.f, sp, r);
@@ -187,7 +195,7 @@ static int crack_file(const char *name) { return out_series_name(name, "cracks",
 int post_cracks(int argc, char **argv)
 {
 	const char *out = NULL;
-	map_opts o = {0, 0, 0, 10, 0};
+	map_opts o = {.width = 10};
 	int no_png = 0, no_vtk = 0;
 	long threads = 0;
 	const char *format = "png";
@@ -229,9 +237,8 @@ int post_cracks(int argc, char **argv)
 		o.depth = 4 * sp.mean_radius;
 	/* A Brazilian disc splits along its loading diameter, through its
 	 * thickness: its section is its face, every crack of the thickness. */
-	double e[3], v[3], m[3];
 	o.disc = load_is_bts(&r);
-	if (o.disc && face_plane(&r, &sp, e, v, m)) {
+	if (o.disc && face_plane(&r, &sp, o.e, o.v, o.m)) {
 		printf("%s: a Brazilian test loaded along the disc's axis: cracks_section.png is "
 		       "an axial section\n",
 		       file);
@@ -241,6 +248,8 @@ int post_cracks(int argc, char **argv)
 		printf("%s: a Brazilian test: cracks_section.png shows the disc's face; "
 		       "--section-angle is not used\n",
 		       file);
+	if (!o.disc)
+		axial_plane(&sp, o.psi, o.e, o.v, o.m);
 	if (o.thickness == 0)
 		o.thickness = o.disc ? sp.height + 2 * sp.mean_radius : 4 * sp.mean_radius;
 	char *dir = out_dir(out, file);

@@ -27,6 +27,7 @@
 #include "post/output.h"
 #include "post/plot.h"
 #include "post/post.h"
+#include "post/summary.h"
 
 /* What the figures draw as the stress: the axial stress, or a Brazilian
  * test's splitting tensile stress (Pa, one per history row). */
@@ -55,7 +56,7 @@ static void stress_of(curve_stress *cs, const char *path, const dem_run *r)
 	}
 	cs->tensile = xmalloc((r->nrows ? r->nrows : 1) * sizeof *cs->tensile);
 	for (size_t k = 0; k < r->nrows; k++)
-		cs->tensile[k] = 2 * fa[k] / (POST_PI * D * t);
+		cs->tensile[k] = summary_splitting_stress(fa[k], D, t);
 	cs->stress = cs->tensile;
 }
 

@@ -6,8 +6,6 @@
 #include "lib/err.h"
 #include "post/summary.h"
 
-#define PI 3.14159265358979323846
-
 static double last_or_nan(const double *v, size_t n) { return v ? v[n - 1] : NAN; }
 
 /* Least-squares slope of y against x over the rows k < end with
@@ -172,7 +170,7 @@ int summary_compute(const dem_run *r, summary_kind kind, double D, double t, sum
 		for (size_t k = 1; k < n; k++)
 			s->peak_force = fmax(s->peak_force, fa[k]);
 		if (kind == TEST_BTS && D > 0 && t > 0)
-			s->bts_strength = 2 * s->peak_force / (PI * D * t);
+			s->bts_strength = summary_splitting_stress(s->peak_force, D, t);
 	}
 	s->pressure_final = p ? p[n - 1] : 0;
 	s->strain_axial_final = ea[n - 1];

@@ -73,4 +73,11 @@ int summary_no_peak(const dem_run *r);
  * or is empty. */
 int summary_compute(const dem_run *r, summary_kind kind, double D, double t, summary *s);
 
+/* The splitting tensile stress of a Brazilian test (Pa): 2P/(pi D t) for
+ * the load P (N) on a disc of diameter D and thickness t (m). */
+static inline double summary_splitting_stress(double P, double D, double t)
+{
+	return 2 * P / (3.14159265358979323846 * D * t);
+}
+
 #endif

@@ -119,8 +119,12 @@ static int checkpoint(loop_state *L)
  * cracks are written in many rounds (tests/solve/ranks.sh). */
 static size_t crack_rows_held(void)
 {
-	const char *s = getenv("DEM_TEST_CRACK_ROWS");
-	return s && atoll(s) > 0 ? (size_t)atoll(s) : 4096;
+	static size_t rows;
+	if (!rows) {
+		const char *s = getenv("DEM_TEST_CRACK_ROWS");
+		rows = s && atoll(s) > 0 ? (size_t)atoll(s) : 4096;
+	}
+	return rows;
 }
 
 /* A checkpoint and the recovery copy of the run file with it. A check of
