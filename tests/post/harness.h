@@ -40,4 +40,27 @@ static inline const char *harness_field(const char *line, int k, char *buf, size
 	return buf;
 }
 
+/* The rows of datablock `name` ("$name << EOD" to "EOD") of a gnuplot
+ * input text: the first cols numbers of row k into out[k cols ...], for
+ * the first max rows (none when out is NULL); the number of rows. */
+static inline size_t harness_datablock(const char *text, const char *name, int cols, double *out,
+                                       size_t max)
+{
+	char head[64];
+	snprintf(head, sizeof head, "%s << EOD\n", name);
+	const char *p = text ? strstr(text, head) : NULL;
+	size_t n = 0;
+	for (p = p ? p + strlen(head) : NULL; p && *p && strncmp(p, "EOD", 3); n++) {
+		char *end = (char *)p;
+		for (int c = 0; c < cols; c++) {
+			double v = strtod(end, &end);
+			if (out && n < max)
+				out[n * (size_t)cols + (size_t)c] = v;
+		}
+		p = strchr(p, '\n');
+		p = p ? p + 1 : NULL;
+	}
+	return n;
+}
+
 #endif

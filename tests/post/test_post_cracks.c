@@ -56,24 +56,6 @@ static void check_png(const char *dir, const char *name, int w, int h)
 	CHECK(count[0] > 50 && count[1] > 50);
 }
 
-/* Rows "u h du dh" of datablock `name` in text, into row[][4]; count. */
-static size_t section_rows(const char *text, const char *name, double (*row)[4], size_t max)
-{
-	char head[64];
-	snprintf(head, sizeof head, "%s << EOD\n", name);
-	const char *p = text ? strstr(text, head) : NULL;
-	size_t n = 0;
-	for (p = p ? p + strlen(head) : NULL; p && *p && strncmp(p, "EOD", 3); n++) {
-		char *end = (char *)p;
-		for (int c = 0; c < 4; c++)
-			if (n < max)
-				row[n][c] = strtod(end, &end);
-		p = strchr(p, '\n');
-		p = p ? p + 1 : NULL;
-	}
-	return n;
-}
-
 /* A Brazilian test: the section is the disc's face, seen along the disc's
  * axis with the loading diameter up, holding every crack of the
  * thickness (the default slab), each at its place in that plane, its
@@ -100,8 +82,8 @@ static void check_disc_face(const char *parent)
 	CHECK(text && strstr(text, "disc = 1"));
 	size_t nmax = r.ncracks + 1;
 	double(*rows)[4] = malloc(2 * nmax * sizeof *rows);
-	size_t nt = section_rows(text, "$tension", rows, nmax);
-	size_t ns = section_rows(text, "$shear", rows + nmax, nmax);
+	size_t nt = harness_datablock(text, "$tension", 4, rows[0], nmax);
+	size_t ns = harness_datablock(text, "$shear", 4, rows[nmax], nmax);
 	CHECK(nt + ns == r.ncracks);
 	/* In the face: u across the loading diameter (-y seen from +z), h
 	 * along it (x), from the centre, in mm. */

@@ -78,19 +78,13 @@ static void failing_gnuplot(const char *dir, const char *run, const char *body, 
  * its column col (1-based) and the number of rows. */
 static size_t datablock_max(const char *text, const char *name, int col, double *max)
 {
-	char head[64];
-	snprintf(head, sizeof head, "%s << EOD\n", name);
-	const char *p = text ? strstr(text, head) : NULL;
-	size_t rows = 0;
+	size_t rows = harness_datablock(text, name, col, NULL, 0);
+	double *v = malloc((rows * (size_t)col + 1) * sizeof *v);
+	harness_datablock(text, name, col, v, rows);
 	*max = -INFINITY;
-	for (p = p ? p + strlen(head) : NULL; p && *p && strncmp(p, "EOD", 3); rows++) {
-		const char *q = p;
-		for (int c = 1; c < col; c++)
-			q += strcspn(q, " \n"), q += *q == ' ';
-		*max = fmax(*max, strtod(q, NULL));
-		p = strchr(p, '\n');
-		p = p ? p + 1 : NULL;
-	}
+	for (size_t k = 0; k < rows; k++)
+		*max = fmax(*max, v[k * (size_t)col + (size_t)col - 1]);
+	free(v);
 	return rows;
 }
 
