@@ -296,6 +296,14 @@ static int load(cfg *c, const char *source, const char *assembly, dem_case *k)
 	return rc;
 }
 
+double case_checkpoint_interval(const dem_case *c, int done)
+{
+	double w = c->checkpoint_wall, first = w / 10 < 60 ? w / 10 : 60;
+	for (int k = 0; k < done && first < w; k++)
+		first *= 2;
+	return first < w ? first : w;
+}
+
 int case_load(const char *path, const char *assembly, dem_case *k)
 {
 	memset(k, 0, sizeof *k);

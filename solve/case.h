@@ -81,6 +81,12 @@ typedef struct {
 	int nstages;
 } dem_case;
 
+/* s of wall time from the checkpoint done-th (0: the run's start) to the
+ * next one: a tenth of checkpoint_wall, at most a minute, doubling after
+ * each until checkpoint_wall, so that a run killed early has a recovery
+ * copy too; 0 without checkpoints by wall time. */
+double case_checkpoint_interval(const dem_case *c, int done);
+
 /* Load a case file; assembly (if not NULL) replaces its "assembly" key. */
 int case_load(const char *path, const char *assembly, dem_case *c);
 /* Parse a case from the JSON text stored in a run file's provenance (the

@@ -46,6 +46,7 @@ typedef struct {
 	run_writer *w;
 	const run_opts *o;
 	double wall0, last_checkpoint, last_row_wall, last_flush;
+	int checkpoints; /* done since the start, for case_checkpoint_interval */
 	int64_t last_row_step, step0, last_snapshot_step;
 	progress pg;
 	/* the recent pace: strain and stress per step since the sample */
@@ -111,6 +112,7 @@ static int checkpoint(loop_state *L)
 {
 	engine *e = L->e;
 	L->last_checkpoint = timer_now();
+	L->checkpoints++;
 	return write_cracks(L) || run_flush(L->w) || checkpoint_write(e, run_hid(L->w)) ? -1 : 0;
 }
 
@@ -153,7 +155,8 @@ static int checkpoint_due_by_step(const loop_state *L)
 static int checkpoint_due_by_wall(const loop_state *L)
 {
 	const dem_case *cs = L->e->cs;
-	return cs->checkpoint_wall > 0 && timer_now() - L->last_checkpoint >= cs->checkpoint_wall;
+	return cs->checkpoint_wall > 0 &&
+	       timer_now() - L->last_checkpoint >= case_checkpoint_interval(cs, L->checkpoints);
 }
 
 static int history(loop_state *L)

@@ -180,6 +180,19 @@ int main(void)
 	CHECK(c.stop.strain_axial == 0.01 && c.stop.stress_drop == 0.5);
 	/* The provenance configuration has the material inline. */
 	CHECK_CONTAINS(c.config, "\"law\":\t\"linear\"");
+	/* Checkpoints by wall time: the first after a tenth of the period (at
+	 * most a minute), then doubling up to it. */
+	c.checkpoint_wall = 600;
+	CHECK(case_checkpoint_interval(&c, 0) == 60 && case_checkpoint_interval(&c, 1) == 120 &&
+	      case_checkpoint_interval(&c, 3) == 480 && case_checkpoint_interval(&c, 4) == 600 &&
+	      case_checkpoint_interval(&c, 40) == 600);
+	c.checkpoint_wall = 5;
+	CHECK(case_checkpoint_interval(&c, 0) == 0.5 && case_checkpoint_interval(&c, 3) == 4 &&
+	      case_checkpoint_interval(&c, 4) == 5);
+	c.checkpoint_wall = 7200;
+	CHECK(case_checkpoint_interval(&c, 0) == 60 && case_checkpoint_interval(&c, 7) == 7200);
+	c.checkpoint_wall = 0;
+	CHECK(case_checkpoint_interval(&c, 0) == 0);
 	case_free(&c);
 	return check_done();
 }
