@@ -324,12 +324,14 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 	if (agreed[0] || budget) {
 		if (!o->quiet) {
 			progress_end(&L->pg);
-			char *word = path_shell_word(o->output);
+			char *word = path_shell_word(o->output), launch[64] = "";
+			if (par_size() > 1) /* any rank count continues it */
+				snprintf(launch, sizeof launch, "mpirun -np %d ", par_size());
 			fprintf(stderr,
 			        "%s: interrupted at step %" PRId64
-			        " (%s); continue with: solve --restart %s\n",
+			        " (%s); continue with: %ssolve --restart %s\n",
 			        err_program_name(), e->clock.step,
-			        agreed[0] ? strsignal((int)agreed[0]) : "budget", word);
+			        agreed[0] ? strsignal((int)agreed[0]) : "budget", launch, word);
 			free(word);
 		}
 		return end(L, END_INTERRUPTED, RUN_INTERRUPTED, "interrupted");
