@@ -62,6 +62,17 @@ int h5_rank(void) { return procs_ ? procs_->rank : 0; }
 
 int h5_shared(hid_t obj) { return procs_ && shared_[0] && strcmp(h5_name(obj), shared_) == 0; }
 
+void h5_settle(hid_t obj)
+{
+	if (!h5_shared(obj))
+		return;
+	/* A look-up of obj's header: its release (H5AC_unprotect) runs the
+	 * sync point if one is due, on every process, since every process
+	 * makes it. */
+	H5O_info_t info;
+	H5Oget_info2(obj, &info, H5O_INFO_BASIC);
+}
+
 int h5_agree(int rc)
 {
 	if (!procs_)
@@ -553,6 +564,9 @@ static int write_runs(hid_t d, hid_t type, size_t base, const size_t *at, const 
 		return rc;
 	}
 	mine = mine && m > 0;
+	/* Each process looks up the chunks of its own rows: not one alone
+	 * into a sync point (h5_settle). */
+	h5_settle(d);
 	hid_t fs = H5Dget_space(d);
 	herr_t rc = H5Sselect_none(fs);
 	for (size_t k = 0, first = 1; mine && rc >= 0 && k < nruns; k++) {

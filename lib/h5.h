@@ -69,6 +69,16 @@ hid_t h5_open_shared(const char *path, const char *format);
 int h5_close_shared(hid_t file);
 /* Whether obj is in a file every process writes. */
 int h5_shared(hid_t obj);
+/* Called by every process together, for obj in the shared file, before
+ * what makes the processes read different parts of its metadata (each
+ * writing rows of its own, or rank 0 alone): HDF5 1.10's metadata cache
+ * holds back its sync point (a barrier and broadcasts every process
+ * joins) until the first look-up after its dirty bytes pass a threshold;
+ * a look-up that one process makes alone would start it there alone, and
+ * the file's processes would wait for each other forever. h5_settle runs
+ * a sync point so held back, on every process at once. Nothing without a
+ * shared file. */
+void h5_settle(hid_t obj);
 
 /* The file name an object belongs to (for messages). */
 const char *h5_name(hid_t obj);

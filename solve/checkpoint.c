@@ -347,6 +347,7 @@ static int put(hid_t g, const char *name, hid_t type, const void *data, size_t r
 	hid_t d = open_put(g, name, type, rows, cols);
 	if (d < 0)
 		return -1;
+	h5_settle(d); /* rank 0 alone looks up the chunks */
 	int rc = rows && par_rank() == 0 ? h5_slab(d, type, 0, rows, cols, (void *)data, 1) : 0;
 	H5Dclose(d);
 	if (rc < 0)

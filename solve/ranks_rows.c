@@ -238,6 +238,8 @@ int ranks_rows_put(engine *e, hid_t d, hid_t type, size_t cols, size_t mine, ran
 			at = 0;
 	}
 #endif
+	/* Each rank looks up the chunks of its own rows (h5_settle). */
+	h5_settle(d);
 	unsigned char *buf = xmalloc(piece * row);
 	int rc = 0;
 	for (size_t k0 = 0, m; !rc && k0 < mine; k0 += m) {
