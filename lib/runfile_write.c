@@ -11,6 +11,7 @@
 
 #include "lib/afile.h"
 #include "lib/err.h"
+#include "lib/fcopy.h"
 #include "lib/h5.h"
 #include "lib/runfile.h"
 #include "lib/runfile_layout.h"
@@ -186,28 +187,6 @@ run_writer *run_create(const char *path, const dem_provenance *prov, const dem_a
 	return w;
 }
 
-static int copy_file(const char *from, const char *to)
-{
-	FILE *in = fopen(from, "rb");
-	if (!in)
-		return err_set("%s: cannot open: %s", from, strerror(errno));
-	FILE *out = fopen(to, "wb");
-	if (!out) {
-		fclose(in);
-		return err_set("%s: cannot create: %s", to, strerror(errno));
-	}
-	char buf[1 << 16];
-	size_t got;
-	int rc = 0;
-	while (!rc && (got = fread(buf, 1, sizeof buf, in)) > 0)
-		rc = fwrite(buf, 1, got, out) != got;
-	rc = rc || ferror(in);
-	fclose(in);
-	if (fclose(out) || rc)
-		return h5_write_error(to, "a copy of the run file");
-	return 0;
-}
-
 void run_recovery_name(const char *path, char *out, size_t n) { snprintf(out, n, "%s.ckpt", path); }
 
 static int write_series(hid_t file);
@@ -227,7 +206,7 @@ static int save_recovery(run_writer *w)
 	run_recovery_name(w->path, final, sizeof final);
 	if (afile_begin(final, tmp, sizeof tmp))
 		return -1;
-	hid_t f = copy_file(w->tmp, tmp) ? -1 : h5_open(tmp, RUN_FORMAT, 1);
+	hid_t f = fcopy(w->tmp, tmp) ? -1 : h5_open(tmp, RUN_FORMAT, 1);
 	if (f < 0 || write_series(f) || h5_attr_str(f, "status", "interrupted")) {
 		if (f >= 0)
 			H5Fclose(f);
@@ -257,7 +236,7 @@ run_writer *run_reopen(const char *from, const char *path, size_t history_rows, 
 	}
 	/* Rank 0 copies; every rank opens the copy. */
 	int rank = h5_rank();
-	if (from_rank0(rank == 0 ? copy_file(from, w->tmp) : 0, w->tmp, "copy the run file") ||
+	if (from_rank0(rank == 0 ? fcopy(from, w->tmp) : 0, w->tmp, "copy the run file") ||
 	    (w->file = h5_open_shared(w->tmp, RUN_FORMAT)) < 0) {
 		if (rank == 0)
 			afile_discard(w->tmp);
