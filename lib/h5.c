@@ -10,6 +10,7 @@
 
 #include "lib/afile.h"
 #include "lib/err.h"
+#include "lib/fcopy.h"
 #include "lib/h5.h"
 
 /* The format version this build writes, and the oldest it reads: 3 names
@@ -86,6 +87,11 @@ void h5_bcast(void *buf, size_t n)
 {
 	if (procs_)
 		procs_->bcast(buf, n);
+}
+
+int h5_copy_shared(const char *from, const char *to)
+{
+	return procs_ ? procs_->copy(from, to) : fcopy(from, to);
 }
 
 int h5_begin_shared(const char *final, char *tmp, size_t tmpsize)

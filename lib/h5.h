@@ -51,6 +51,10 @@ typedef struct {
 	hid_t (*dxpl)(void);                /* a new transfer list: a collective write */
 	void (*bcast)(void *buf, size_t n); /* rank 0's n bytes to every process */
 	void (*sum)(uint64_t *v, size_t n); /* v summed over the processes, on each */
+	/* from's bytes into to (which rank 0 has created), each process
+	 * copying an even share: 0, or -1 with the same message on every
+	 * process when any failed. */
+	int (*copy)(const char *from, const char *to);
 } h5_procs;
 void h5_set_procs(const h5_procs *p);
 int h5_rank(void); /* this process's rank among h5_procs (0 without) */
@@ -58,6 +62,11 @@ int h5_rank(void); /* this process's rank among h5_procs (0 without) */
 int h5_agree(int rc);
 /* Rank 0's n bytes at buf to every process (nothing without h5_procs). */
 void h5_bcast(void *buf, size_t n);
+/* A byte copy of file from into to (fcopy), by every process together
+ * (h5_procs copy): every process calls it, after rank 0 has created to
+ * (h5_begin_shared), once every write to from is flushed (H5Fflush). 0, or
+ * -1 on every process with a message naming the file. */
+int h5_copy_shared(const char *from, const char *to);
 /* The temporary name of final (afile_begin), registered on rank 0 alone. */
 int h5_begin_shared(const char *final, char *tmp, size_t tmpsize);
 /* h5_create and h5_open (read-write) by every process together; only rank

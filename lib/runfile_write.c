@@ -11,7 +11,6 @@
 
 #include "lib/afile.h"
 #include "lib/err.h"
-#include "lib/fcopy.h"
 #include "lib/h5.h"
 #include "lib/runfile.h"
 #include "lib/runfile_layout.h"
@@ -200,13 +199,11 @@ static int from_rank0(int rc, const char *path, const char *what)
 	return rc;
 }
 
-static int save_recovery(run_writer *w)
+/* The series and the status "interrupted" added to the copy tmp (rank 0
+ * alone, with serial HDF5), then the copy committed as final. */
+static int finish_recovery(run_writer *w, const char *tmp, const char *final)
 {
-	char final[4200], tmp[4300];
-	run_recovery_name(w->path, final, sizeof final);
-	if (afile_begin(final, tmp, sizeof tmp))
-		return -1;
-	hid_t f = fcopy(w->tmp, tmp) ? -1 : h5_open(tmp, RUN_FORMAT, 1);
+	hid_t f = h5_open(tmp, RUN_FORMAT, 1);
 	if (f < 0 || write_series(f) || h5_attr_str(f, "status", "interrupted")) {
 		if (f >= 0)
 			H5Fclose(f);
@@ -219,10 +216,28 @@ static int save_recovery(run_writer *w)
 
 int run_save_recovery(run_writer *w)
 {
-	/* run_flush leaves the file whole on disk; rank 0 copies it. */
+	/* run_flush leaves the file whole on disk (H5Fflush; on several
+	 * ranks, MPI_File_sync on each). Rank 0 claims the copy's temporary
+	 * name and creates it, and says so (h5_begin_shared); then every rank
+	 * copies its share of the bytes into it (h5_copy_shared, alone with
+	 * one process), and rank 0 finishes it. */
 	if (run_flush(w))
 		return -1;
-	return from_rank0(h5_rank() == 0 ? save_recovery(w) : 0, w->path,
+	char final[4200], tmp[4300];
+	run_recovery_name(w->path, final, sizeof final);
+	int rank = h5_rank();
+	if (h5_begin_shared(final, tmp, sizeof tmp))
+		return rank == 0
+		           ? -1
+		           : err_set("%s: cannot write the recovery copy %s (rank 0 says why)",
+		                     w->path, final);
+	if (h5_copy_shared(w->tmp, tmp)) {
+		if (rank == 0)
+			afile_discard(tmp);
+		return err_set("%s: cannot write the recovery copy %s: %s", w->path, final,
+		               err_msg());
+	}
+	return from_rank0(rank == 0 ? finish_recovery(w, tmp, final) : 0, w->path,
 	                  "write the recovery copy");
 }
 
@@ -234,10 +249,10 @@ run_writer *run_reopen(const char *from, const char *path, size_t history_rows, 
 		free(w);
 		return NULL;
 	}
-	/* Rank 0 copies; every rank opens the copy. */
+	/* Every rank copies its share into the file rank 0 created
+	 * (h5_begin_shared), then opens the copy. */
 	int rank = h5_rank();
-	if (from_rank0(rank == 0 ? fcopy(from, w->tmp) : 0, w->tmp, "copy the run file") ||
-	    (w->file = h5_open_shared(w->tmp, RUN_FORMAT)) < 0) {
+	if (h5_copy_shared(from, w->tmp) || (w->file = h5_open_shared(w->tmp, RUN_FORMAT)) < 0) {
 		if (rank == 0)
 			afile_discard(w->tmp);
 		free(w);
