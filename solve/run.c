@@ -340,15 +340,17 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 	return END_NONE;
 }
 
-/* A check of an interrupted run (tests/workflows/make.sh): with
- * DEM_TEST_INTERRUPT=S in the environment, SIGINT goes to the process's
- * whole process group before step S, as Ctrl-C in a terminal sends it
- * (run it in a group of its own: setsid). */
+/* A check of an interrupted run (tests/workflows/make.sh, mpirun.sh):
+ * with DEM_TEST_INTERRUPT=S in the environment, rank 0 sends SIGINT before
+ * step S to the process group of its session's leader, as Ctrl-C in a
+ * terminal sends it to the foreground group (run it in a session of its
+ * own: setsid): make, its shells and solve, or mpirun, which passes it on
+ * to the ranks in groups of their own. */
 static void test_interrupt(const engine *e)
 {
 	const char *s = getenv("DEM_TEST_INTERRUPT");
-	if (s && *s && e->clock.step == atoll(s))
-		kill(0, SIGINT);
+	if (s && *s && e->clock.step == atoll(s) && par_rank() == 0)
+		kill(-getsid(0), SIGINT);
 }
 
 /* Steps until the run ends; everything besides engine_step is timed as

@@ -84,10 +84,11 @@ $(STUDIES)/%/assembly.h5: $(STUDIES)/%/specimen.json | $(BIN)/pack
 $(STUDIES)/%/run.h5: SHELL := $(TOP)/workflows/solve-shell
 $(STUDIES)/%/run.h5: $(STUDIES)/%/assembly.h5 $(STUDIES)/%/case.json | $(BIN)/solve
 	@echo "== study point $*"
-	$(BIN)/solve --assembly $< --output $@ --depfile $(@D)/run.d --report $(@D)/report.json \
-		--threads $(THREADS) $(@D)/case.json \
-		|| { rc=$$?; if [ $$rc -eq 3 ]; then [ ! -f $@ ] || mv $@ $@.ckpt; \
-		     else [ ! -f $@ ] || mv $@ $(@D)/run.failed.h5; \
+	@rm -f $(@D)/report.json
+	$(strip $(MPIRUN) $(BIN)/solve) --assembly $< --output $@ --depfile $(@D)/run.d \
+		--report $(@D)/report.json --threads $(THREADS) $(@D)/case.json \
+		|| { $(solve_status); if [ $$rc -eq 3 ]; then [ ! -f $@ ] || mv $@ $@.ckpt; \
+		     elif [ $$rc -ne 0 ]; then [ ! -f $@ ] || mv $@ $(@D)/run.failed.h5; \
 		     echo solve > $(@D)/stage.failed; fi; exit $$rc; }
 	rm -f $(@D)/run.failed.h5 $(@D)/stage.failed
 
