@@ -15,40 +15,10 @@
 #include "lib/err.h"
 #include "lib/h5.h"
 #include "solve/h5mpi.h"
+#include "tests/bytes.h"
 #include "tests/check.h"
 
 static int rank, size;
-
-/* n bytes drawn from seed (the same on every rank). */
-static unsigned char *bytes(size_t n, uint32_t seed)
-{
-	unsigned char *b = malloc(n + 1);
-	for (size_t k = 0; k < n; k++) {
-		seed = seed * 1664525u + 1013904223u;
-		b[k] = (unsigned char)(seed >> 24);
-	}
-	return b;
-}
-
-static void put(const char *path, const unsigned char *b, size_t n)
-{
-	FILE *f = fopen(path, "wb");
-	CHECK(f && fwrite(b, 1, n, f) == n && fclose(f) == 0);
-}
-
-/* Whether file path holds exactly the n bytes b. */
-static int holds(const char *path, const unsigned char *b, size_t n)
-{
-	FILE *f = fopen(path, "rb");
-	if (!f)
-		return 0;
-	unsigned char *got = malloc(n + 1);
-	size_t m = fread(got, 1, n + 1, f);
-	fclose(f);
-	int same = m == n && memcmp(got, b, n) == 0;
-	free(got);
-	return same;
-}
 
 /* The message of rank 0 is this rank's. */
 static int same_message(void)
