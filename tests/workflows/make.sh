@@ -11,22 +11,8 @@
 set -eu
 bin=$1 src=$2 tmp=$3
 rm -rf "$tmp"
-mkdir -p "$tmp/share/specimens" "$tmp/share/cases" "$tmp/share/materials"
-cat > "$tmp/share/specimens/small.json" <<'JSON'
-{"shape": "cylinder", "diameter": 0.012, "height": 0.024, "rmin": 0.0006, "rmax": 0.0012}
-JSON
-cat > "$tmp/share/materials/m.json" <<'JSON'
-{"name": "m", "law": "linear", "density": 1700, "E": 10e9, "nu": 0.2,
- "tensile_strength": 5e6, "shear_strength": 10e6, "mu2": 0.5, "contact": {"friction": 0.5}}
-JSON
-for c in a b; do
-	cat > "$tmp/share/cases/$c.json" <<'JSON'
-{"test": "ucs", "assembly": "assembly.h5", "material": "../materials/m.json",
- "damping": {"translational": 0.1, "rotational": 0.1},
- "loading": [{"name": "axial", "axial": {"mode": "strain_rate", "rate": 5.0}}],
- "stop": {"strain_axial": 0.001}}
-JSON
-done
+. "$src/tests/workflows/small_share.sh"
+small_share "$tmp" 0.001 a b
 cp "$tmp/share/cases/a.json" "$tmp/share/cases/bad.json"
 sed -i 's/"test"/"no_such_key": 1, "test"/' "$tmp/share/cases/bad.json"
 

@@ -13,20 +13,8 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_yi
 # mpirun passes SIGINT on as SIGTERM after 1 s (not the workflows' 30).
 export OMPI_MCA_odls_base_sigkill_timeout=1
 rm -rf "$tmp"
-mkdir -p "$tmp/share/specimens" "$tmp/share/cases" "$tmp/share/materials"
-cat > "$tmp/share/specimens/small.json" <<'JSON'
-{"shape": "cylinder", "diameter": 0.012, "height": 0.024, "rmin": 0.0006, "rmax": 0.0012}
-JSON
-cat > "$tmp/share/materials/m.json" <<'JSON'
-{"name": "m", "law": "linear", "density": 1700, "E": 10e9, "nu": 0.2,
- "tensile_strength": 5e6, "shear_strength": 10e6, "mu2": 0.5, "contact": {"friction": 0.5}}
-JSON
-cat > "$tmp/share/cases/a.json" <<'JSON'
-{"test": "ucs", "assembly": "assembly.h5", "material": "../materials/m.json",
- "damping": {"translational": 0.1, "rotational": 0.1},
- "loading": [{"name": "axial", "axial": {"mode": "strain_rate", "rate": 5.0}}],
- "stop": {"strain_axial": 0.01}}
-JSON
+. "$src/tests/workflows/small_share.sh"
+small_share "$tmp" 0.01 a
 
 fail() { echo "FAIL: $*" >&2; exit 1; }
 launch="$mpiexec -np 2 --oversubscribe"
