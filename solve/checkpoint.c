@@ -615,7 +615,7 @@ int checkpoint_write(engine *e, hid_t file)
 	crc_of(e, &v, p0, p1, count, head, NULL, &mine);
 	gather_parts(&mine, all);
 	rc = rc || h5_attr_i64(g, "checksum", head ? crc_combine(all, par_size()) : 0) ||
-	     h5_attr_i64(g, "complete", 1);
+	     h5_attr_i64(g, "order_walk", !e->plain_order) || h5_attr_i64(g, "complete", 1);
 	H5Gclose(g);
 	if (!rc && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
 		rc = h5_write_error(h5_name(file), "the checkpoint");
@@ -1014,6 +1014,25 @@ int checkpoint_read_file(engine *e, hid_t f)
 	}
 	free(old.h), free(old.f);
 	H5Gclose(g);
+	return rc ? -1 : 0;
+}
+
+int checkpoint_plain_order(const char *path, int *plain)
+{
+	hid_t f = h5_open(path, RUN_FORMAT, 0);
+	if (f < 0)
+		return -1;
+	int64_t walk = 0;
+	int rc = 0;
+	if (h5_exists(f, "checkpoint")) {
+		hid_t g = h5_open_group(f, "checkpoint");
+		rc = g < 0 ||
+		     (H5Aexists(g, "order_walk") > 0 && h5_read_attr_i64(g, "order_walk", &walk));
+		if (g >= 0)
+			H5Gclose(g);
+	}
+	H5Fclose(f);
+	*plain = !walk;
 	return rc ? -1 : 0;
 }
 

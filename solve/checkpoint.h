@@ -15,5 +15,9 @@ int checkpoint_write(engine *e, hid_t file);
 int checkpoint_read(engine *e, const char *path);
 /* The same from an open run file (h5_open, or h5_open_image). */
 int checkpoint_read_file(engine *e, hid_t file);
+/* Whether the checkpoint of the run file at path has its particles in the
+ * Morton order alone (*plain = 1: written before the walk, order.h, so
+ * without its `order_walk` attribute), to set the engine up for it. */
+int checkpoint_plain_order(const char *path, int *plain);
 
 #endif

@@ -1,7 +1,8 @@
 /* The explicit DEM engine's state and its setup (setup.c).
  *
  * Data layout (DESIGN.md §4): particles as separate arrays in Morton order
- * (orig[] maps back to the assembly's indices); bonds in one flat array of
+ * walked within cells (order.h; orig[] maps back to the assembly's
+ * indices); bonds in one flat array of
  * `bond` records, each computed once per step and its force added to both
  * particles in bond order (bonds.h); non-bonded contacts from a Verlet
  * list, their forces gathered per particle through a CSR index
@@ -202,6 +203,8 @@ struct engine {
 	law_params *lp; /* the engine's own copy of the material's (law.copy) */
 	int nthreads;   /* threads asked for */
 	int team;       /* threads used in a step */
+	/* The particles in the Morton order alone (order.h). */
+	int plain_order;
 
 	particles p;
 	engine_pairs pairs;
@@ -231,6 +234,9 @@ typedef struct {
 	int restart; /* the state comes from a checkpoint (checkpoint_read, then
 	                engine_timestep_set), which holds the contacts and the time
 	                step: no contact search or time step here */
+	/* The particles in the Morton order alone, as in the checkpoints written
+	 * before the walk within cells (order.h, checkpoint_plain_order). */
+	int plain_order;
 } engine_opts;
 
 /* The state at the start of a run (particles sorted, bonds formed, time

@@ -1,4 +1,5 @@
-/* The particles in Morton order across the ranks (order.h). */
+/* The particles in Morton order across the ranks, walked breadth first
+ * within cells (order.h). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,6 +18,13 @@ typedef struct {
 } item;
 
 enum { LEAD_BITS = 16, LEAD_SHIFT = 3 * MORTON_BITS - LEAD_BITS };
+/* The walk's cells: Morton cells (a key's leading bits, a multiple of 3)
+ * of at least CELL_MEAN particles on average over those occupied, and no
+ * finer than two groups of leading bits (CELL_SHIFT_MIN), so a cell is
+ * whole groups. Neighbours in the walk: centres closer than NEAR times the
+ * sum of the radii, the first NEAR_SCAN of each bin around a particle. */
+enum { CELL_MEAN = 8192, CELL_SHIFT_MIN = 48, NEAR_SCAN = 64 };
+static const double NEAR = 1.1;
 
 size_t order_share(size_t n, int k, int ranks)
 {
@@ -50,7 +58,137 @@ static void sort_items(item *it, size_t m)
 	free(tmp), free(key), free(order);
 }
 
-void order_morton(const dem_assembly *a, order_range *o)
+/* The key's leading bits that make its walk cell, from the count of the
+ * keys of each group of leading bits (of all the ranks): the finest
+ * Morton cells whose mean occupancy is CELL_MEAN or more, or the coarsest
+ * one allowed finer than that. */
+static int cell_shift(const uint64_t *count, size_t n)
+{
+	int shift = CELL_SHIFT_MIN;
+	for (; shift < 3 * MORTON_BITS; shift += 3) {
+		size_t cells = 0;
+		uint64_t prev = UINT64_MAX;
+		for (size_t g = 0; g < (size_t)1 << LEAD_BITS; g++)
+			if (count[g] && g >> (shift - LEAD_SHIFT) != prev)
+				cells++, prev = g >> (shift - LEAD_SHIFT);
+		if (cells * CELL_MEAN <= n)
+			break;
+	}
+	return shift;
+}
+
+/* The m items of one cell (sorted by key) in the order of a breadth-first
+ * walk from the first one not reached yet, each particle's unreached near
+ * neighbours (centres within NEAR times the sum of their radii) in the
+ * order of their keys. In the bond loop, which runs over the pairs (i, j)
+ * of each particle i in turn, the particles j then come for the first time
+ * in the order of memory, and stay in the cache until their own turn. */
+static void walk_cell(item *it, size_t m)
+{
+	if (m < 3)
+		return;
+	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+	double rmax = 0;
+	for (size_t k = 0; k < m; k++) {
+		for (int c = 0; c < 3; c++)
+			lo[c] = fmin(lo[c], it[k].x[c]), hi[c] = fmax(hi[c], it[k].x[c]);
+		rmax = fmax(rmax, it[k].r);
+	}
+	/* Bins of the reach of the largest pair, at most about 2 m of them. */
+	double h = 2 * NEAR * rmax;
+	size_t nb[3];
+	for (;;) {
+		size_t all = 1;
+		for (int c = 0; c < 3; c++) {
+			double span = (hi[c] - lo[c]) / h;
+			nb[c] = span < 1e6 ? (size_t)span + 1 : 1000001;
+			all *= nb[c];
+		}
+		if (h > 0 && all <= 2 * m + 8)
+			break;
+		h = h > 0 ? 2 * h : 1;
+	}
+	size_t nbins = nb[0] * nb[1] * nb[2];
+	size_t *bin = xmalloc(m * sizeof *bin), *first = xcalloc(nbins + 1, sizeof *first);
+	size_t *in = xmalloc(m * sizeof *in);
+	for (size_t k = 0; k < m; k++) {
+		size_t b = 0;
+		for (int c = 2; c >= 0; c--) {
+			double t = (it[k].x[c] - lo[c]) / h; /* not a number: bin 0 */
+			b = b * nb[c] + (t > 0 ? (t < (double)nb[c] ? (size_t)t : nb[c] - 1) : 0);
+		}
+		bin[k] = b;
+		first[b + 1]++;
+	}
+	for (size_t b = 0; b < nbins; b++)
+		first[b + 1] += first[b];
+	size_t *fill = xmalloc((nbins + 1) * sizeof *fill);
+	memcpy(fill, first, (nbins + 1) * sizeof *fill);
+	for (size_t k = 0; k < m; k++)
+		in[fill[bin[k]]++] = k; /* each bin's items in the order of their keys */
+	free(fill);
+	size_t *queue = xmalloc(m * sizeof *queue), head = 0, tail = 0;
+	size_t *near = xmalloc(27 * NEAR_SCAN * sizeof *near);
+	char *seen = xcalloc(m, 1);
+	for (size_t s = 0; s < m; s++) {
+		if (seen[s])
+			continue;
+		seen[s] = 1, queue[tail++] = s;
+		while (head < tail) {
+			size_t u = queue[head++], found = 0;
+			size_t at[3] = {bin[u] % nb[0], bin[u] / nb[0] % nb[1],
+			                bin[u] / nb[0] / nb[1]};
+			for (int dz = -1; dz <= 1; dz++)
+				for (int dy = -1; dy <= 1; dy++)
+					for (int dx = -1; dx <= 1; dx++) {
+						size_t bx = at[0] + (size_t)dx,
+						       by = at[1] + (size_t)dy,
+						       bz = at[2] + (size_t)dz;
+						if (bx >= nb[0] || by >= nb[1] || bz >= nb[2])
+							continue;
+						size_t b = (bz * nb[1] + by) * nb[0] + bx;
+						size_t end = first[b + 1] < first[b] + NEAR_SCAN
+						                 ? first[b + 1]
+						                 : first[b] + NEAR_SCAN;
+						for (size_t q = first[b]; q < end; q++) {
+							size_t v = in[q];
+							double d2 = 0,
+							       reach = NEAR * (it[u].r + it[v].r);
+							for (int c = 0; c < 3; c++)
+								d2 += (it[v].x[c] - it[u].x[c]) *
+								      (it[v].x[c] - it[u].x[c]);
+							if (!seen[v] && d2 < reach * reach)
+								near[found++] = v, seen[v] = 1;
+						}
+					}
+			/* In the order of their keys (insertion: a few each). */
+			for (size_t a = 1; a < found; a++)
+				for (size_t b = a; b > 0 && near[b - 1] > near[b]; b--) {
+					size_t t = near[b];
+					near[b] = near[b - 1], near[b - 1] = t;
+				}
+			memcpy(queue + tail, near, found * sizeof *near);
+			tail += found;
+		}
+	}
+	item *tmp = xmalloc(m * sizeof *tmp);
+	for (size_t k = 0; k < m; k++)
+		tmp[k] = it[queue[k]];
+	memcpy(it, tmp, m * sizeof *it);
+	free(tmp), free(seen), free(near), free(queue), free(in), free(first), free(bin);
+}
+
+/* The m items (sorted by key, whole cells) walked cell by cell. */
+static void walk_cells(item *it, size_t m, int shift)
+{
+	for (size_t k = 0, end; k < m; k = end) {
+		for (end = k + 1; end < m && it[end].key >> shift == it[k].key >> shift; end++)
+			;
+		walk_cell(it + k, end - k);
+	}
+}
+
+void order_morton(const dem_assembly *a, int plain, order_range *o)
 {
 	int ranks = par_size(), rank = par_rank();
 	/* A whole assembly (on every rank): this rank's part of it. */
@@ -78,22 +216,29 @@ void order_morton(const dem_assembly *a, order_range *o)
 		memcpy(it[i].x, ax + 3 * i, sizeof it[i].x);
 		it[i].r = ar[i];
 	}
+	/* The count of the keys of each group of leading bits, over the ranks. */
+	size_t ngroups = (size_t)1 << LEAD_BITS;
+	uint64_t *count = xcalloc(ngroups, sizeof *count);
+	for (size_t k = 0; k < m; k++)
+		count[it[k].key >> LEAD_SHIFT]++;
+	par_sum_u64(count, ngroups);
+	int shift = cell_shift(count, n);
 	if (ranks > 1) {
-		/* Each group of keys (their leading bits) to the rank whose share
-		 * holds its first place, in the order of the assembly. */
-		size_t ngroups = (size_t)1 << LEAD_BITS;
-		uint64_t *count = xcalloc(ngroups, sizeof *count);
-		for (size_t k = 0; k < m; k++)
-			count[it[k].key >> LEAD_SHIFT]++;
-		par_sum_u64(count, ngroups);
+		/* Each walk cell (whole groups of keys, their leading bits) to the
+		 * rank whose share holds its first place, in the order of the
+		 * assembly. */
 		size_t *share = xmalloc(((size_t)ranks + 1) * sizeof *share);
 		for (int q = 0; q <= ranks; q++)
 			share[q] = order_share(n, q, ranks);
 		int *to = xmalloc(ngroups * sizeof *to);
 		size_t place = 0, mine = 0; /* the first place of this rank's groups */
 		int seen = 0;
+		size_t cell_place = 0;
 		for (size_t g = 0; g < ngroups; g++) {
-			to[g] = run_of(share, ranks, place);
+			if (g == 0 || g >> (shift - LEAD_SHIFT) != (g - 1) >> (shift - LEAD_SHIFT))
+				cell_place = place;
+			to[g] =
+			    plain ? run_of(share, ranks, place) : run_of(share, ranks, cell_place);
 			if (to[g] == rank && !seen)
 				mine = place, seen = 1;
 			place += count[g];
@@ -106,13 +251,18 @@ void order_morton(const dem_assembly *a, order_range *o)
 		m = send_on(&it, m, dest);
 		/* Sorted, they fill places [mine, mine + m): on to their shares. */
 		sort_items(it, m);
+		if (!plain)
+			walk_cells(it, m, shift);
 		dest = xrealloc(dest, (m + 1) * sizeof *dest);
 		for (size_t k = 0; k < m; k++)
 			dest[k] = run_of(share, ranks, mine + k);
 		m = send_on(&it, m, dest);
 		free(dest), free(share);
 	} else {
+		free(count);
 		sort_items(it, m);
+		if (!plain)
+			walk_cells(it, m, shift);
 	}
 	o->first = order_share(n, rank, ranks);
 	o->n = m;

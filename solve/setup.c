@@ -48,8 +48,10 @@ static double own_sum(const engine *e, double (*v)(const engine *, size_t))
 
 static double radius(const engine *e, size_t i) { return e->p.r[i]; }
 
-/* The particles in Morton order (order.h: neighbours in space sit near
- * each other in memory, so the bond and gather loops stay in cache), with
+/* The particles in Morton order walked within cells (order.h: neighbours
+ * in space sit near each other in memory, and a bond's far end comes for
+ * the first time in the order of memory, so the bond and gather loops stay
+ * in cache), with
  * their masses. With several ranks each holds its share of the order
  * until they are split by their bonds (ranks_split), or, whole, every
  * particle. */
@@ -59,7 +61,7 @@ static int load_particles(engine *e, const dem_assembly *a, int whole)
 	rank_split *R = &e->ranks;
 	size_t n = a->n;
 	order_range o;
-	order_morton(a, &o);
+	order_morton(a, e->plain_order, &o);
 	int ranks = par_size();
 	if (ranks > 1 && !whole) {
 		R->size = ranks;
@@ -240,6 +242,7 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 	e->cs = cs;
 	e->law = cs->mat.law;
 	e->lp = e->law->copy(cs->mat.params);
+	e->plain_order = o->plain_order;
 	if (a->n == 0)
 		return err_set("the assembly has no particles");
 	if (load_particles(e, a, o->whole))

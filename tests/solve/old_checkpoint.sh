@@ -8,7 +8,10 @@
 # in single precision, so each stops before its first crack or snapshot,
 # whose forces the build before wrote in double precision. data/old-LAW.h5:
 # the case below, made with a build before and interrupted at step STOP
-# (jcfpm and exponential: ac765f5; onate: 0729df6).
+# (jcfpm and exponential: ac765f5; onate: 0729df6). Their particles are in
+# the Morton order alone, without the walk within cells (solve/order.h),
+# which the restart takes from the checkpoint (no `order_walk` attribute)
+# and the whole run from DEM_TEST_PLAIN_ORDER.
 # Usage: old_checkpoint.sh BIN_DIR TMP_DIR [--make OLD_BIN_DIR]  (--make: write
 # the data files with that build instead)
 set -eu
@@ -34,7 +37,7 @@ JSON
 			"$1.json" || [ $? -eq 3 ]
 		return
 	fi
-	"$bin/solve" --quiet --threads 1 --output "whole-$1.h5" "$1.json"
+	DEM_TEST_PLAIN_ORDER=1 "$bin/solve" --quiet --threads 1 --output "whole-$1.h5" "$1.json"
 	cp "$here/data/old-$1.h5" "old-$1.h5"
 	"$bin/solve" --quiet --restart "old-$1.h5"
 	/usr/bin/python3 "$here/same_run.py" "whole-$1.h5" "old-$1.h5"
