@@ -21,10 +21,9 @@ enum { LEAD_BITS = 16, LEAD_SHIFT = 3 * MORTON_BITS - LEAD_BITS };
 /* The walk's cells: Morton cells (a key's leading bits, a multiple of 3)
  * of at least CELL_MEAN particles on average over those occupied, and no
  * finer than two groups of leading bits (CELL_SHIFT_MIN), so a cell is
- * whole groups. Neighbours in the walk: centres closer than NEAR times the
- * sum of the radii, the first NEAR_SCAN of each bin around a particle. */
+ * whole groups. A particle's neighbours in the walk: the first NEAR_SCAN
+ * of each bin around it within reach (order.h). */
 enum { CELL_MEAN = 8192, CELL_SHIFT_MIN = 48, NEAR_SCAN = 64 };
-static const double NEAR = 1.1;
 
 size_t order_share(size_t n, int k, int ranks)
 {
@@ -78,12 +77,12 @@ static int cell_shift(const uint64_t *count, size_t n)
 }
 
 /* The m items of one cell (sorted by key) in the order of a breadth-first
- * walk from the first one not reached yet, each particle's unreached near
- * neighbours (centres within NEAR times the sum of their radii) in the
+ * walk from the first one not reached yet, each particle's unreached
+ * neighbours (centres within reach times the sum of their radii) in the
  * order of their keys. In the bond loop, which runs over the pairs (i, j)
  * of each particle i in turn, the particles j then come for the first time
  * in the order of memory, and stay in the cache until their own turn. */
-static void walk_cell(item *it, size_t m)
+static void walk_cell(item *it, size_t m, double reach)
 {
 	if (m < 3)
 		return;
@@ -95,7 +94,7 @@ static void walk_cell(item *it, size_t m)
 		rmax = fmax(rmax, it[k].r);
 	}
 	/* Bins of the reach of the largest pair, at most about 2 m of them. */
-	double h = 2 * NEAR * rmax;
+	double h = 2 * reach * rmax;
 	size_t nb[3];
 	for (;;) {
 		size_t all = 1;
@@ -153,11 +152,11 @@ static void walk_cell(item *it, size_t m)
 						for (size_t q = first[b]; q < end; q++) {
 							size_t v = in[q];
 							double d2 = 0,
-							       reach = NEAR * (it[u].r + it[v].r);
+							       near_d = reach * (it[u].r + it[v].r);
 							for (int c = 0; c < 3; c++)
 								d2 += (it[v].x[c] - it[u].x[c]) *
 								      (it[v].x[c] - it[u].x[c]);
-							if (!seen[v] && d2 < reach * reach)
+							if (!seen[v] && d2 < near_d * near_d)
 								near[found++] = v, seen[v] = 1;
 						}
 					}
@@ -179,16 +178,16 @@ static void walk_cell(item *it, size_t m)
 }
 
 /* The m items (sorted by key, whole cells) walked cell by cell. */
-static void walk_cells(item *it, size_t m, int shift)
+static void walk_cells(item *it, size_t m, int shift, double reach)
 {
 	for (size_t k = 0, end; k < m; k = end) {
 		for (end = k + 1; end < m && it[end].key >> shift == it[k].key >> shift; end++)
 			;
-		walk_cell(it + k, end - k);
+		walk_cell(it + k, end - k, reach);
 	}
 }
 
-void order_morton(const dem_assembly *a, int plain, order_range *o)
+void order_morton(const dem_assembly *a, int plain, double reach, order_range *o)
 {
 	int ranks = par_size(), rank = par_rank();
 	/* A whole assembly (on every rank): this rank's part of it. */
@@ -252,7 +251,7 @@ void order_morton(const dem_assembly *a, int plain, order_range *o)
 		/* Sorted, they fill places [mine, mine + m): on to their shares. */
 		sort_items(it, m);
 		if (!plain)
-			walk_cells(it, m, shift);
+			walk_cells(it, m, shift, reach);
 		dest = xrealloc(dest, (m + 1) * sizeof *dest);
 		for (size_t k = 0; k < m; k++)
 			dest[k] = run_of(share, ranks, mine + k);
@@ -262,7 +261,7 @@ void order_morton(const dem_assembly *a, int plain, order_range *o)
 		free(count);
 		sort_items(it, m);
 		if (!plain)
-			walk_cells(it, m, shift);
+			walk_cells(it, m, shift, reach);
 	}
 	o->first = order_share(n, rank, ranks);
 	o->n = m;

@@ -7,11 +7,12 @@
  * each a key (lib/morton.h); the order is that of the keys, equal keys in
  * the order of the assembly. Then, within Morton cells of some 8 000
  * particles or more (a key's leading bits), the particles are renumbered
- * by a breadth-first walk over near neighbours, from the first in key
+ * by a breadth-first walk over neighbours (centres within `reach` times
+ * the sum of the radii: the law's bond range), from the first in key
  * order: a bond's far end then comes for the first time in the order of
  * memory (share/doc/solve.md, "The particles numbered by a walk"). Both
- * depend on the particles only, so the order is the same on any number
- * of ranks. Rank k receives the particles of places [first_k, first_k+1)
+ * depend on the particles and the range only, so the order is the same on
+ * any number of ranks. Rank k receives the particles of places [first_k, first_k+1)
  * of the order, whole particle blocks (blocks.h) in even shares: a count
  * of the keys by their 16 leading bits (summed over the ranks) sends every
  * cell to one rank, which sorts and walks it, and the sorted cells go on
@@ -36,7 +37,7 @@ size_t order_share(size_t n, int k, int ranks);
  * (assembly_read_part, a different one on each rank), or of the whole
  * assembly on every rank. plain: the Morton order alone, without the walk
  * (the order of checkpoints written before it). Collective. */
-void order_morton(const dem_assembly *a, int plain, order_range *o);
+void order_morton(const dem_assembly *a, int plain, double reach, order_range *o);
 void order_free(order_range *o);
 
 #endif

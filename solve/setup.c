@@ -61,7 +61,7 @@ static int load_particles(engine *e, const dem_assembly *a, int whole)
 	rank_split *R = &e->ranks;
 	size_t n = a->n;
 	order_range o;
-	order_morton(a, e->plain_order, &o);
+	order_morton(a, e->plain_order, e->law->bond_range(e->lp), &o);
 	int ranks = par_size();
 	if (ranks > 1 && !whole) {
 		R->size = ranks;

@@ -120,7 +120,7 @@ int main(int argc, char **argv)
 				a.r = r + a.first;
 			}
 			order_range o;
-			order_morton(&a, 0, &o);
+			order_morton(&a, 0, 1.1, &o);
 			CHECK(o.first == order_share(n, rank, ranks));
 			CHECK(o.first + o.n == order_share(n, rank + 1, ranks));
 			CHECK(o.first % 256 == 0);
