@@ -7,6 +7,7 @@
  * grow the file; the `complete` attribute is 0 while one is being written,
  * and `checksum` (CRC-32 of the state it holds) is compared after a restart
  * has read it back, so damaged checkpoint data is refused, never continued. */
+#include <inttypes.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,6 +17,7 @@
 #include "lib/h5.h"
 #include "solve/checkpoint.h"
 #include "solve/contacts.h"
+#include "solve/order.h"
 #include "solve/pairlist.h"
 #include "solve/par.h"
 #include "solve/ranks.h"
@@ -615,7 +617,8 @@ int checkpoint_write(engine *e, hid_t file)
 	crc_of(e, &v, p0, p1, count, head, NULL, &mine);
 	gather_parts(&mine, all);
 	rc = rc || h5_attr_i64(g, "checksum", head ? crc_combine(all, par_size()) : 0) ||
-	     h5_attr_i64(g, "order_walk", !e->plain_order) || h5_attr_i64(g, "complete", 1);
+	     h5_attr_i64(g, "order_walk", e->plain_order ? 0 : ORDER_WALK) ||
+	     h5_attr_i64(g, "complete", 1);
 	H5Gclose(g);
 	if (!rc && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
 		rc = h5_write_error(h5_name(file), "the checkpoint");
@@ -1032,6 +1035,10 @@ int checkpoint_plain_order(const char *path, int *plain)
 			H5Gclose(g);
 	}
 	H5Fclose(f);
+	if (!rc && walk != 0 && walk != ORDER_WALK)
+		rc = err_set("%s: checkpoint attribute 'order_walk': value %" PRId64
+		             ": expected 0 or %d (a checkpoint of another version of solve)",
+		             path, walk, ORDER_WALK);
 	*plain = !walk;
 	return rc ? -1 : 0;
 }

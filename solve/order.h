@@ -5,7 +5,7 @@
  * Each rank reads a piece of the assembly's rows (assembly_read_rows). The
  * particles' bounding cube, scaled to cells 0 to 2^21 - 1 a side, gives
  * each a key (lib/morton.h); the order is that of the keys, equal keys in
- * the order of the assembly. Then, within Morton cells of some 8 000
+ * the order of the assembly. Then, within Morton cells of some 4 000
  * particles or more (a key's leading bits), the particles are renumbered
  * by a breadth-first walk over neighbours (centres within `reach` times
  * the sum of the radii: the law's bond range), from the first in key
@@ -38,6 +38,10 @@ size_t order_share(size_t n, int k, int ranks);
  * assembly on every rank. plain: the Morton order alone, without the walk
  * (the order of checkpoints written before it). Collective. */
 void order_morton(const dem_assembly *a, int plain, double reach, order_range *o);
+/* The walk's version, which checkpoints record (order_walk): any change of
+ * the order (its cells, its steps) must change it, since a restart must
+ * find the particles in the order of the checkpoint. */
+enum { ORDER_WALK = 1 };
 void order_free(order_range *o);
 
 #endif
