@@ -12,11 +12,11 @@
  * order: a bond's far end then comes for the first time in the order of
  * memory (share/doc/solve.md, "The particles numbered by a walk"). Both
  * depend on the particles and the range only, so the order is the same on
- * any number of ranks. Rank k receives the particles of places [first_k, first_k+1)
- * of the order, whole particle blocks (blocks.h) in even shares: a count
- * of the keys by their 16 leading bits (summed over the ranks) sends every
- * cell to one rank, which sorts and walks it, and the sorted cells go on
- * to the ranks whose places they fill. */
+ * any number of ranks. Rank k receives the particles of places
+ * [first_k, first_k+1) of the order, whole particle blocks (blocks.h) in
+ * even shares: a count of the keys by their 16 leading bits (summed over
+ * the ranks) sends every cell to one rank, which sorts and walks it, and
+ * the sorted cells go on to the ranks whose places they fill. */
 #ifndef DEM_ORDER_H
 #define DEM_ORDER_H
 
