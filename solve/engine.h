@@ -2,12 +2,11 @@
  *
  * Data layout (DESIGN.md §4): particles as separate arrays in Morton order
  * walked within cells (order.h; orig[] maps back to the assembly's
- * indices); bonds in one flat array of
- * `bond` records, each computed once per step and its force added to both
- * particles in bond order (bonds.h); non-bonded contacts from a Verlet
- * list, their forces gathered per particle through a CSR index
- * (pairlist.h). Everything a particle needs from
- * another one is read by index from these arrays, which under a domain
+ * indices); bonds in one flat array of `bond` records, each computed once
+ * per step and its force added to both particles in bond order (bonds.h);
+ * non-bonded contacts from a Verlet list, their forces gathered per
+ * particle through a CSR index (pairlist.h). Everything a particle needs
+ * from another one is read by index from these arrays, which under a domain
  * decomposition hold a rank's own particles and the others it reads
  * (window.h).
  * Reductions are summed in fixed blocks (blocks.h), so results do not

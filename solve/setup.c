@@ -51,10 +51,9 @@ static double radius(const engine *e, size_t i) { return e->p.r[i]; }
 /* The particles in Morton order walked within cells (order.h: neighbours
  * in space sit near each other in memory, and a bond's far end comes for
  * the first time in the order of memory, so the bond and gather loops stay
- * in cache), with
- * their masses. With several ranks each holds its share of the order
- * until they are split by their bonds (ranks_split), or, whole, every
- * particle. */
+ * in cache), with their masses. With several ranks each holds its share of
+ * the order until they are split by their bonds (ranks_split), or, whole,
+ * every particle. */
 static int load_particles(engine *e, const dem_assembly *a, int whole)
 {
 	particles *P = &e->p;
