@@ -232,12 +232,12 @@ void order_morton(const dem_assembly *a, int plain, double reach, order_range *o
 		int *to = xmalloc(ngroups * sizeof *to);
 		size_t place = 0, mine = 0; /* the first place of this rank's groups */
 		int seen = 0;
-		size_t cell_place = 0;
+		size_t cell_place = 0; /* the first place of g's walk cell (plain: of g) */
 		for (size_t g = 0; g < ngroups; g++) {
-			if (g == 0 || g >> (shift - LEAD_SHIFT) != (g - 1) >> (shift - LEAD_SHIFT))
+			if (plain || g == 0 ||
+			    g >> (shift - LEAD_SHIFT) != (g - 1) >> (shift - LEAD_SHIFT))
 				cell_place = place;
-			to[g] =
-			    plain ? run_of(share, ranks, place) : run_of(share, ranks, cell_place);
+			to[g] = run_of(share, ranks, cell_place);
 			if (to[g] == rank && !seen)
 				mine = place, seen = 1;
 			place += count[g];

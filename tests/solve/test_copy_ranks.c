@@ -31,6 +31,17 @@ static int same_message(void)
 	return strcmp(first, msg) == 0;
 }
 
+/* A copy from `from` to `to` that fails on every rank with the same
+ * message, which names `named` and says `says`. */
+static void copy_fails(const char *from, const char *to, const char *named, const char *says)
+{
+	err_clear();
+	CHECK(h5mpi_copy(from, to, 1000, NULL) == -1);
+	CHECK_CONTAINS(err_msg(), named);
+	CHECK_CONTAINS(err_msg(), says);
+	CHECK(same_message());
+}
+
 /* A copy of n bytes in pieces of piece, through h5mpi_copy, or (piece <
  * 0) through h5_copy_shared. */
 static void copy(const char *dir, size_t n, long piece)
@@ -90,11 +101,7 @@ int main(int argc, char **argv)
 	char from[1024], to[1024];
 	snprintf(from, sizeof from, "%s/no-such-file", dir);
 	snprintf(to, sizeof to, "%s/to-missing", dir);
-	err_clear();
-	CHECK(h5mpi_copy(from, to, 1000, NULL) == -1);
-	CHECK_CONTAINS(err_msg(), from);
-	CHECK_CONTAINS(err_msg(), "cannot open: No such file or directory");
-	CHECK(same_message());
+	copy_fails(from, to, from, "cannot open: No such file or directory");
 	err_clear();
 	CHECK(h5_copy_shared(from, to) == -1);
 	CHECK_CONTAINS(err_msg(), from);
@@ -102,11 +109,7 @@ int main(int argc, char **argv)
 	/* A destination in a missing directory. */
 	snprintf(from, sizeof from, "%s/from-10007", dir);
 	snprintf(to, sizeof to, "%s/no-such-dir/to", dir);
-	err_clear();
-	CHECK(h5mpi_copy(from, to, 1000, NULL) == -1);
-	CHECK_CONTAINS(err_msg(), to);
-	CHECK_CONTAINS(err_msg(), "cannot create");
-	CHECK(same_message());
+	copy_fails(from, to, to, "cannot create");
 
 	int failed = check_done();
 	MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
