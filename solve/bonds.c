@@ -514,21 +514,27 @@ static inline void lanes_sums(const law_fused *o, int q, const double *r, double
 }
 
 /* The new histories of lanes q..q+3 of o into the records r[0..4), as
- * fused_history stores them when history is set: t and h are six doubles
- * in a row in a record (pairs.c), so t and h[0] of each lane are
- * transposed into one row, h[1] and h[2] into a pair. */
-static inline void records_store(pair_rec *r, const law_fused *o, int q)
+ * fused_history stores them: t and h are six doubles in a row in a record
+ * (pairs.c), so t and h[0] of each lane are transposed into one row, and
+ * with history h[1] and h[2] into a pair; without it, h is as the records
+ * had it (L) and h[0] is written back unchanged, one store of a row
+ * instead of three of single values. */
+static inline void records_store(pair_rec *r, const law_fused *o, const law_lanes *L, int q,
+                                 int history)
 {
 	vec4 col[4] = {*(const vec4 *)(o->t[0] + q), *(const vec4 *)(o->t[1] + q),
-	               *(const vec4 *)(o->t[2] + q), *(const vec4 *)(o->h[0] + q)},
+	               *(const vec4 *)(o->t[2] + q),
+	               *(const vec4 *)((history ? o->h[0] : L->h[0]) + q)},
 	     row[4];
-	acc_v2 tail[4];
 	vec4_transpose(col, row);
-	vec4_pairs(*(const vec4 *)(o->h[1] + q), *(const vec4 *)(o->h[2] + q), tail);
-	for (int l = 0; l < 4; l++) {
+	for (int l = 0; l < 4; l++)
 		*(vec4 *)r[l].t = row[l];
+	if (!history)
+		return;
+	acc_v2 tail[4];
+	vec4_pairs(*(const vec4 *)(o->h[1] + q), *(const vec4 *)(o->h[2] + q), tail);
+	for (int l = 0; l < 4; l++)
 		*(acc_v2 *)(r[l].h + 1) = tail[l];
-	}
 }
 
 /* head and tail added to the sums a of a particle. */
@@ -555,8 +561,8 @@ static inline __attribute__((always_inline)) void bonds_add_elastic(engine *e, s
 	pairlist *B = &e->pairs.bonds;
 	int history = full && o->history;
 	int q = 0;
-	for (; history && q + 4 <= nq; q += 4)
-		records_store(&B->rec[b0 + (size_t)q], o, q);
+	for (; q + 4 <= nq; q += 4)
+		records_store(&B->rec[b0 + (size_t)q], o, L, q, history);
 	for (; q < nq; q++)
 		fused_history(&B->rec[b0 + (size_t)q], o, q, history);
 	for (q = 0; q < nq; q++) {
