@@ -1,8 +1,12 @@
 #include <errno.h>
 #include <math.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/statvfs.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <hdf5_hl.h>
@@ -94,6 +98,77 @@ int h5_copy_shared(const char *from, const char *to)
 	return procs_ ? procs_->copy(from, to) : fcopy(from, to);
 }
 
+/* What a process sees of a file: whether it sees one (else errno), its
+ * size and the time of its last change, and, for a file rank 0 has just
+ * made, the token rank 0 wrote in it. */
+typedef struct {
+	uint64_t seen, err, size, sec, nsec;
+	char token[48];
+} file_view;
+
+static file_view view_of(const char *path, int read_token)
+{
+	/* Opened, not only looked up: an open checks the attributes a
+	 * network file system's client may have kept from before. */
+	FILE *f = fopen(path, "rb");
+	struct stat st;
+	if (!f || fstat(fileno(f), &st) != 0) {
+		file_view none = {.err = (uint64_t)errno};
+		if (f)
+			fclose(f);
+		return none;
+	}
+	file_view v = {.seen = 1,
+	               .size = (uint64_t)st.st_size,
+	               .sec = (uint64_t)st.st_mtim.tv_sec,
+	               .nsec = (uint64_t)st.st_mtim.tv_nsec};
+	if (read_token && fread(v.token, 1, sizeof v.token - 1, f) == 0)
+		v.token[0] = '\0';
+	fclose(f);
+	return v;
+}
+
+/* Whether every process sees the file at path (name in messages) that
+ * rank 0 sees (every process calls it): not when it is missing on some,
+ * or another file on some (a directory local to each machine, holding
+ * copies), which an MPI-IO open does not survive (Open MPI's OMPIO waits
+ * forever in an open that some processes cannot make) or turns into a
+ * file of its own on each machine, each holding a part of the run. A file
+ * rank 0 has just made for it (token) is told by a token rank 0 writes in
+ * it; an existing one by its size and time. 0, or -1 on every process
+ * with a message. */
+static int seen_by_all(const char *path, const char *name, int token)
+{
+	file_view mine = {0}, first;
+	if (procs_->rank == 0) {
+		FILE *f = token ? fopen(path, "wb") : NULL;
+		if (f) {
+			struct timespec now;
+			clock_gettime(CLOCK_REALTIME, &now);
+			fprintf(f, "dem %lld.%09ld %ld", (long long)now.tv_sec, now.tv_nsec,
+			        (long)getpid());
+			fclose(f);
+		}
+		mine = view_of(path, token);
+	}
+	first = mine;
+	procs_->bcast(&first, sizeof first);
+	if (!first.seen)
+		return err_set("%s: cannot open: %s", name, strerror((int)first.err));
+	if (procs_->rank > 0)
+		mine = view_of(path, token);
+	uint64_t bad = !mine.seen || (token ? strcmp(mine.token, first.token) != 0
+	                                    : mine.size != first.size || mine.sec != first.sec ||
+	                                          mine.nsec != first.nsec);
+	procs_->sum(&bad, 1);
+	if (!bad)
+		return 0;
+	return err_set("%s: not the same file on every rank (%llu of the %d ranks see none or "
+	               "another): its directory must be one directory shared by every rank (a "
+	               "parallel or network file system), not one local to each machine",
+	               name, (unsigned long long)bad, procs_->size);
+}
+
 int h5_begin_shared(const char *final, char *tmp, size_t tmpsize)
 {
 	int rc =
@@ -101,7 +176,11 @@ int h5_begin_shared(const char *final, char *tmp, size_t tmpsize)
 	if (!rc && h5_rank() > 0)
 		snprintf(tmp, tmpsize, "%s.tmp", final);
 	h5_bcast(&rc, sizeof rc);
-	return rc;
+	if (rc || !procs_ || !seen_by_all(tmp, final, 1))
+		return rc;
+	if (procs_->rank == 0)
+		afile_discard(tmp);
+	return -1;
 }
 
 /* The file-access list of every file written: the oldest format that holds
@@ -166,6 +245,8 @@ hid_t h5_open_shared(const char *path, const char *format)
 	if (!procs_)
 		return h5_open(path, format, 1);
 	h5_quiet();
+	if (seen_by_all(path, path, 0))
+		return -1;
 	hid_t fapl = access_list(1);
 	hid_t f = H5Fopen(path, H5F_ACC_RDWR, fapl);
 	H5Pclose(fapl);

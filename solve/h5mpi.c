@@ -107,8 +107,10 @@ int h5mpi_copy(const char *from, const char *to, size_t piece, uint64_t *mine)
 	/* A file that some ranks can open and others cannot (a directory
 	 * not shared) is an error MPI_File_open does not survive everywhere:
 	 * ROMIO fails on every rank, Open MPI 4.1's OMPIO stalls inside it
-	 * (seen with a path missing on one rank of 3), as it does in
-	 * H5Fcreate of the run file, in the same directory, earlier. A rank
+	 * (seen with a path missing on one rank of 3), as it would in
+	 * H5Fcreate of the run file, in the same directory, earlier, had
+	 * h5_begin_shared not found first that some rank does not see the
+	 * file rank 0 made (lib/h5.c, seen_by_all). A rank
 	 * whose open succeeded while another's failed therefore leaves its
 	 * handle open: its close would wait for the others. */
 	int e = MPI_File_open(MPI_COMM_WORLD, from, MPI_MODE_RDONLY, MPI_INFO_NULL, &in);

@@ -1,7 +1,9 @@
 #!/bin/sh
 # Failures of a run on several ranks (share/doc/solve.md, "Several
 # machines"): a restart file of another format version gives one message
-# and a non-zero exit on 2 ranks, and leaves the file as it was; runs
+# and a non-zero exit on 2 ranks, and leaves the file as it was; so does
+# an output directory or a restart file that is not the same on every
+# rank, where the MPI-IO open waited forever; runs
 # stopped by a diagnosis (a runaway, a non-finite state) on 3 ranks are
 # the runs on one, message and all; the recovery copy of a step on 2
 # ranks is that of one process; a rank killed with SIGKILL ends the run
@@ -37,6 +39,36 @@ fi
 n=$(grep -c "^solve.*s.h5: attribute 'format_version': value 99: expected 1 to 3" bad.err || true)
 [ "$n" -eq 1 ] || { cat bad.err >&2; fail "expected the version message once, got $n"; }
 [ "$(cksum < s.h5)" = "$sum0" ] || fail "s.h5 changed by a refused restart"
+
+# An output directory that is not one directory on every rank (here each
+# rank's own working directory, as a directory local to each machine
+# would be): one message and status 1, nothing left behind, where Open
+# MPI's MPI-IO open of the run file waited forever; the same for a
+# restart from a copy of a run file.
+sed "s|\"a.h5\"|\"$PWD/a.h5\"|" ucs.json > abs.json
+mkdir -p here/out there/out
+on_two() { # the same solve arguments on a rank in here/ and one in there/
+	timeout 120 "$mpiexec" --oversubscribe -np 1 -wdir "$PWD/here" "$bin/solve" --quiet \
+		--threads 1 "$@" : -np 1 -wdir "$PWD/there" "$bin/solve" --quiet --threads 1 "$@"
+}
+expect_local() { # status, err file, what
+	[ "$1" -eq 1 ] || { cat "$2" >&2; fail "$3: expected status 1, got $1"; }
+	n=$(grep -c "^solve.*out/[a-z]*.h5: not the same file on every rank (1 of the 2 ranks" "$2" || true)
+	[ "$n" -eq 1 ] || { cat "$2" >&2; fail "$3: expected the message once, got $n"; }
+}
+status=0
+on_two --output out/run.h5 "$PWD/abs.json" 2> local.err || status=$?
+expect_local "$status" local.err "a local output directory"
+left=$(find here/out there/out -type f)
+[ -z "$left" ] || fail "a local output directory: files left: $left"
+(cd here && "$bin/solve" --quiet --threads 1 --max-steps 100 --output out/int.h5 "$PWD/../abs.json") ||
+	[ $? -eq 3 ] || fail "1 process, --max-steps 100: expected status 3"
+cp here/out/int.h5 there/out/int.h5
+sum0=$(cksum < here/out/int.h5)
+status=0
+on_two --restart out/int.h5 2> copy.err || status=$?
+expect_local "$status" copy.err "a restart from a copy"
+[ "$(cksum < here/out/int.h5)" = "$sum0" ] || fail "a restart from a copy: the run file changed"
 
 # The diagnoses read each rank's own particles: a run that one stops (a
 # skin so thin that the first step moves particles across half of it) on
