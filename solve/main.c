@@ -57,7 +57,8 @@ static int solve_main(int argc, char **argv)
 	    "are described in share/doc/solve.md.\n\n"
 	    "Under mpirun -np K (a solve built with MPI) the specimen is split among K\n"
 	    "ranks, each with its --threads; the run file is the same, bit for bit, on any\n"
-	    "number of ranks and threads, and --restart may use another K.\n\n"
+	    "number of ranks and threads, and --restart may use another K. The run file's\n"
+	    "directory must be shared by every rank (not /tmp on each node).\n\n"
 	    "Exit status: 0 complete or stopped by a stop rule, 1 error or diagnosed failure\n"
 	    "(the run file is kept, its status says why), 2 usage, 3 interrupted by a signal\n"
 	    "or a budget (continue with --restart).";
