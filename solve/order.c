@@ -7,6 +7,7 @@
 #include "lib/err.h"
 #include "lib/morton.h"
 #include "solve/blocks.h"
+#include "solve/cells.h"
 #include "solve/order.h"
 #include "solve/par.h"
 
@@ -86,46 +87,15 @@ static void walk_cell(item *it, size_t m, double reach)
 {
 	if (m < 3)
 		return;
-	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-	double rmax = 0;
+	/* Cells of the reach of the largest pair (cells.h). */
+	double *x = xmalloc(3 * m * sizeof *x), rmax = 0;
 	for (size_t k = 0; k < m; k++) {
-		for (int c = 0; c < 3; c++)
-			lo[c] = fmin(lo[c], it[k].x[c]), hi[c] = fmax(hi[c], it[k].x[c]);
+		memcpy(x + 3 * k, it[k].x, sizeof it[k].x);
 		rmax = fmax(rmax, it[k].r);
 	}
-	/* Bins of the reach of the largest pair, at most about 2 m of them. */
-	double h = 2 * reach * rmax;
-	size_t nb[3];
-	for (;;) {
-		size_t all = 1;
-		for (int c = 0; c < 3; c++) {
-			double span = (hi[c] - lo[c]) / h;
-			nb[c] = span < 1e6 ? (size_t)span + 1 : 1000001;
-			all *= nb[c];
-		}
-		if (h > 0 && all <= 2 * m + 8)
-			break;
-		h = h > 0 ? 2 * h : 1;
-	}
-	size_t nbins = nb[0] * nb[1] * nb[2];
-	size_t *bin = xmalloc(m * sizeof *bin), *first = xcalloc(nbins + 1, sizeof *first);
-	size_t *in = xmalloc(m * sizeof *in);
-	for (size_t k = 0; k < m; k++) {
-		size_t b = 0;
-		for (int c = 2; c >= 0; c--) {
-			double t = (it[k].x[c] - lo[c]) / h; /* not a number: bin 0 */
-			b = b * nb[c] + (t > 0 ? (t < (double)nb[c] ? (size_t)t : nb[c] - 1) : 0);
-		}
-		bin[k] = b;
-		first[b + 1]++;
-	}
-	for (size_t b = 0; b < nbins; b++)
-		first[b + 1] += first[b];
-	size_t *fill = xmalloc((nbins + 1) * sizeof *fill);
-	memcpy(fill, first, (nbins + 1) * sizeof *fill);
-	for (size_t k = 0; k < m; k++)
-		in[fill[bin[k]]++] = k; /* each bin's items in the order of their keys */
-	free(fill);
+	cells g = {0};
+	cells_build(&g, x, m, 2 * reach * rmax); /* each cell's items in the order of their keys */
+	free(x);
 	size_t *queue = xmalloc(m * sizeof *queue), head = 0, tail = 0;
 	size_t *near = xmalloc(27 * NEAR_SCAN * sizeof *near);
 	char *seen = xcalloc(m, 1);
@@ -135,31 +105,20 @@ static void walk_cell(item *it, size_t m, double reach)
 		seen[s] = 1, queue[tail++] = s;
 		while (head < tail) {
 			size_t u = queue[head++], found = 0;
-			size_t at[3] = {bin[u] % nb[0], bin[u] / nb[0] % nb[1],
-			                bin[u] / nb[0] / nb[1]};
-			for (int dz = -1; dz <= 1; dz++)
-				for (int dy = -1; dy <= 1; dy++)
-					for (int dx = -1; dx <= 1; dx++) {
-						size_t bx = at[0] + (size_t)dx,
-						       by = at[1] + (size_t)dy,
-						       bz = at[2] + (size_t)dz;
-						if (bx >= nb[0] || by >= nb[1] || bz >= nb[2])
-							continue;
-						size_t b = (bz * nb[1] + by) * nb[0] + bx;
-						size_t end = first[b + 1] < first[b] + NEAR_SCAN
-						                 ? first[b + 1]
-						                 : first[b] + NEAR_SCAN;
-						for (size_t q = first[b]; q < end; q++) {
-							size_t v = in[q];
-							double d2 = 0,
-							       near_d = reach * (it[u].r + it[v].r);
-							for (int c = 0; c < 3; c++)
-								d2 += (it[v].x[c] - it[u].x[c]) *
-								      (it[v].x[c] - it[u].x[c]);
-							if (!seen[v] && d2 < near_d * near_d)
-								near[found++] = v, seen[v] = 1;
-						}
-					}
+			int32_t around[27];
+			int nc = cells_around(&g, g.cell[u], around);
+			for (int c = 0; c < nc; c++) {
+				int32_t q0 = g.start[around[c]], q1 = g.start[around[c] + 1];
+				for (int32_t q = q0; q < q1 && q < q0 + NEAR_SCAN; q++) {
+					size_t v = (size_t)g.item[q];
+					double d2 = 0, near_d = reach * (it[u].r + it[v].r);
+					for (int k = 0; k < 3; k++)
+						d2 += (it[v].x[k] - it[u].x[k]) *
+						      (it[v].x[k] - it[u].x[k]);
+					if (!seen[v] && d2 < near_d * near_d)
+						near[found++] = v, seen[v] = 1;
+				}
+			}
 			/* In the order of their keys (insertion: a few each). */
 			for (size_t a = 1; a < found; a++)
 				for (size_t b = a; b > 0 && near[b - 1] > near[b]; b--) {
@@ -170,11 +129,12 @@ static void walk_cell(item *it, size_t m, double reach)
 			tail += found;
 		}
 	}
+	cells_free(&g);
 	item *tmp = xmalloc(m * sizeof *tmp);
 	for (size_t k = 0; k < m; k++)
 		tmp[k] = it[queue[k]];
 	memcpy(it, tmp, m * sizeof *it);
-	free(tmp), free(seen), free(near), free(queue), free(in), free(first), free(bin);
+	free(tmp), free(seen), free(near), free(queue);
 }
 
 /* The m items (sorted by key, whole cells) walked cell by cell. */
