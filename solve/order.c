@@ -23,7 +23,7 @@ enum { LEAD_BITS = 16, LEAD_SHIFT = 3 * MORTON_BITS - LEAD_BITS };
  * of at least CELL_MEAN particles on average over those occupied, and no
  * finer than two groups of leading bits (CELL_SHIFT_MIN), so a cell is
  * whole groups. A particle's neighbours in the walk: the first NEAR_SCAN
- * of each bin around it within reach (order.h). */
+ * of each grid cell (cells.h) around it within reach (order.h). */
 enum { CELL_MEAN = 4096, CELL_SHIFT_MIN = 48, NEAR_SCAN = 64 };
 
 size_t order_share(size_t n, int k, int ranks)
