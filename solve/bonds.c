@@ -608,29 +608,33 @@ DEM_VECTOR_CLONES void bonds_cross(engine *e, int k, int measure)
 }
 
 /* Ahead of the batch at bond b0: the records of the batch PREFETCH_RECORDS
- * batches on into the cache (their first read otherwise waits for memory,
- * a tenth of a step), and the positions, velocities and spins of the
- * particles j of the batch PREFETCH_PARTICLES batches on, whose records
- * came in two batches ago (the particles i follow the bond order, which
- * the CPU's own prefetcher sees; those j are scattered). Only the speed
- * depends on it. The lines of a whole batch, a record each
- * (pairlist_records), unrolled: past the last record they fetch what
- * follows, and prefetching never faults. */
+ * batches on into the cache (their first read otherwise waits for memory),
+ * and the positions, velocities, spins and sums of the particles j of the
+ * batch PREFETCH_PARTICLES batches on, whose records came in a batch ago
+ * (the particles i follow the bond order, which the CPU's own prefetcher
+ * sees; those j are scattered). Only the speed depends on it. The lines
+ * of a whole batch, a record each (pairlist_records), unrolled: past the
+ * last record they fetch what follows, and prefetching never faults.
+ * Always inlined: GCC takes a function of prefetches alone for one
+ * without effects and drops its calls. */
 enum {
 	PREFETCH_RECORDS = 4,
-	PREFETCH_PARTICLES = 2,
+	PREFETCH_PARTICLES = 3,
 	PREFETCH_LINES = BATCH * sizeof(pair_rec) / 64
 };
-static inline void bonds_prefetch(const engine *e, size_t b0)
+static inline __attribute__((always_inline)) void bonds_prefetch(const engine *e, size_t b0)
 {
-	size_t r1 = b0 + PREFETCH_PARTICLES * BATCH;
+	size_t r1 = b0 + PREFETCH_PARTICLES * BATCH, own1 = e->p.own1;
 	if (r1 + BATCH <= e->pairs.bonds.n) {
 		const pair_rec *rec = e->pairs.bonds.rec + r1;
 		for (int l = 0; l < BATCH; l++) {
-			size_t j = 3 * (size_t)rec[l].j;
-			__builtin_prefetch(e->p.x + j);
-			__builtin_prefetch(e->p.v + j);
-			__builtin_prefetch(e->p.w + j);
+			size_t j = (size_t)rec[l].j;
+			__builtin_prefetch(e->p.x + 3 * j);
+			__builtin_prefetch(e->p.v + 3 * j);
+			__builtin_prefetch(e->p.w + 3 * j);
+			/* The sums of this rank's particles only (a ghost j
+			 * has none). */
+			__builtin_prefetch(engine_acc(e, j < own1 ? j : own1 - 1));
 		}
 	}
 	size_t r0 = b0 + PREFETCH_RECORDS * BATCH;
@@ -664,7 +668,7 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure, block_done don
 		add_to_j(e, S->cj[c], S->part[c].f);
 	}
 	size_t slot = S->cfirst[k];
-	int fused_law = bonds_use_fused(e, measure);
+	int fused_law = bonds_use_fused(e, measure), prefetch = !e->pairs.prefetch.off;
 	for (size_t blk = p0 / BLOCK; blk * BLOCK < p1; blk++) {
 		/* Summed in a local, which no store to the particles' sums can
 		 * alias, so its members stay in registers. */
@@ -674,7 +678,8 @@ DEM_VECTOR_CLONES void bonds_share(engine *e, int k, int measure, block_done don
 			size_t b1 = hi - b0 < BATCH ? hi : b0 + BATCH;
 			int32_t idx[BATCH];
 			bond_part part[BATCH];
-			bonds_prefetch(e, b0);
+			if (prefetch)
+				bonds_prefetch(e, b0);
 			/* Whether the batch holds none of the share's crossing
 			 * bonds: they are its slots, in bond order, so the next
 			 * slot's bond says it. */
@@ -954,6 +959,45 @@ void bonds_balance(engine *e)
 		B->resplits++;
 	}
 	free(speed);
+}
+
+/* The steps of a window, the windows of a trial (with and without in
+ * turn, so that a slower spell of the machine falls on both alike), the
+ * steps before the first trial (the first steps touch memory for the first
+ * time) and between trials. */
+enum { TUNE_WINDOW = 25, TUNE_WINDOWS = 8, TUNE_FIRST = 50, TUNE_EVERY = 5000 };
+
+void bonds_prefetch_setup(engine *e)
+{
+	const char *v = getenv("DEM_PREFETCH");
+	prefetch_tune *P = &e->pairs.prefetch;
+	*P = (prefetch_tune){0};
+	if (v && (!strcmp(v, "on") || !strcmp(v, "off")))
+		*P = (prefetch_tune){.fixed = 1, .off = !strcmp(v, "off")};
+}
+
+void bonds_tune_prefetch(engine *e, double seconds)
+{
+	prefetch_tune *P = &e->pairs.prefetch;
+	if (P->fixed)
+		return;
+	P->steps++;
+	if (!P->window) {
+		if (P->steps >= (P->trials ? TUNE_EVERY : TUNE_FIRST))
+			*P = (prefetch_tune){.window = 1, .trials = P->trials};
+		return;
+	}
+	P->t[P->off] += seconds;
+	if (P->steps < TUNE_WINDOW)
+		return;
+	P->steps = 0;
+	if (P->window++ < TUNE_WINDOWS) {
+		P->off = !P->off;
+		return;
+	}
+	P->off = P->t[1] < P->t[0];
+	P->window = 0;
+	P->trials++;
 }
 
 void share_balance_free(share_balance *b)

@@ -95,6 +95,23 @@ typedef struct {
 	rng gen;
 } share_balance;
 
+/* Whether the bond loop prefetches the records and far particles of the
+ * batches ahead (bonds_prefetch): it pays where a rank's specimen
+ * outgrows the caches (a tenth less time a bond update at 70 000 spheres)
+ * and costs where it fits (a tenth more at 13 000), and where the caches
+ * end depends on the machine and on what else runs there. So the engine
+ * times steps with it and without, in alternate windows, and keeps the
+ * faster (bonds_tune_prefetch); again every few thousand steps. Only the
+ * speed depends on it. DEM_PREFETCH=on or off fixes it. */
+typedef struct {
+	int off;     /* 1 while the loop does not prefetch */
+	int fixed;   /* set by DEM_PREFETCH: never timed */
+	int window;  /* windows timed so far in this trial; 0: no trial */
+	int steps;   /* steps into the window, or since the last trial */
+	int trials;  /* trials so far */
+	double t[2]; /* seconds of this trial's steps with, without */
+} prefetch_tune;
+
 /* Bonds between the particles within the law's range (Eq. 16), as
  * e->pairs.formed until bonds_own makes a rank's records: a cell grid over
  * the particles the rank holds (with several ranks its own and the others'
@@ -136,6 +153,11 @@ void bonds_split_free(bond_split *s);
  * step's parallel region. */
 void bonds_balance(engine *e);
 void share_balance_free(share_balance *b);
+/* The prefetch_tune at the start of a run (DEM_PREFETCH read); then after
+ * each step, with the seconds its threads took (the bonds, the contacts
+ * and the particles), its trial goes on. */
+void bonds_prefetch_setup(engine *e);
+void bonds_tune_prefetch(engine *e, double seconds);
 /* This step's forces of the crossing bonds of share k, inside the step's
  * parallel region (before a barrier). */
 void bonds_cross(engine *e, int k, int measure);

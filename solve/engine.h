@@ -107,6 +107,7 @@ typedef struct {
 	pairlist contacts, contacts_old;
 	bond_split split; /* the shares of the particles and bonds among threads */
 	share_balance balance;
+	prefetch_tune prefetch;
 	cells grid;
 	double skin;      /* m, Verlet skin of the contact list */
 	int rebuild;      /* neighbour lists are due */

@@ -146,6 +146,7 @@ void report_print(const engine *e, int64_t step0, const char *status, const run_
 	json_num(j, "threads", e->team);
 	json_num(j, "threads_busy_max_over_mean", threads_balance(e));
 	json_num(j, "threads_resplits", e->pairs.balance.resplits);
+	json_str(j, "bond_prefetch", e->pairs.prefetch.off ? "off" : "on");
 	json_num(j, "ranks", e->ranks.size);
 	json_num(j, "rank_particles_max_over_mean", pbal[0] / pbal[1]);
 	json_num(j, "rank_bonds_max_over_mean", bbal[1] > 0 ? bbal[0] / bbal[1] : 1);

@@ -621,6 +621,7 @@ void engine_step(engine *e, int measure)
 	 * bonds and the particles, which read and move only the share's own
 	 * particles. */
 	size_t ncracks = e->out.cracks.n;
+	double t0 = omp_get_wtime();
 #pragma omp parallel num_threads(e->team)
 	{
 		int tid = omp_get_thread_num(), nth = omp_get_num_threads(), s0 = e->ranks.s0,
@@ -654,6 +655,7 @@ void engine_step(engine *e, int measure)
 #pragma omp master
 		e->scratch.nparts = nth;
 	}
+	bonds_tune_prefetch(e, omp_get_wtime() - t0);
 	bonds_collect_cracks(e);
 	int failures = step_sums(e, ncracks);
 	phase_switch(&e->tm, TM_INTEGRATE, TM_NEIGHBOUR);
