@@ -962,9 +962,10 @@ void bonds_balance(engine *e)
 }
 
 /* The steps of a window, the windows of a trial (with and without in
- * turn, so that a slower spell of the machine falls on both alike), the
- * steps before the first trial (the first steps touch memory for the first
- * time) and between trials. */
+ * turn; each way's quickest window counts, which a slower spell of the
+ * machine, only ever adding time, leaves alone), the steps before the
+ * first trial (the first steps touch memory for the first time) and
+ * between trials. */
 enum { TUNE_WINDOW = 25, TUNE_WINDOWS = 8, TUNE_FIRST = 50, TUNE_EVERY = 5000 };
 
 void bonds_prefetch_setup(engine *e)
@@ -987,15 +988,18 @@ void bonds_tune_prefetch(engine *e, double seconds)
 			*P = (prefetch_tune){.window = 1, .trials = P->trials};
 		return;
 	}
-	P->t[P->off] += seconds;
+	P->now += seconds;
 	if (P->steps < TUNE_WINDOW)
 		return;
+	double *best = &P->best[P->off];
+	*best = *best > 0 && *best < P->now ? *best : P->now;
+	P->now = 0;
 	P->steps = 0;
 	if (P->window++ < TUNE_WINDOWS) {
 		P->off = !P->off;
 		return;
 	}
-	P->off = P->t[1] < P->t[0];
+	P->off = P->best[1] < P->best[0];
 	P->window = 0;
 	P->trials++;
 }

@@ -101,15 +101,17 @@ typedef struct {
  * and costs where it fits (a tenth more at 13 000), and where the caches
  * end depends on the machine and on what else runs there. So the engine
  * times steps with it and without, in alternate windows, and keeps the
- * faster (bonds_tune_prefetch); again every few thousand steps. Only the
- * speed depends on it. DEM_PREFETCH=on or off fixes it. */
+ * way of the quickest (bonds_tune_prefetch); again every few thousand
+ * steps. Only the speed depends on it. DEM_PREFETCH=on or off fixes it. */
 typedef struct {
-	int off;     /* 1 while the loop does not prefetch */
-	int fixed;   /* set by DEM_PREFETCH: never timed */
-	int window;  /* windows timed so far in this trial; 0: no trial */
-	int steps;   /* steps into the window, or since the last trial */
-	int trials;  /* trials so far */
-	double t[2]; /* seconds of this trial's steps with, without */
+	int off;        /* 1 while the loop does not prefetch */
+	int fixed;      /* set by DEM_PREFETCH: never timed */
+	int window;     /* windows timed so far in this trial; 0: no trial */
+	int steps;      /* steps into the window, or since the last trial */
+	int trials;     /* trials so far */
+	double now;     /* seconds of this window so far */
+	double best[2]; /* seconds of this trial's quickest window with,
+	                   without (0: none yet) */
 } prefetch_tune;
 
 /* Bonds between the particles within the law's range (Eq. 16), as
