@@ -286,6 +286,20 @@ static inline double law_sel(int64_t k, double a, double b)
 static inline double law_min(double a, double b) { return a < b ? a : b; }
 static inline double law_max(double a, double b) { return a > b ? a : b; }
 
+/* Tests that decide only whether a lane may take its law's vector branch
+ * (every other lane is computed as force() would, so they change no
+ * result) and so may say "not sure" near the limit: the divisions and
+ * square roots of the exact tests, which cost more than the rest of the
+ * test, left out with a margin of 1e-12 of the limit, far above their
+ * rounding. x <= y for y >= 0, without a division: law_surely_below(x * k,
+ * y * k) for k > 0. |f| <= lim for f = k sqrt(tt), k > 0, tt >= 0:
+ * law_surely_within(k * k * tt, lim). A NaN is never sure. */
+static inline int32_t law_surely_below(double x, double y) { return x <= (1 - 1e-12) * y; }
+static inline int32_t law_surely_within(double ff, double lim)
+{
+	return (lim > 0) & (ff <= (1 - 1e-12) * lim * lim);
+}
+
 /* law.copy of a law whose parameters are one struct of size bytes with no
  * pointers inside. */
 law_params *law_params_dup(const law_params *p, size_t size);

@@ -132,13 +132,17 @@ static inline double dh_normal(const dh_params *q, dh_curve curve, const void *l
  * any opening when the bond is broken (broken != 0: no tension). The
  * normal stress at compressive strain c with dh_normal's expressions, the
  * opening strain *e, h[2] in *h2 (c when loading) and whether the bond
- * is on that branch (*elastic; else dh_normal must compute it). */
+ * is on that branch (*elastic; else dh_normal must compute it). With
+ * `undamaged` (a constant: h0 is 0) the secant is 1, its division not
+ * made. */
 static inline double dh_normal_first(const dh_params *q, double eps_max, double c, double h0,
-                                     int32_t broken, double *h2, double *e, int32_t *elastic)
+                                     int32_t broken, double *h2, double *e, int32_t *elastic,
+                                     int undamaged)
 {
 	double c_max = *h2, open = 0.0 - c;
 	int32_t loading = c > c_max;
-	double tension = law_sel(broken, 0, q->E0 * open * dh_secant(h0, q->delta_n));
+	double secant = undamaged ? 1 : dh_secant(h0, q->delta_n);
+	double tension = law_sel(broken, 0, q->E0 * open * secant);
 	double sigma = loading ? -(q->E0 * c) : open <= 0 ? q->E0 * open : tension;
 	int32_t load_ok = !(c > eps_max), first = !(c_max > eps_max);
 	int32_t unload_ok = first & ((open <= q->eps_t) | broken);

@@ -237,9 +237,14 @@ static inline __attribute__((always_inline)) int jcfpm_pairs_body(LAW_PAIRS_PARA
 		double t[3] = {k.t[0] + k.dus[0], k.t[1] + k.dus[1], k.t[2] + k.dus[2]};
 		double fn = kn * u;
 		double limit = p->cohesion * A + -fn * p->tan_b,
-		       f = ks * sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+		       tt = t[0] * t[0] + t[1] * t[1] + t[2] * t[2], f = 0;
 		int32_t ok =
-		    (L->state[q] == BOND_INTACT) & !(u > p->sigma_t * A / kn) & (f <= limit);
+		    (L->state[q] == BOND_INTACT) & law_surely_below(u * kn, p->sigma_t * A);
+		if (broken) {
+			f = ks * sqrt(tt);
+			ok &= f <= limit;
+		} else
+			ok &= law_surely_within(ks * ks * tt, limit);
 		double fs[3] = {t[0] * ks, t[1] * ks, t[2] * ks};
 		if (broken) {
 			int32_t gone = L->state[q] != BOND_INTACT, ended = gone & (h[1] != 0);

@@ -247,8 +247,8 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void onate_batch(const law_par
 	for (int q = 0; q < n; q++) { /* normal: dh_normal on the curve's first segment */
 		double A = area_of_radii(p->area.alpha, B->ri[q], B->rj[q]), inv_d = 1 / B->d0[q];
 		double c = -(B->un[q] * inv_d), h2 = B->h[2][q];
-		double sigma =
-		    dh_normal_first(&p->q, p->eps[0], c, B->h[0][q], 0, &h2, &open[q], &elastic[q]);
+		double sigma = dh_normal_first(&p->q, p->eps[0], c, B->h[0][q], 0, &h2, &open[q],
+		                               &elastic[q], 0);
 		fnq[q] = A * sigma;
 		area[q] = A;
 		B->h[2][q] = h2;
@@ -292,9 +292,12 @@ DEM_VECTOR_CLONES __attribute__((flatten)) static void onate_batch(const law_par
  * `broken`, also the lanes of broken bonds, as onate_force computes them:
  * the normal force without tension, Coulomb friction (shear_slip) with its
  * work (o->e_friction), the viscous force only in compression; without it
- * (no broken bond in the batch) none of that is computed. */
+ * (no broken bond in the batch) none of that is computed. With `plain` (no
+ * bond of the batch damaged, the uncoupled criterion) the secants are 1
+ * and the coupled strength is not computed: three divisions fewer. Without
+ * `broken` the shear test is law_surely_within's, without a square root. */
 static inline __attribute__((always_inline)) int
-onate_pairs_body(LAW_PAIRS_PARAMS, law_fused *restrict o, int curve, int broken)
+onate_pairs_body(LAW_PAIRS_PARAMS, law_fused *restrict o, int curve, int broken, int plain)
 {
 	const onate_params *p = (const onate_params *)lp;
 	o->history = 1;
@@ -316,21 +319,27 @@ onate_pairs_body(LAW_PAIRS_PARAMS, law_fused *restrict o, int curve, int broken)
 			                         &w, &elastic);
 			o->e_damage[q] = 0.0 + A * d0 * w;
 		} else {
-			fn = A *
-			     dh_normal_first(&p->q, p->eps[0], c, h[0], gone, &h[2], &e, &elastic);
+			fn = A * dh_normal_first(&p->q, p->eps[0], c, h[0], gone, &h[2], &e,
+			                         &elastic, plain);
 		}
 		/* shear, viscous force */
 		double kn = A * p->q.E0 * (1 / d0), ks = kn * p->ks_over_kn;
 		double fnc = fn < 0 ? -fn : 0;
 		double t[3] = {k.t[0] + k.dus[0], k.t[1] + k.dus[1], k.t[2] + k.dus[2]};
 		double strength = p->tau * A + p->mu1 * fnc;
-		double coupled = p->tau * A * (1 - law_min(1, e / p->q.eps_t));
-		strength = ((p->coupled != 0) & (e > 0)) ? coupled : strength;
-		double us = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-		double h1 = h[1];
-		int32_t ok = elastic &
-		             (gone | ((L->state[q] < BOND_BROKEN_TENSION) & !(ks * us > strength)));
-		double ss = ks * dh_secant(h1, p->delta_s);
+		if (!plain) {
+			double coupled = p->tau * A * (1 - law_min(1, e / p->q.eps_t));
+			strength = ((p->coupled != 0) & (e > 0)) ? coupled : strength;
+		}
+		double tt = t[0] * t[0] + t[1] * t[1] + t[2] * t[2], us = 0;
+		int32_t sheared; /* ks u_s > strength, or not sure it is not */
+		if (broken) {
+			us = sqrt(tt);
+			sheared = ks * us > strength;
+		} else
+			sheared = !law_surely_within(ks * ks * tt, strength);
+		int32_t ok = elastic & (gone | ((L->state[q] < BOND_BROKEN_TENSION) & !sheared));
+		double ss = plain ? ks : ks * dh_secant(h[1], p->delta_s);
 		double fv = L->k[q] * k.vn;
 		int32_t st = ((h[0] > 0) | (h[1] > 0)) ? BOND_DAMAGED : BOND_INTACT;
 		if (broken) { /* shear_slip; onate_force's ss = 1 */
@@ -346,27 +355,33 @@ onate_pairs_body(LAW_PAIRS_PARAMS, law_fused *restrict o, int curve, int broken)
 	return count;
 }
 
-LAW_PAIRS_VARIANT(onate_pairs_first, onate_pairs_body, 0, 0)
-LAW_PAIRS_VARIANT(onate_pairs_curve, onate_pairs_body, 1, 0)
-LAW_PAIRS_VARIANT(onate_pairs_first_broken, onate_pairs_body, 0, 1)
-LAW_PAIRS_VARIANT(onate_pairs_curve_broken, onate_pairs_body, 1, 1)
+LAW_PAIRS_VARIANT(onate_pairs_plain, onate_pairs_body, 0, 0, 1)
+LAW_PAIRS_VARIANT(onate_pairs_first, onate_pairs_body, 0, 0, 0)
+LAW_PAIRS_VARIANT(onate_pairs_curve, onate_pairs_body, 1, 0, 0)
+LAW_PAIRS_VARIANT(onate_pairs_first_broken, onate_pairs_body, 0, 1, 0)
+LAW_PAIRS_VARIANT(onate_pairs_curve_broken, onate_pairs_body, 1, 1, 0)
 
 /* The whole curve where a bond of the batch has been compressed past its
  * first part (LCS1); else the first part, whose lanes that now load past
- * it go the staged way, this once. The broken bonds' branch where the
- * batch has one. In the vector versions (clones.h), so that the scans of
- * the lanes are vectorised: GCC leaves the scan of doubles scalar for any
- * x86-64. */
+ * it go the staged way, this once; `plain` where no bond of the batch is
+ * damaged either. The broken bonds' branch where the batch has one. In the vector versions
+ * (clones.h), so that the scans of the lanes are vectorised: GCC leaves the scan of doubles scalar
+ * for any x86-64. */
 DEM_VECTOR_CLONES static int onate_pairs(LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
 	const onate_params *p = (const onate_params *)lp;
-	int hardened = 0;
-	for (int q = 0; q < n; q++)
+	int hardened = 0, damaged = 0;
+	for (int q = 0; q < n; q++) {
 		hardened |= L->h[2][q] > p->eps[0];
+		damaged |= (L->h[0][q] != 0) | (L->h[1][q] != 0);
+	}
 	if (law_lanes_broken(L, n))
 		return hardened ? onate_pairs_curve_broken(lp, L, n, dt, o)
 		                : onate_pairs_first_broken(lp, L, n, dt, o);
-	return hardened ? onate_pairs_curve(lp, L, n, dt, o) : onate_pairs_first(lp, L, n, dt, o);
+	if (hardened)
+		return onate_pairs_curve(lp, L, n, dt, o);
+	return damaged || p->coupled ? onate_pairs_first(lp, L, n, dt, o)
+	                             : onate_pairs_plain(lp, L, n, dt, o);
 }
 
 static double onate_energy(const law_params *lp, const law_pair *pair, const bond *b, double un)
