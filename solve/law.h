@@ -286,14 +286,13 @@ static inline double law_sel(int64_t k, double a, double b)
 static inline double law_min(double a, double b) { return a < b ? a : b; }
 static inline double law_max(double a, double b) { return a > b ? a : b; }
 
-/* Tests that decide only whether a lane may take its law's vector branch
- * (every other lane is computed as force() would, so they change no
- * result) and so may say "not sure" near the limit: the divisions and
- * square roots of the exact tests, which cost more than the rest of the
- * test, left out with a margin of 1e-12 of the limit, far above their
- * rounding. x <= y for y >= 0, without a division: law_surely_below(x * k,
- * y * k) for k > 0. |f| <= lim for f = k sqrt(tt), k > 0, tt >= 0:
- * law_surely_within(k * k * tt, lim). A NaN is never sure. */
+/* A test that only chooses whether a lane takes its law's vector branch
+ * (a lane turned away is computed as force() would, to the same bits) may
+ * say "not sure" near its limit. These leave out the exact tests'
+ * divisions and square roots, with a margin of 1e-12 of the limit, far
+ * above the rounding; a NaN is never sure.
+ *   law_surely_below(a * k, b * k): a <= b / k, for k > 0 and b >= 0;
+ *   law_surely_within(k * k * tt, lim): k sqrt(tt) <= lim, for k > 0. */
 static inline int32_t law_surely_below(double x, double y) { return x <= (1 - 1e-12) * y; }
 static inline int32_t law_surely_within(double ff, double lim)
 {

@@ -364,9 +364,9 @@ LAW_PAIRS_VARIANT(onate_pairs_curve_broken, onate_pairs_body, 1, 1, 0)
 /* The whole curve where a bond of the batch has been compressed past its
  * first part (LCS1); else the first part, whose lanes that now load past
  * it go the staged way, this once; `plain` where no bond of the batch is
- * damaged either. The broken bonds' branch where the batch has one. In the vector versions
- * (clones.h), so that the scans of the lanes are vectorised: GCC leaves the scan of doubles scalar
- * for any x86-64. */
+ * damaged either. The broken bonds' branch where the batch has one. In
+ * the vector versions (clones.h), so that the scans of the lanes are
+ * vectorised: GCC leaves the scan of doubles scalar for any x86-64. */
 DEM_VECTOR_CLONES static int onate_pairs(LAW_PAIRS_PARAMS, law_fused *restrict o)
 {
 	const onate_params *p = (const onate_params *)lp;
