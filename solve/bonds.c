@@ -612,11 +612,13 @@ DEM_VECTOR_CLONES void bonds_cross(engine *e, int k, int measure)
  * and the positions, velocities, spins and sums of the particles j of the
  * batch PREFETCH_PARTICLES batches on, whose records came in a batch ago
  * (the particles i follow the bond order, which the CPU's own prefetcher
- * sees; those j are scattered). Only the speed depends on it. The lines
- * of a whole batch, a record each (pairlist_records), unrolled: past the
- * last record they fetch what follows, and prefetching never faults.
- * Always inlined: GCC takes a function of prefetches alone for one
- * without effects and drops its calls. */
+ * sees; those j are scattered). Into the second-level cache (locality 2,
+ * prefetcht1 on x86): into the first, the bond loop took some 8 % more
+ * time beyond the caches (solve.md). Only the speed depends on it. The
+ * lines of a whole batch, a record each (pairlist_records), unrolled: past
+ * the last record they fetch what follows, and prefetching never faults.
+ * Always inlined: GCC takes a function of prefetches alone for one without
+ * effects and drops its calls. */
 enum {
 	PREFETCH_RECORDS = 4,
 	PREFETCH_PARTICLES = 3,
@@ -629,12 +631,12 @@ static inline __attribute__((always_inline)) void bonds_prefetch(const engine *e
 		const pair_rec *rec = e->pairs.bonds.rec + r1;
 		for (int l = 0; l < BATCH; l++) {
 			size_t j = (size_t)rec[l].j;
-			__builtin_prefetch(e->p.x + 3 * j);
-			__builtin_prefetch(e->p.v + 3 * j);
-			__builtin_prefetch(e->p.w + 3 * j);
+			__builtin_prefetch(e->p.x + 3 * j, 0, 2);
+			__builtin_prefetch(e->p.v + 3 * j, 0, 2);
+			__builtin_prefetch(e->p.w + 3 * j, 0, 2);
 			/* The sums of this rank's particles only (a ghost j
 			 * has none). */
-			__builtin_prefetch(engine_acc(e, j < own1 ? j : own1 - 1));
+			__builtin_prefetch(engine_acc(e, j < own1 ? j : own1 - 1), 0, 2);
 		}
 	}
 	size_t r0 = b0 + PREFETCH_RECORDS * BATCH;
@@ -643,7 +645,7 @@ static inline __attribute__((always_inline)) void bonds_prefetch(const engine *e
 	const char *p0 = (const char *)(e->pairs.bonds.rec + r0);
 #pragma GCC unroll 32
 	for (int l = 0; l < PREFETCH_LINES; l++)
-		__builtin_prefetch(p0 + 64 * l);
+		__builtin_prefetch(p0 + 64 * l, 0, 2);
 }
 
 /* The steps a batch with more than a quarter of its lanes off the law's
