@@ -970,13 +970,17 @@ void bonds_balance(engine *e)
  * between trials. */
 enum { TUNE_WINDOW = 25, TUNE_WINDOWS = 8, TUNE_FIRST = 50, TUNE_EVERY = 5000 };
 
-void bonds_prefetch_setup(engine *e)
+int bonds_prefetch_setup(engine *e)
 {
 	const char *v = getenv("DEM_PREFETCH");
 	prefetch_tune *P = &e->pairs.prefetch;
 	*P = (prefetch_tune){0};
-	if (v && (!strcmp(v, "on") || !strcmp(v, "off")))
-		*P = (prefetch_tune){.fixed = 1, .off = !strcmp(v, "off")};
+	if (!v || !*v)
+		return 0;
+	if (strcmp(v, "on") && strcmp(v, "off"))
+		return err_set("DEM_PREFETCH=%s: expected on or off (unset: timed choice)", v);
+	*P = (prefetch_tune){.fixed = 1, .off = !strcmp(v, "off")};
+	return 0;
 }
 
 void bonds_tune_prefetch(engine *e, double seconds)

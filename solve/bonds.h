@@ -155,10 +155,11 @@ void bonds_split_free(bond_split *s);
  * step's parallel region. */
 void bonds_balance(engine *e);
 void share_balance_free(share_balance *b);
-/* The prefetch_tune at the start of a run (DEM_PREFETCH read); then after
+/* The prefetch_tune at the start of a run (DEM_PREFETCH read: -1 and a
+ * message when it is neither on nor off); then after
  * each step, with the seconds its threads took (the bonds, the contacts
  * and the particles), its trial goes on. */
-void bonds_prefetch_setup(engine *e);
+int bonds_prefetch_setup(engine *e);
 void bonds_tune_prefetch(engine *e, double seconds);
 /* This step's forces of the crossing bonds of share k, inside the step's
  * parallel region (before a barrier). */

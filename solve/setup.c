@@ -238,7 +238,8 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 {
 	memset(e, 0, sizeof *e);
 	phase_start(&e->tm, TM_SETUP);
-	bonds_prefetch_setup(e);
+	if (bonds_prefetch_setup(e))
+		return -1;
 	e->cs = cs;
 	e->law = cs->mat.law;
 	e->lp = e->law->copy(cs->mat.params);

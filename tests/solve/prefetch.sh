@@ -2,7 +2,8 @@
 # The bond loop's prefetches (solve/bonds.c, bonds_prefetch) change the
 # speed and nothing else: runs with them (DEM_PREFETCH=on), without (off)
 # and with the engine's timed choice between the two (bonds_tune_prefetch,
-# a trial of windows of each within these steps) are the same to the bit.
+# a trial of windows of each within these steps) are the same to the bit;
+# another value is an error.
 # With OBJDUMP, also that they are in the machine code: a compiler may
 # drop a function of prefetches alone as one without effects, which only
 # the machine code tells; every version of bonds_share (one for each kind
@@ -46,4 +47,11 @@ done
 grep -q '"bond_prefetch"' "$tmp/timed.json"
 /usr/bin/python3 "$here/same_run.py" "$tmp/on.h5" "$tmp/off.h5"
 /usr/bin/python3 "$here/same_run.py" "$tmp/on.h5" "$tmp/timed.h5"
+# Any other value is refused with a message naming it, before any output.
+if DEM_PREFETCH=yes "$bin/solve" --quiet --output "$tmp/bad.h5" "$tmp/c.json" 2>"$tmp/bad.err"; then
+	echo "DEM_PREFETCH=yes was accepted"
+	exit 1
+fi
+grep -q 'DEM_PREFETCH=yes: expected on or off' "$tmp/bad.err"
+test ! -e "$tmp/bad.h5"
 echo "the same runs with the prefetches, without and timed"
