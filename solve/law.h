@@ -28,6 +28,7 @@
 #ifndef DEM_LAW_H
 #define DEM_LAW_H
 
+#include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
@@ -297,6 +298,19 @@ static inline int32_t law_surely_below(double x, double y) { return x <= (1 - 1e
 static inline int32_t law_surely_within(double ff, double lim)
 {
 	return (lim > 0) & (ff <= (1 - 1e-12) * lim * lim);
+}
+
+/* Whether a trial shear t of |t|² = tt stays within lim, k |t| <= lim, as
+ * a vector branch tests it: exactly, with *f = k |t|, where the batch holds
+ * broken bonds (whose friction needs |t| itself); else law_surely_within,
+ * without the root (*f left as it was). */
+static inline int32_t law_shear_within(int broken, double k, double tt, double lim, double *f)
+{
+	if (broken) {
+		*f = k * sqrt(tt);
+		return *f <= lim;
+	}
+	return law_surely_within(k * k * tt, lim);
 }
 
 /* law.copy of a law whose parameters are one struct of size bytes with no

@@ -189,12 +189,7 @@ static inline __attribute__((always_inline)) int exp_pairs_body(LAW_PAIRS_PARAMS
 		double t[3] = {k.t[0] + k.dus[0], k.t[1] + k.dus[1], k.t[2] + k.dus[2]};
 		double limit = p->cohesion * A + -fn * p->tan_i,
 		       tt = t[0] * t[0] + t[1] * t[1] + t[2] * t[2], f = 0;
-		int32_t within;
-		if (broken) {
-			f = ks * sqrt(tt);
-			within = f <= limit;
-		} else
-			within = law_surely_within(ks * ks * tt, limit);
+		int32_t within = law_shear_within(broken, ks, tt, limit, &f);
 		int32_t ok = elastic & (gone | ((L->state[q] < BOND_BROKEN_TENSION) & within));
 		double fv = h[1] * k.vn;
 		int32_t st = h[0] > 0 ? BOND_DAMAGED : BOND_INTACT;

@@ -240,11 +240,7 @@ static inline __attribute__((always_inline)) int jcfpm_pairs_body(LAW_PAIRS_PARA
 		       tt = t[0] * t[0] + t[1] * t[1] + t[2] * t[2], f = 0;
 		int32_t ok =
 		    (L->state[q] == BOND_INTACT) & law_surely_below(u * kn, p->sigma_t * A);
-		if (broken) {
-			f = ks * sqrt(tt);
-			ok &= f <= limit;
-		} else
-			ok &= law_surely_within(ks * ks * tt, limit);
+		ok &= law_shear_within(broken, ks, tt, limit, &f);
 		double fs[3] = {t[0] * ks, t[1] * ks, t[2] * ks};
 		if (broken) {
 			int32_t gone = L->state[q] != BOND_INTACT, ended = gone & (h[1] != 0);
