@@ -205,6 +205,10 @@ struct engine {
 	int team;       /* threads used in a step */
 	/* The particles in the Morton order alone (order.h). */
 	int plain_order;
+	/* Every particle moved by integrate_one, the one-by-one form that the
+	 * particles' vector form (solve/step.c) matches to the bit: for the
+	 * tests only (DEM_TEST_ONE_BY_ONE=1). */
+	int one_by_one;
 
 	particles p;
 	engine_pairs pairs;

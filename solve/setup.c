@@ -244,6 +244,8 @@ int engine_setup(engine *e, const dem_case *cs, const dem_assembly *a, const eng
 	e->law = cs->mat.law;
 	e->lp = e->law->copy(cs->mat.params);
 	e->plain_order = o->plain_order;
+	const char *one = getenv("DEM_TEST_ONE_BY_ONE");
+	e->one_by_one = one && strcmp(one, "1") == 0;
 	if (a->n == 0)
 		return err_set("the assembly has no particles");
 	if (load_particles(e, a, o->whole))

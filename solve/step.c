@@ -234,18 +234,22 @@ static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 	advance(e, i, vn, wn, ext, s);
 }
 
-/* What move_free and advance compute for the particles of a block (with
+/* The particles of a block are moved LANES at a time: their lanes
+ * (free_lanes) then stay in the first-level cache. */
+enum { LANES = 64 };
+
+/* What move_free and advance compute for LANES particles of a block (with
  * the vector form of the damping), lane q for its particle q: the new
  * state and each particle's terms of the block's sums, added in particle
  * order afterwards; used where free[q] (moves_freely). ext is the
  * confining force (0 but on the confined), already in F; lateral its
  * magnitude, where confined. */
 typedef struct {
-	uint8_t free[BLOCK], confined[BLOCK];
-	double F[3][BLOCK], T[3][BLOCK], ext[3][BLOCK], lateral[BLOCK];
-	double v[3][BLOCK], w[3][BLOCK], x[3][BLOCK];
-	double damped[BLOCK], ke[BLOCK], ke_new[BLOCK], vv[BLOCK], work[BLOCK], d2[BLOCK];
-	double finite[BLOCK]; /* the sum whose finiteness advance checks */
+	uint8_t free[LANES], confined[LANES];
+	double F[3][LANES], T[3][LANES], ext[3][LANES], lateral[LANES];
+	double v[3][LANES], w[3][LANES], x[3][LANES];
+	double damped[LANES], ke[LANES], ke_new[LANES], vv[LANES], work[LANES], d2[LANES];
+	double finite[LANES]; /* the sum whose finiteness advance checks */
 } free_lanes;
 
 /* move_free (DAMPING_VECTOR) and advance with ext fl->ext for the nl
@@ -350,7 +354,7 @@ static inline void store_lane(particles *P, size_t i, const free_lanes *fl, int 
 /* The lanes 0..nl) of the values a of particles i0, i0 + 1, ... into
  * their array A: four particles' twelve values at a time, the lanes
  * shuffled into three rows of A (values only moved). */
-static inline void store_run(double *restrict A, const double a[3][BLOCK], size_t i0, int nl)
+static inline void store_run(double *restrict A, const double a[3][LANES], size_t i0, int nl)
 {
 	double *to = A + 3 * i0;
 	int q = 0;
@@ -397,55 +401,60 @@ static inline void lanes_from_sums(free_lanes *restrict fl, const double *restri
 		}
 }
 
-DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
+/* The nl particles from i0 on (at most LANES) moved and added to the sums
+ * s: the free particles all together (integrate_free), the others one by
+ * one; every particle's terms added to the sums in particle order. */
+static inline __attribute__((always_inline)) void integrate_lanes(engine *e, size_t i0, int nl,
+                                                                  int measure, particle_sums *s)
 {
-	size_t n = e->p.n;
-	particle_sums *s = &e->scratch.pblock[k];
-	memset(s, 0, sizeof *s);
-	s->bad = (double)n;
-	size_t hi = block_end(k, n);
-	if (e->cs->damping_form != DAMPING_VECTOR) {
-		for (size_t i = k * BLOCK; i < hi; i++)
-			integrate_one(e, (int32_t)i, measure, s);
-		return;
-	}
-	/* The free particles all together (integrate_free), the others one by
-	 * one; every particle's terms added to the sums in particle order. */
 	particles *P = &e->p;
 	free_lanes fl;
-	size_t i0 = k * BLOCK;
-	int nl = (int)(hi - i0), nf = 0;
+	int nf = 0;
 	/* Which particles move freely under their forces alone and, unless
 	 * the step measures, the confining pressure (move_free, then advance,
-	 * with that pressure as their external force): no platen, end layer or
-	 * radial constraint acts on them; confined: the pressure does. Without
-	 * branches, so that the compiler vectorises it; the lanes that do not
-	 * move freely are computed by integrate_free too, and not used. */
+	 * with that pressure as their external force): no end layer or radial
+	 * constraint acts on them (loose), nor a platen, unless every particle
+	 * of these lanes is loose (a platen's sums, platen_force's, are then
+	 * added in particle order as integrate_one adds them: no particle's
+	 * integrate_one adds its own after them); confined: the pressure acts.
+	 * Without branches, so that the compiler vectorises it; the lanes that
+	 * do not move freely are computed by integrate_free too, and not
+	 * used. */
 	const uint8_t *flag = P->flag + i0;
 	const int32_t *surf = P->surf + i0, *slot0 = P->pslot[0] + i0, *slot1 = P->pslot[1] + i0,
 	              *off = e->pairs.contacts.off + i0;
-	int pressure = e->bc.loads.lateral == LATERAL_PRESSURE, unmeasured = !measure, nc = 0;
-	uint8_t added[BLOCK]; /* free, and contacts or the pressure act on it */
+	int pressure = e->bc.loads.lateral == LATERAL_PRESSURE, unmeasured = !measure, nc = 0,
+	    nloose = 0;
+	uint8_t added[LANES]; /* free, and contacts, a platen or the pressure act on it */
 	uint8_t held = PF_CONSTRAINED | (e->bc.loads.layers ? PF_LAYER_BOTTOM | PF_LAYER_TOP : 0);
 	for (int q = 0; q < nl; q++) {
 		int confined = pressure & (surf[q] >= 0);
-		int free = (slot0[q] < 0) & (slot1[q] < 0) & ((confined ^ 1) | unmeasured) &
-		           ((flag[q] & held) == 0);
-		int more = free & ((off[q + 1] != off[q]) | confined);
-		fl.free[q] = (uint8_t)free;
+		int loose = ((confined ^ 1) | unmeasured) & ((flag[q] & held) == 0);
+		fl.free[q] = (uint8_t)loose;
 		fl.confined[q] = (uint8_t)confined;
+		nloose += loose;
+		/* no confining force but where the pressure acts (set below,
+		 * with fl.lateral, which only the confined lanes read) */
+		for (int c = 0; c < 3; c++)
+			fl.ext[c][q] = 0;
+	}
+	int platens = nloose == nl; /* the lanes at a platen free too */
+	for (int q = 0; q < nl; q++) {
+		int platen = (slot0[q] >= 0) | (slot1[q] >= 0);
+		int free = fl.free[q] & (platens | (platen ^ 1));
+		int more = free & ((off[q + 1] != off[q]) | fl.confined[q] | platen);
+		fl.free[q] = (uint8_t)free;
 		added[q] = (uint8_t)more;
 		nf += free;
 		nc += more;
 	}
-	/* Their forces: the bonds' sums, then, where they act, the contacts
-	 * and the pressure (in that order, as integrate_one adds them). */
+	/* Their forces: the bonds' sums, then, where they act, the contacts,
+	 * the platens and the pressure (in that order, as integrate_one adds
+	 * them). */
 	lanes_from_sums(&fl, engine_acc(e, i0), nl);
-	memset(fl.ext, 0, sizeof fl.ext);
-	memset(fl.lateral, 0, sizeof fl.lateral);
 	/* Those particles listed, without a branch that the CPU would guess
 	 * for each particle. */
-	int32_t list[BLOCK];
+	int32_t list[LANES];
 	for (int q = 0, a = 0; nc && q < nl; q++) {
 		list[a] = q;
 		a += added[q];
@@ -456,6 +465,10 @@ DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
 		double F[3] = {fl.F[0][q], fl.F[1][q], fl.F[2][q]},
 		       T[3] = {fl.T[0][q], fl.T[1][q], fl.T[2][q]}, ext[3] = {0, 0, 0};
 		gather(&e->pairs.contacts, (int32_t)i, P->r[i], F, T);
+		for (int k = 0; k < 2; k++)
+			if (P->pslot[k][i] >= 0)
+				platen_force(e, k, (int32_t)i, &e->bc.pl.pc[k][P->pslot[k][i]], F,
+				             T, s, measure);
 		if (fl.confined[q]) { /* as integrate_one: its sum added below */
 			double er[3];
 			particle_sums lateral = {0};
@@ -492,6 +505,22 @@ DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
 		add_lane(s, &fl, q, i);
 		store_lane(P, i, &fl, q);
 	}
+}
+
+DEM_VECTOR_CLONES static void integrate_block(engine *e, size_t k, int measure)
+{
+	size_t n = e->p.n;
+	particle_sums *s = &e->scratch.pblock[k];
+	memset(s, 0, sizeof *s);
+	s->bad = (double)n;
+	size_t hi = block_end(k, n);
+	if (e->cs->damping_form != DAMPING_VECTOR || e->one_by_one) {
+		for (size_t i = k * BLOCK; i < hi; i++)
+			integrate_one(e, (int32_t)i, measure, s);
+		return;
+	}
+	for (size_t i0 = k * BLOCK; i0 < hi; i0 += LANES)
+		integrate_lanes(e, i0, (int)(hi - i0 < LANES ? hi - i0 : LANES), measure, s);
 }
 
 /* A thread's particle blocks integrated as soon as their bonds are done
