@@ -238,21 +238,24 @@ static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
  * (free_lanes) then stay in the first-level cache. */
 enum { LANES = 64 };
 
-/* What move_free and advance compute for LANES particles of a block (with
- * the vector form of the damping), lane q for its particle q: the new
- * state and each particle's terms of the block's sums, added in particle
- * order afterwards; used where free[q] (moves_freely). ext is the
+/* What move_free, hold_radially and advance compute for LANES particles of
+ * a block (with the vector form of the damping), lane q for its particle
+ * q: the new state and each particle's terms of the block's sums, added in
+ * particle order afterwards; used where free[q] (moves_freely). ext is the
  * confining force (0 but on the confined), already in F; lateral its
  * magnitude, where confined. */
 typedef struct {
-	uint8_t free[LANES], confined[LANES];
+	uint8_t free[LANES], confined[LANES], radial[LANES];
 	double F[3][LANES], T[3][LANES], ext[3][LANES], lateral[LANES];
 	double v[3][LANES], w[3][LANES], x[3][LANES];
 	double damped[LANES], ke[LANES], ke_new[LANES], vv[LANES], work[LANES], d2[LANES];
 	double finite[LANES]; /* the sum whose finiteness advance checks */
 } free_lanes;
 
-/* move_free (DAMPING_VECTOR) and advance with ext fl->ext for the nl
+/* move_free (DAMPING_VECTOR), where held and fl->radial hold_radially (the
+ * radial unit vector from the frame fr, as radial_unit; not the sum of the
+ * reactions, which only a measured step reads, and a measured step moves
+ * these particles one by one) and advance with ext fl->ext for the nl
  * particles i0 + q (lanes q < nl) of forces fl->F, fl->T, with their
  * expressions, in a loop the compiler can vectorise: the particles' values
  * lie in a row, read as vectors; the division of damp is computed whatever
@@ -264,8 +267,8 @@ typedef struct {
 static inline __attribute__((always_inline)) void
 integrate_free_lanes(const double *restrict X, const double *restrict V, const double *restrict W,
                      const double *restrict R, const double *restrict M, const double *restrict XR,
-                     int32_t xr0, double dt, double alpha_t, double alpha_r,
-                     free_lanes *restrict fl, int32_t i0, int nl)
+                     int32_t xr0, const engine_frame *restrict fr, double dt, double alpha_t,
+                     double alpha_r, free_lanes *restrict fl, int held, int32_t i0, int nl)
 {
 	for (int q = 0; q < nl; q++) {
 		int32_t i = i0 + q;
@@ -295,6 +298,22 @@ integrate_free_lanes(const double *restrict X, const double *restrict V, const d
 		}
 		fl->damped[q] =
 		    0.5 * dt * (dot3(fd, v) + dot3(fd, vn) + dot3(td, w) + dot3(td, wn));
+		if (held) {
+			double d[3], u[3], er[3];
+			for (int c = 0; c < 3; c++)
+				d[c] = x[c] - fr->center[c];
+			double z = dot3(d, fr->axis);
+			for (int c = 0; c < 3; c++)
+				u[c] = d[c] - z * fr->axis[c];
+			double l = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+			double inv = law_sel(l > 0, 1 / l, 0);
+			for (int c = 0; c < 3; c++)
+				er[c] = u[c] * inv;
+			double vr = dot3(vn, er);
+			int radial = fl->radial[q];
+			for (int c = 0; c < 3; c++)
+				vn[c] = law_sel(radial, vn[c] - vr * er[c], vn[c]);
+		}
 		double inertia = 0.4 * mass * ri * ri;
 		fl->ke[q] = 0.5 * (mass * dot3(v, vn) + inertia * dot3(w, wn));
 		double vv = dot3(vn, vn);
@@ -319,12 +338,27 @@ integrate_free_lanes(const double *restrict X, const double *restrict V, const d
 		}
 	}
 }
+/* integrate_free_lanes as two loops, held a constant in each. */
+static inline __attribute__((always_inline)) void
+integrate_free_either(const double *restrict X, const double *restrict V, const double *restrict W,
+                      const double *restrict R, const double *restrict M, const double *restrict XR,
+                      int32_t xr0, const engine_frame *restrict fr, double dt, double alpha_t,
+                      double alpha_r, free_lanes *restrict fl, int held, int32_t i0, int nl)
+{
+	if (held)
+		integrate_free_lanes(X, V, W, R, M, XR, xr0, fr, dt, alpha_t, alpha_r, fl, 1, i0,
+		                     nl);
+	else
+		integrate_free_lanes(X, V, W, R, M, XR, xr0, fr, dt, alpha_t, alpha_r, fl, 0, i0,
+		                     nl);
+}
 DEM_VERSIONS(void, , integrate_free,
              (const double *restrict X, const double *restrict V, const double *restrict W,
               const double *restrict R, const double *restrict M, const double *restrict XR,
-              int32_t xr0, double dt, double alpha_t, double alpha_r, free_lanes *restrict fl,
-              int32_t i0, int nl),
-             (X, V, W, R, M, XR, xr0, dt, alpha_t, alpha_r, fl, i0, nl), integrate_free_lanes)
+              int32_t xr0, const engine_frame *restrict fr, double dt, double alpha_t,
+              double alpha_r, free_lanes *restrict fl, int held, int32_t i0, int nl),
+             (X, V, W, R, M, XR, xr0, fr, dt, alpha_t, alpha_r, fl, held, i0, nl),
+             integrate_free_either)
 
 /* Lane q of fl, particle i, added to the sums s (as integrate_one adds). */
 static inline void add_lane(particle_sums *s, const free_lanes *fl, int q, size_t i)
@@ -411,28 +445,31 @@ static inline __attribute__((always_inline)) void integrate_lanes(engine *e, siz
 	free_lanes fl;
 	int nf = 0;
 	/* Which particles move freely under their forces alone and, unless
-	 * the step measures, the confining pressure (move_free, then advance,
-	 * with that pressure as their external force): no end layer or radial
-	 * constraint acts on them (loose), nor a platen, unless every particle
-	 * of these lanes is loose (a platen's sums, platen_force's, are then
-	 * added in particle order as integrate_one adds them: no particle's
-	 * integrate_one adds its own after them); confined: the pressure acts.
-	 * Without branches, so that the compiler vectorises it; the lanes that
-	 * do not move freely are computed by integrate_free too, and not
-	 * used. */
+	 * the step measures (whose stress sums they add one by one), the
+	 * confining pressure or the radial constraint (move_free, then
+	 * hold_radially where radial, then advance, with that pressure as
+	 * their external force where confined): no end layer acts on them
+	 * (loose), nor a platen, unless every particle of these lanes is loose
+	 * (a platen's sums, platen_force's, are then added in particle order
+	 * as integrate_one adds them: no particle's integrate_one adds its own
+	 * after them). Without branches, so that the compiler vectorises it;
+	 * the lanes that do not move freely are computed by integrate_free
+	 * too, and not used. */
 	const uint8_t *flag = P->flag + i0;
 	const int32_t *surf = P->surf + i0, *slot0 = P->pslot[0] + i0, *slot1 = P->pslot[1] + i0,
 	              *off = e->pairs.contacts.off + i0;
 	int pressure = e->bc.loads.lateral == LATERAL_PRESSURE, unmeasured = !measure, nc = 0,
-	    nloose = 0;
+	    nloose = 0, nradial = 0;
 	uint8_t added[LANES]; /* free, and contacts, a platen or the pressure act on it */
-	uint8_t held = PF_CONSTRAINED | (e->bc.loads.layers ? PF_LAYER_BOTTOM | PF_LAYER_TOP : 0);
+	uint8_t layer = e->bc.loads.layers ? PF_LAYER_BOTTOM | PF_LAYER_TOP : 0;
 	for (int q = 0; q < nl; q++) {
-		int confined = pressure & (surf[q] >= 0);
-		int loose = ((confined ^ 1) | unmeasured) & ((flag[q] & held) == 0);
+		int confined = pressure & (surf[q] >= 0), radial = (flag[q] & PF_CONSTRAINED) != 0;
+		int loose = (((confined | radial) ^ 1) | unmeasured) & ((flag[q] & layer) == 0);
 		fl.free[q] = (uint8_t)loose;
 		fl.confined[q] = (uint8_t)confined;
+		fl.radial[q] = (uint8_t)radial;
 		nloose += loose;
+		nradial += radial;
 		/* no confining force but where the pressure acts (set below,
 		 * with fl.lateral, which only the confined lanes read) */
 		for (int c = 0; c < 3; c++)
@@ -482,8 +519,9 @@ static inline __attribute__((always_inline)) void integrate_lanes(engine *e, siz
 			fl.ext[c][q] = ext[c];
 		}
 	}
-	integrate_free(P->x, P->v, P->w, P->r, P->m, P->x_ref, (int32_t)P->own0, e->clock.dt,
-	               e->cs->alpha_t, e->cs->alpha_r, &fl, (int32_t)i0, nl);
+	integrate_free(P->x, P->v, P->w, P->r, P->m, P->x_ref, (int32_t)P->own0, &e->frame,
+	               e->clock.dt, e->cs->alpha_t, e->cs->alpha_r, &fl, nradial && unmeasured,
+	               (int32_t)i0, nl);
 	if (nf == nl) {
 		/* The sums in a local, which no store can alias (so they stay
 		 * in registers), and the state in loops of their own. */
