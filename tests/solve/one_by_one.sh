@@ -4,7 +4,8 @@
 # same bits as moving every particle by itself (integrate_one, which
 # DEM_TEST_ONE_BY_ONE=1 makes the engine use throughout): the positions,
 # the sums of each step (energies, platen loads, the stress of the measured
-# steps) and the cracks, under each kind of lateral load, with failing
+# steps) and the cracks, under each kind of lateral load and of axial one
+# (platens, end layers), with failing
 # bonds and contacts (a lattice jittered enough to leave neighbours
 # unbonded).
 # Usage: one_by_one.sh BIN_DIR TMP_DIR
@@ -31,7 +32,9 @@ loaded pressure '{"axial": {"mode": "strain_rate", "rate": 400},
                   "lateral": {"mode": "pressure", "pressure": 2e6}}'
 loaded constraint '{"axial": {"mode": "layers", "move": "top", "rate": 400},
                     "lateral": {"mode": "constraint"}}'
-for c in platens pressure constraint; do
+loaded layers '{"axial": {"mode": "layers", "move": "both", "rate": 400},
+                "lateral": {"mode": "pressure", "pressure": 2e6}}'
+for c in platens pressure constraint layers; do
 	"$bin/solve" --quiet --threads 2 --output "$tmp/$c.h5" "$tmp/$c.json"
 	DEM_TEST_ONE_BY_ONE=1 "$bin/solve" --quiet --threads 2 --output "$tmp/$c-one.h5" \
 		"$tmp/$c.json"
