@@ -338,7 +338,9 @@ integrate_free_lanes(const double *restrict X, const double *restrict V, const d
 		}
 	}
 }
-/* integrate_free_lanes as two loops, held a constant in each. */
+
+/* integrate_free_lanes as two loops, held a constant in each: lanes with
+ * no particle held radially pay nothing for the constraint. */
 static inline __attribute__((always_inline)) void
 integrate_free_either(const double *restrict X, const double *restrict V, const double *restrict W,
                       const double *restrict R, const double *restrict M, const double *restrict XR,
