@@ -609,10 +609,10 @@ DEM_VECTOR_CLONES void bonds_cross(engine *e, int k, int measure)
 
 /* Ahead of the batch at bond b0: the records of the batch PREFETCH_RECORDS
  * batches on into the cache (their first read otherwise waits for memory),
- * and the positions, velocities, spins and sums of the particles j of the
- * batch PREFETCH_PARTICLES batches on, whose records came in a batch ago
- * (the particles i follow the bond order, which the CPU's own prefetcher
- * sees; those j are scattered). Into the second-level cache (locality 2,
+ * and the positions, velocities, spins, radii and sums of the particles j
+ * of the batch PREFETCH_PARTICLES batches on, whose records came in a
+ * batch ago (the particles i follow the bond order, which the CPU's own
+ * prefetcher sees; those j are scattered). Into the second-level cache (locality 2,
  * prefetcht1 on x86): into the first, the bond loop took some 8 % more
  * time beyond the caches (solve.md). Only the speed depends on it. The
  * lines of a whole batch, a record each (pairlist_records), unrolled: past
@@ -634,6 +634,7 @@ static inline __attribute__((always_inline)) void bonds_prefetch(const engine *e
 			__builtin_prefetch(e->p.x + 3 * j, 0, 2);
 			__builtin_prefetch(e->p.v + 3 * j, 0, 2);
 			__builtin_prefetch(e->p.w + 3 * j, 0, 2);
+			__builtin_prefetch(e->p.r + j, 0, 2);
 			/* The sums of this rank's particles only (a ghost j
 			 * has none). */
 			__builtin_prefetch(engine_acc(e, j < own1 ? j : own1 - 1), 0, 2);
