@@ -14,7 +14,8 @@ _Static_assert(offsetof(pair_rec, t) == offsetof(pair_rec, d0) + 8 &&
 /* The states and constants of lanes q0 <= q < in->n, a loop for each
  * case, so that none tests a lane (those of records in a row are
  * vectorised). */
-static void load_state_k(const law_pairs *restrict in, law_lanes *restrict L, int q0)
+static inline __attribute__((always_inline)) void load_state_k(const law_pairs *restrict in,
+                                                               law_lanes *restrict L, int q0)
 {
 	const int32_t *idx = in->idx;
 	if (!in->state)
@@ -143,6 +144,7 @@ AVX2 static void load_avx2(const law_pairs *restrict in, law_lanes *restrict L)
 		load_avx2_body(in, L, 1);
 	else
 		load_avx2_body(in, L, 0);
+	load_state_k(in, L, 0);
 }
 
 void law_pairs_load(const law_pairs *restrict in, law_lanes *restrict L)
@@ -150,8 +152,7 @@ void law_pairs_load(const law_pairs *restrict in, law_lanes *restrict L)
 	if (__builtin_cpu_supports("avx2"))
 		load_avx2(in, L);
 	else
-		load_lanes(in, L, 0);
-	load_state_k(in, L, 0);
+		law_pairs_load_lanes(in, L, 0);
 }
 #else
 void law_pairs_load(const law_pairs *restrict in, law_lanes *restrict L)
