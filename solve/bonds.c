@@ -612,13 +612,13 @@ DEM_VECTOR_CLONES void bonds_cross(engine *e, int k, int measure)
  * and the positions, velocities, spins, radii and sums of the particles j
  * of the batch PREFETCH_PARTICLES batches on, whose records came in a
  * batch ago (the particles i follow the bond order, which the CPU's own
- * prefetcher sees; those j are scattered). Into the second-level cache (locality 2,
- * prefetcht1 on x86): into the first, the bond loop took some 8 % more
- * time beyond the caches (solve.md). Only the speed depends on it. The
- * lines of a whole batch, a record each (pairlist_records), unrolled: past
- * the last record they fetch what follows, and prefetching never faults.
- * Always inlined: GCC takes a function of prefetches alone for one without
- * effects and drops its calls. */
+ * prefetcher sees; those j are scattered). Into the second-level cache
+ * (locality 2, prefetcht1 on x86): into the first, the bond loop took
+ * some 8 % more time beyond the caches (solve.md). Only the speed depends
+ * on it. The lines of a whole batch, a record each (pairlist_records),
+ * unrolled: past the last record they fetch what follows, and prefetching
+ * never faults. Always inlined: GCC takes a function of prefetches alone
+ * for one without effects and drops its calls. */
 enum {
 	PREFETCH_RECORDS = 4,
 	PREFETCH_PARTICLES = 3,
