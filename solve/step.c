@@ -57,23 +57,27 @@ static inline void gather(const pairlist *L, int32_t i, double ri, double F[3], 
 	}
 }
 
-/* The unit radial vector of particle i (from the axis), 0 on the axis. */
-static inline void radial_unit(const engine *e, const double *x, double u[3])
-{
-	double d[3] = {x[0] - e->frame.center[0], x[1] - e->frame.center[1],
-	               x[2] - e->frame.center[2]};
-	double z = d[0] * e->frame.axis[0] + d[1] * e->frame.axis[1] + d[2] * e->frame.axis[2];
-	for (int k = 0; k < 3; k++)
-		u[k] = d[k] - z * e->frame.axis[k];
-	double l = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-	double inv = l > 0 ? 1 / l : 0;
-	for (int k = 0; k < 3; k++)
-		u[k] *= inv;
-}
-
 static inline double dot3(const double a[3], const double b[3])
 {
 	return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* The unit radial vector at x (from the axis of the frame fr), 0 on the
+ * axis; without a branch, so that the particles' vector loop
+ * (integrate_free_lanes) vectorises it too. */
+static inline __attribute__((always_inline)) void radial_unit(const engine_frame *fr,
+                                                              const double *x, double u[3])
+{
+	double d[3];
+	for (int k = 0; k < 3; k++)
+		d[k] = x[k] - fr->center[k];
+	double z = dot3(d, fr->axis);
+	for (int k = 0; k < 3; k++)
+		u[k] = d[k] - z * fr->axis[k];
+	double l = sqrt(dot3(u, u));
+	double inv = law_sel(l > 0, 1 / l, 0);
+	for (int k = 0; k < 3; k++)
+		u[k] *= inv;
 }
 
 /* The confining pressure on surface particle i (slot in the surface list)
@@ -221,7 +225,7 @@ static void integrate_one(engine *e, int32_t i, int measure, particle_sums *s)
 	uint8_t flag = P->flag[i];
 	int confined = slot >= 0 && e->bc.loads.lateral == LATERAL_PRESSURE;
 	if (confined || (flag & PF_CONSTRAINED))
-		radial_unit(e, P->x + 3 * i, er);
+		radial_unit(&e->frame, P->x + 3 * i, er);
 	if (confined)
 		confine(e, i, slot, er, F, ext, s, measure);
 	if (e->bc.loads.layers && (flag & (PF_LAYER_BOTTOM | PF_LAYER_TOP))) {
@@ -253,7 +257,7 @@ typedef struct {
 } free_lanes;
 
 /* move_free (DAMPING_VECTOR), where held and fl->radial hold_radially (the
- * radial unit vector from the frame fr, as radial_unit; not the sum of the
+ * radial unit vector from the frame fr, radial_unit; not the sum of the
  * reactions, which only a measured step reads, and a measured step moves
  * these particles one by one) and advance with ext fl->ext for the nl
  * particles i0 + q (lanes q < nl) of forces fl->F, fl->T, with their
@@ -299,16 +303,8 @@ integrate_free_lanes(const double *restrict X, const double *restrict V, const d
 		fl->damped[q] =
 		    0.5 * dt * (dot3(fd, v) + dot3(fd, vn) + dot3(td, w) + dot3(td, wn));
 		if (held) {
-			double d[3], u[3], er[3];
-			for (int c = 0; c < 3; c++)
-				d[c] = x[c] - fr->center[c];
-			double z = dot3(d, fr->axis);
-			for (int c = 0; c < 3; c++)
-				u[c] = d[c] - z * fr->axis[c];
-			double l = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-			double inv = law_sel(l > 0, 1 / l, 0);
-			for (int c = 0; c < 3; c++)
-				er[c] = u[c] * inv;
+			double er[3];
+			radial_unit(fr, x, er);
 			double vr = dot3(vn, er);
 			int radial = fl->radial[q];
 			for (int c = 0; c < 3; c++)
@@ -511,7 +507,7 @@ static inline __attribute__((always_inline)) void integrate_lanes(engine *e, siz
 		if (fl.confined[q]) { /* as integrate_one: its sum added below */
 			double er[3];
 			particle_sums lateral = {0};
-			radial_unit(e, P->x + 3 * i, er);
+			radial_unit(&e->frame, P->x + 3 * i, er);
 			confine(e, (int32_t)i, P->surf[i], er, F, ext, &lateral, 0);
 			fl.lateral[q] = lateral.lateral_force;
 		}
