@@ -99,6 +99,12 @@ typedef struct {
 	double fn_viscous; /* N, the viscous part of fn (included in fn), tension positive */
 	double e_damage;   /* J, dissipated by damage, plastic flow or failure in this call */
 	double e_friction; /* J, dissipated by sliding in this call */
+	/* Set with failed: the forces the failure criterion judged in this
+	 * call, before the failure took them away (the crack record's): the
+	 * normal force of the bond's spring (N, tension positive, without the
+	 * viscous part) and the size of its shear force (N). A damage law
+	 * gives them with the damage the bond had before the call. */
+	double fn_failed, fs_failed;
 } law_out;
 
 /* Elastic constants of a bond, for the time step estimate and output. */
@@ -131,6 +137,7 @@ typedef struct {
 	double fn[LAW_LANES], fs[3][LAW_LANES], fn_viscous[LAW_LANES];
 	double e_damage[LAW_LANES], e_friction[LAW_LANES];
 	int failed[LAW_LANES];
+	double fn_failed[LAW_LANES], fs_failed[LAW_LANES]; /* where failed */
 } law_batch;
 
 typedef struct law_params law_params; /* each law's own, opaque */
@@ -224,6 +231,8 @@ static inline void law_lane_put(law_batch *B, int q, const bond *b, const law_ou
 	B->e_damage[q] = o->e_damage;
 	B->e_friction[q] = o->e_friction;
 	B->failed[q] = o->failed;
+	B->fn_failed[q] = o->fn_failed;
+	B->fs_failed[q] = o->fs_failed;
 }
 
 /* Lane q of a batch computed by FORCE (a function with the signature of

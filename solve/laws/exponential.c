@@ -128,18 +128,21 @@ static inline void exp_force(const law_params *lp, const law_pair *pair, bond *b
 	double inv_d = 1 / pair->d0, A = area_of(1, pair), kn = A * p->q.E0 * inv_d;
 	double ks = kn * p->ks_over_kn;
 	int intact = b->state < BOND_BROKEN_TENSION, broke = 0;
-	double open, w = 0;
+	double open, w = 0, dn = b->h[0];
 	out->failed = 0;
 	double fn =
 	    A * dh_normal(&p->q, exp_curve, p, k->un * inv_d, b->h, !intact, &open, &broke, &w);
 	out->e_damage += A * pair->d0 * w;
 	if (broke) { /* the shear spring goes with the bond */
+		out->fn_failed = A * p->q.E0 * open * dh_secant(dn, p->q.delta_n);
+		out->fs_failed = ks * v3_norm(b->t);
 		out->e_damage += 0.5 * ks * v3_dot(b->t, b->t);
 		shear_break(b, out, BOND_BROKEN_TENSION, CRACK_TENSION);
 	} else if (shear_mohr_coulomb(b->t, k->dus, ks, -fn, p->cohesion * A, p->tan_i, p->tan_c,
 	                              intact, out)) {
 		b->state = BOND_BROKEN_SHEAR;
 		out->failed = CRACK_SHEAR;
+		out->fn_failed = fn;
 		if (fn > 0) { /* the tension spring goes with the bond */
 			out->e_damage += 0.5 * fn * fn / (kn * dh_secant(b->h[0], p->q.delta_n));
 			fn = 0;

@@ -147,6 +147,8 @@ static inline void jcfpm_force(const law_params *lp, const law_pair *pair, bond 
 	int intact = b->state == BOND_INTACT;
 	out->failed = 0;
 	if (intact && u > p->sigma_t * A / kn) { /* its stored energy is released */
+		out->fn_failed = kn * u;
+		out->fs_failed = ks * v3_norm(b->t);
 		out->e_damage += 0.5 * kn * u * u + 0.5 * ks * v3_dot(b->t, b->t);
 		shear_break(b, out, BOND_BROKEN_TENSION, CRACK_TENSION);
 		apart(p, pair, b, k->un, out);
@@ -169,6 +171,7 @@ static inline void jcfpm_force(const law_params *lp, const law_pair *pair, bond 
 	                       out)) {
 		b->state = BOND_BROKEN_SHEAR;
 		out->failed = CRACK_SHEAR;
+		out->fn_failed = fn;
 		if (fn > 0) { /* in tension: erased */
 			out->e_damage += 0.5 * fn * fn / kn;
 			apart(p, pair, b, k->un, out);

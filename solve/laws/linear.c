@@ -139,6 +139,8 @@ static inline void linear_force_one(const law_params *p, const law_pair *q, bond
 			out->fs[d] = fs[d];
 		return;
 	}
+	out->fn_failed = fe;
+	out->fs_failed = sqrt(fs2);
 	double before = intact_energy(b, k->un);
 	for (int d = 0; d < 3; d++)
 		b->t[d] = fs[d];

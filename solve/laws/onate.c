@@ -186,21 +186,24 @@ static inline void onate_force(const law_params *lp, const law_pair *pair, bond 
 	double inv_d = 1 / pair->d0, A = area_of(p->area.alpha, pair), kn = A * p->q.E0 * inv_d;
 	double ks = kn * p->ks_over_kn;
 	int intact = b->state < BOND_BROKEN_TENSION, broke = 0;
-	double open, w = 0;
+	double open, w = 0, dn = b->h[0];
 	out->failed = 0;
 	double fn =
 	    A * dh_normal(&p->q, onate_curve, p, k->un * inv_d, b->h, !intact, &open, &broke, &w);
 	out->e_damage += A * pair->d0 * w;
 	double fnc = fn < 0 ? -fn : 0;
 	if (broke) { /* the shear spring goes with the bond */
-		out->e_damage += 0.5 * ks * dh_secant(b->h[1], p->delta_s) * v3_dot(b->t, b->t);
+		double ss = dh_secant(b->h[1], p->delta_s);
+		out->fn_failed = A * p->q.E0 * open * dh_secant(dn, p->q.delta_n);
+		out->fs_failed = ks * ss * v3_norm(b->t);
+		out->e_damage += 0.5 * ks * ss * v3_dot(b->t, b->t);
 		shear_break(b, out, BOND_BROKEN_TENSION, CRACK_TENSION);
 	} else if (intact) {
 		v3_add(b->t, b->t, k->dus);
 		double strength = p->tau * A + p->mu1 * fnc;
 		if (p->coupled && open > 0)
 			strength = p->tau * A * (1 - law_min(1, open / p->q.eps_t));
-		double us = v3_norm(b->t), d = b->h[1];
+		double us = v3_norm(b->t), d = b->h[1], ds = d;
 		if (ks * us > strength) { /* beyond the elastic limit */
 			double dnew =
 			    law_min(1, law_max(d, dh_damage_at(us, strength / ks, p->delta_s)));
@@ -210,6 +213,8 @@ static inline void onate_force(const law_params *lp, const law_pair *pair, bond 
 			d = b->h[1] = dnew;
 		}
 		if (d >= 1) {
+			out->fn_failed = fn;
+			out->fs_failed = ks * dh_secant(ds, p->delta_s) * us;
 			shear_break(b, out, BOND_BROKEN_SHEAR, CRACK_SHEAR);
 			if (fn > 0) { /* the tension spring goes with the bond */
 				out->e_damage +=

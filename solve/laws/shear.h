@@ -93,8 +93,8 @@ static inline double shear_slip_lane(double t[3], const double old[3], double ks
 /* Adds dus to t and applies the Mohr-Coulomb limits above; fnc is the
  * compressive normal force (negative in tension), cA the cohesive strength
  * c A. Returns 1 when an intact bond ruptures in this call, booking what the
- * rupture releases to out->e_damage; sliding afterwards goes to
- * out->e_friction. */
+ * rupture releases to out->e_damage and the shear force it judged, k_s |t|,
+ * to out->fs_failed; sliding afterwards goes to out->e_friction. */
 static inline int shear_mohr_coulomb(double t[3], const double dus[3], double ks, double fnc,
                                      double cA, double tan_b, double tan_c, int intact,
                                      law_out *out)
@@ -109,6 +109,7 @@ static inline int shear_mohr_coulomb(double t[3], const double dus[3], double ks
 	double limit = cA + fnc * tan_b, f = ks * v3_norm(t);
 	if (f <= limit)
 		return 0;
+	out->fs_failed = f;
 	out->e_damage += shear_scale(t, old, ks, fnc < 0 ? 0 : limit / f);
 	return 1;
 }

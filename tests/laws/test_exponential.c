@@ -122,6 +122,12 @@ static void test_tension(void)
 	double dn, ds;
 	L->damage(P, &b, &dn, &ds);
 	CHECK_NEAR(dn, 0.5, 1e-10);
+	/* Beyond u_n^f in one step: the crack record's forces are the tension
+	 * there with the damage of the step before, and no shear. */
+	o = drive_step(L, P, &q, &b, UF * (1 + 1e-6), 0, 0, 0, 0);
+	CHECK(o.failed == CRACK_TENSION && o.fn == 0);
+	CHECK_REL(o.fn_failed, K0 * UF * (1 + 1e-6) * 0.5 / (1 + 0.5 * DELTA), 1e-9);
+	CHECK(o.fs_failed == 0);
 
 	b = drive_bond(L, P, &q);
 	w = drive_normal(L, P, &q, &b, 0, 1.8 * UL, 180, NULL);
@@ -151,6 +157,10 @@ static void test_shear(void)
 		CHECK_REL(o.fs[1], lim, 1e-8);
 		o = drive_step(L, P, &q, &b, un[c], 0, 0, 0.01 * du, 0);
 		CHECK(o.failed == CRACK_SHEAR && b.state == BOND_BROKEN_SHEAR);
+		/* The crack record's forces: the trial shear force beyond the
+		 * strength, and the normal force. */
+		CHECK_REL(o.fs_failed, KS * du * 10.01, 1e-12);
+		CHECK(fn == 0 ? o.fn_failed == 0 : fabs(o.fn_failed - fn) <= 1e-12 * fabs(fn));
 		double dn, ds;
 		L->damage(P, &b, &dn, &ds);
 		CHECK(ds == 1);

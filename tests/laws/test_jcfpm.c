@@ -68,6 +68,9 @@ static void test_normal(void)
 	CHECK_REL(stored, 0.5 * SIGT * AREA * UT, 1e-12);
 	law_out o = drive_step(L, P, &q, &b, UT * (1 + 1e-9), 0, 0, 0, 0);
 	CHECK(o.failed == CRACK_TENSION && o.fn == 0 && b.state == BOND_BROKEN_TENSION);
+	/* The crack record's forces: those the criterion judged. */
+	CHECK_REL(o.fn_failed, KN * UT * (1 + 1e-9), 1e-13);
+	CHECK(o.fs_failed == 0);
 	/* Brittle: the energy dissipated is the elastic energy at the peak, the
 	 * area under the (vertical) softening branch. */
 	CHECK(drive_energy(L, P, &q, &b) == 0);
@@ -110,6 +113,10 @@ static void test_shear(void)
 		CHECK_REL(o.fs[0], lim, 1e-8);
 		o = drive_step(L, P, &q, &b, -comp[c], 0, 0.01 * du, 0, 0);
 		CHECK(o.failed == CRACK_SHEAR && b.state == BOND_BROKEN_SHEAR);
+		/* The crack record's forces: the trial shear force beyond the
+		 * strength, and the normal force. */
+		CHECK_REL(o.fs_failed, KS * du * 10.01, 1e-12);
+		CHECK(c == 0 ? o.fn_failed == 0 : fabs(o.fn_failed + fnc) <= 1e-12 * fnc);
 		/* In the step it breaks the force is capped at the bond strength. */
 		CHECK_REL(o.fs[0], lim, 1e-12);
 		double dn, ds;

@@ -131,12 +131,20 @@ static void test_tension(void)
 		CHECK_NEAR(dn, d, 1e-12);
 		CHECK(o.failed == 0 && b.state == BOND_DAMAGED);
 	}
+	/* The crack record's forces: the tension at the failing opening with
+	 * the damage of the step before, and no shear. */
+	double u19 = UL + (UF - UL) * 19 / 20, d19 = (u19 / UL - 1) / DELTA;
 	law_out o = drive_step(L, P, &q, &b, UF, 0, 0, 0, 0);
 	CHECK_NEAR(o.fn, 0, 1e-12 * KN * UL);
+	if (o.failed == CRACK_TENSION)
+		CHECK_REL(o.fn_failed, KN * UF * (1 - d19) * UL / u19, 1e-10);
 	cracks += o.failed == CRACK_TENSION;
+	int failed_first = o.failed == CRACK_TENSION;
 	o = drive_step(L, P, &q, &b, UF * (1 + 1e-9), 0, 0, 0, 0);
+	if (o.failed == CRACK_TENSION && !failed_first)
+		CHECK_REL(o.fn_failed, KN * UF * (1 + 1e-9) * (1 - d19) * UL / u19, 1e-10);
 	cracks += o.failed == CRACK_TENSION;
-	CHECK(cracks == 1);
+	CHECK(cracks == 1 && (failed_first || o.fs_failed == 0));
 	CHECK(o.fn == 0 && b.state == BOND_BROKEN_TENSION);
 	L->damage(P, &b, &dn, &ds);
 	CHECK(dn == 1);
@@ -232,10 +240,14 @@ static void test_shear(void)
 		CHECK_NEAR(ds, d, 1e-10);
 		CHECK(dn == 0);
 	}
-	double du = (usf - usl) / 10 * (1 + 1e-6);
+	double du = (usf - usl) / 10 * (1 + 1e-6), dp = (us / usl - 1) / DELTA;
 	law_out o = drive_step(L, P, &q, &b, 0, 0, du * dir[0], du * dir[1], 0);
 	CHECK(o.failed == CRACK_SHEAR && b.state == BOND_BROKEN_SHEAR);
 	CHECK(drive_fs(&o) == 0);
+	/* The crack record's forces: the shear force at the failing slip with
+	 * the damage of the step before, and the normal force (none). */
+	CHECK_REL(o.fs_failed, (1 - dp) * TAU * A * (us + du) / us, 1e-10);
+	CHECK(o.fn_failed == 0);
 	L->damage(P, &b, &dn, &ds);
 	CHECK(ds == 1 && dn == 0);
 	/* Broken in shear: no tension, no shear without compression (Eq. 45). */
