@@ -5,6 +5,7 @@
  * shares of bond_split, bonds.h). Bond failures are collected per thread
  * and merged in bond order. */
 #include <inttypes.h>
+#include <math.h>
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
@@ -233,8 +234,10 @@ void bonds_restore(engine *e)
 	}
 }
 
-/* A failure as a crack record, with the force the bond carried before it. */
-static void record_crack(engine *e, crack_buf *cb, size_t b, int mode, const batch_geom *g, int q)
+/* Lane q of B, failing, as a crack record, with the forces its law judged
+ * (law_out.fn_failed, fs_failed). */
+static void record_crack(engine *e, crack_buf *cb, size_t b, const law_batch *B,
+                         const batch_geom *g, int q)
 {
 	double n[3] = {g->n[0][q], g->n[1][q], g->n[2][q]}, d = g->d[q];
 	if (cb->n == cb->cap) {
@@ -244,10 +247,7 @@ static void record_crack(engine *e, crack_buf *cb, size_t b, int mode, const bat
 	}
 	const pair_rec *bd = &e->pairs.bonds.rec[b];
 	const particles *P = &e->p;
-	const float *f = e->pairs.bonds.fb + 3 * b;
 	b += e->pairs.bond0; /* its place in the whole specimen's bond order */
-	double fn = f[0] * n[0] + f[1] * n[1] + f[2] * n[2];
-	double fs[3] = {f[0] - fn * n[0], f[1] - fn * n[1], f[2] - fn * n[2]};
 	int32_t oi = P->orig[bd->i], oj = P->orig[bd->j];
 	double sign = oi < oj ? 1 : -1;
 	double ai = d * P->r[bd->i] / (P->r[bd->i] + P->r[bd->j]);
@@ -257,10 +257,10 @@ static void record_crack(engine *e, crack_buf *cb, size_t b, int mode, const bat
 	                 .step = e->clock.step,
 	                 .i = oi < oj ? oi : oj,
 	                 .j = oi < oj ? oj : oi,
-	                 .mode = mode,
+	                 .mode = B->failed[q],
 	                 .radius = P->r[bd->i] < P->r[bd->j] ? P->r[bd->i] : P->r[bd->j],
-	                 .fn = fn,
-	                 .fs = sqrt(fs[0] * fs[0] + fs[1] * fs[1] + fs[2] * fs[2])};
+	                 .fn = B->fn_failed[q],
+	                 .fs = B->fs_failed[q]};
 	for (int k = 0; k < 3; k++) {
 		c->x[k] = P->x[3 * bd->i + k] + ai * n[k];
 		c->normal[k] = sign * n[k];
@@ -283,7 +283,7 @@ DEM_VECTOR_CLONES static void bonds_staged(engine *e, const int32_t *idx, int nq
 	for (int q = 0; q < nq; q++) {
 		bond_part *o = &part[q];
 		if (B.failed[q])
-			record_crack(e, cb, (size_t)idx[q], B.failed[q], &g, q);
+			record_crack(e, cb, (size_t)idx[q], &B, &g, q);
 		batch_force(&B, &g, q, o->f);
 		o->e_damage = B.e_damage[q];
 		o->e_friction = B.e_friction[q];
@@ -295,6 +295,32 @@ DEM_VECTOR_CLONES static void bonds_staged(engine *e, const int32_t *idx, int nq
 			memset(o->love, 0, sizeof o->love);
 			love_add(o->love, &g, q, o->f);
 			o->state = bd.state;
+		}
+	}
+}
+
+void bonds_output_forces(engine *e)
+{
+	const particles *P = &e->p;
+	pairlist *L = &e->pairs.bonds;
+	ptrdiff_t batches = (ptrdiff_t)((L->n + BATCH - 1) / BATCH);
+#pragma omp parallel for num_threads(e->team) schedule(static)
+	for (ptrdiff_t k = 0; k < batches; k++) {
+		size_t b0 = (size_t)k * BATCH;
+		int nq = L->n - b0 < BATCH ? (int)(L->n - b0) : BATCH;
+		int32_t idx[BATCH];
+		for (int q = 0; q < nq; q++)
+			idx[q] = (int32_t)(b0 + (size_t)q);
+		law_batch B;
+		batch_geom g;
+		batch_kinematics(P->x, P->v, P->w, P->r, P->m, L->rec, L->state, L->k, idx, nq,
+		                 e->clock.dt, &B, &g);
+		e->law->force_batch(e->lp, &B); /* on the copy B: no bond changes */
+		for (int q = 0; q < nq; q++) {
+			double f[6];
+			batch_force(&B, &g, q, f);
+			for (int c = 0; c < 3; c++)
+				L->fb[3 * (b0 + (size_t)q) + c] = (float)f[c];
 		}
 	}
 }
@@ -416,14 +442,24 @@ static inline void add_to_j(engine *e, int32_t j, const double f[6])
 	acc_add(engine_acc(e, (size_t)j), -f[0], -f[1], -f[2], rj * f[3], rj * f[4], rj * f[5]);
 }
 
-/* Bond b's force f on i kept (L->fb), and its force and torque added to
- * particle i and, when both, to j. */
+/* Bond b's force, found not finite, noted for the diagnosis. */
+static __attribute__((cold, noinline)) void note_bad(engine *e, size_t b)
+{
+	crack_buf *cb = &e->out.thread_cracks[omp_get_thread_num()];
+	if (cb->nbad == cb->badcap) {
+		cb->badcap = cb->badcap ? 2 * cb->badcap : 16;
+		cb->bad = xrealloc(cb->bad, cb->badcap * sizeof *cb->bad);
+	}
+	cb->bad[cb->nbad++] = (int32_t)b;
+}
+
+/* Bond b's force and torque f added to particle i and, when both, to j
+ * (and the bond noted when its force is not finite). */
 static inline void bond_add_force(engine *e, size_t b, const double f[6], int both)
 {
-	pairlist *L = &e->pairs.bonds;
-	const pair_rec *bd = &L->rec[b];
-	for (int c = 0; c < 3; c++)
-		L->fb[3 * b + c] = (float)f[c];
+	const pair_rec *bd = &e->pairs.bonds.rec[b];
+	if (!isfinite(f[0] + f[1] + f[2]))
+		note_bad(e, b);
 	double ri = e->p.r[bd->i];
 	acc_add(engine_acc(e, (size_t)bd->i), f[0], f[1], f[2], ri * f[3], ri * f[4], ri * f[5]);
 	if (both)
@@ -485,9 +521,6 @@ static inline void states_store(uint8_t *to, const int32_t *s, int n)
 	for (; q < n; q++)
 		to[q] = (uint8_t)s[q];
 }
-
-/* Four floats, written at any 4-byte boundary. */
-typedef float fb_v4 __attribute__((vector_size(16), aligned(4)));
 
 /* The lanes of u and w paired: out[l] = (u[l], w[l]). */
 static inline void vec4_pairs(vec4 u, vec4 w, acc_v2 out[4])
@@ -574,6 +607,7 @@ static inline __attribute__((always_inline)) void bonds_add_elastic(engine *e, s
 	}
 	if (history)
 		states_store(B->state + b0, o->state, nq);
+	vec4 sum = {0, 0, 0, 0}; /* not finite if a force is not */
 	for (q = 0; q + 4 <= nq; q += 4) {
 		vec4 hi[4], hj[4];
 		acc_v2 ti[4], tj[4];
@@ -582,16 +616,15 @@ static inline __attribute__((always_inline)) void bonds_add_elastic(engine *e, s
 		for (int l = 0; l < 4; l++) {
 			size_t b = b0 + (size_t)(q + l);
 			const pair_rec *bd = &B->rec[b];
-			fb_v4 fb = __builtin_convertvector(hi[l], fb_v4);
-			if (l < 3) /* the fourth float is the next bond's, stored next */
-				*(fb_v4 *)(B->fb + 3 * b) = fb;
-			else
-				for (int c = 0; c < 3; c++)
-					B->fb[3 * b + c] = fb[c];
+			sum += hi[l];
 			acc_add_rows(engine_acc(e, (size_t)bd->i), hi[l], ti[l]);
 			acc_add_rows(engine_acc(e, (size_t)bd->j), hj[l], tj[l]);
 		}
 	}
+	if (!isfinite(sum[0] + sum[1] + sum[2]))
+		for (int l = 0; l < q; l++)
+			if (!isfinite(o->f[0][l] + o->f[1][l] + o->f[2][l]))
+				note_bad(e, b0 + (size_t)l);
 	for (; q < nq; q++)
 		bond_add_lane(e, b0 + (size_t)q, o, q);
 }

@@ -30,6 +30,10 @@ typedef struct {
 	 * they are written, so that neither a rank's memory nor how often
 	 * the ranks write grows with the rank count. */
 	size_t most, *held;
+	/* Bonds (this rank's indices) whose force a step found not finite,
+	 * for the diagnosis (diagnose.c): the step ends the run. */
+	size_t nbad, badcap;
+	int32_t *bad;
 } crack_buf;
 
 /* What a bond computed in this step adds to its block's sums and to its two
@@ -173,6 +177,12 @@ void bonds_cross(engine *e, int k, int measure);
  * zeroed after done returns: they are zero between steps. */
 typedef void (*block_done)(engine *e, size_t blk, void *ctx);
 void bonds_share(engine *e, int k, int measure, block_done done, void *ctx);
+/* The force on i of each of this rank's bonds at the state as it is now
+ * (between steps: the force the next step gives it), computed by the law
+ * without changing any bond, into e->pairs.bonds.fb, for the output
+ * (snapshots, checkpoints, the diagnosis): a step does not keep its bonds'
+ * forces. Outside a parallel region. */
+void bonds_output_forces(engine *e);
 /* Move this step's failures to e->out.cracks, in bond order. */
 void bonds_collect_cracks(engine *e);
 /* Bond b of L (this rank's bonds, whose ends it holds): its ends in the

@@ -564,6 +564,7 @@ int checkpoint_write(engine *e, hid_t file)
 			H5Gclose(g);
 		return -1;
 	}
+	bonds_output_forces(e);
 	pairs_view v;
 	pairlist contacts;
 	own_part(e, &v, &contacts);

@@ -11,17 +11,39 @@
 #include "solve/timestep.h"
 #include "solve/window.h"
 
-/* Whether the force of pair b of L is finite. */
-static int finite_pair(const pairlist *L, size_t b)
+/* Whether the force of contact b of L is finite. */
+static int finite_contact(const pairlist *L, size_t b)
 {
 	double s = 0;
-	if (L->fb) /* the bonds' (pairlist.h) */
-		for (size_t c = 0; c < 3; c++)
-			s += L->fb[3 * b + c];
-	else
-		for (size_t c = 0; c < 6; c++)
-			s += L->f[6 * b + c];
+	for (size_t c = 0; c < 6; c++)
+		s += L->f[6 * b + c];
 	return isfinite(s);
+}
+
+static int by_index(const void *a, const void *b)
+{
+	int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+	return (x > y) - (x < y);
+}
+
+/* This rank's bonds whose force the step found not finite (a step keeps
+ * no bond's force: it notes those, crack_buf.bad), in bond order: their
+ * number, into *list. */
+static size_t bad_bonds(const engine *e, int32_t **list)
+{
+	size_t n = 0;
+	for (int t = 0; t < e->nthreads; t++)
+		n += e->out.thread_cracks[t].nbad;
+	int32_t *b = xmalloc((n + 1) * sizeof *b);
+	n = 0;
+	for (int t = 0; t < e->nthreads; t++) {
+		const crack_buf *cb = &e->out.thread_cracks[t];
+		for (size_t k = 0; k < cb->nbad; k++)
+			b[n++] = cb->bad[k];
+	}
+	qsort(b, n, sizeof *b, by_index);
+	*list = b;
+	return n;
 }
 
 /* The pairs of every rank's list L (the bonds, or the contacts of its own
@@ -36,23 +58,29 @@ static size_t bad_pairs(const engine *e, const pairlist *L, int32_t **bad)
 		b0 = e->scratch.cfirst[e->ranks.blk0];
 		b1 = e->scratch.cfirst[e->ranks.blk1];
 	}
-	size_t cap = 0, n = 0;
-	for (size_t b = b0; b < b1; b++)
-		cap += 2 * !finite_pair(L, b);
-	int32_t *ends = xmalloc((cap + 1) * sizeof *ends); /* room for the few, not every pair */
-	for (size_t b = b0; b < b1; b++)
-		if (!finite_pair(L, b)) {
-			ends[n++] = (int32_t)particle_global(&e->p, (size_t)L->rec[b].i);
-			ends[n++] = (int32_t)particle_global(&e->p, (size_t)L->rec[b].j);
-		}
+	int32_t *list = NULL;
+	size_t nlist = 0;
+	if (L == &e->pairs.bonds) {
+		nlist = bad_bonds(e, &list);
+	} else {
+		for (size_t b = b0; b < b1; b++)
+			nlist += !finite_contact(L, b);
+		list = xmalloc((nlist + 1) * sizeof *list); /* room for the few, not every pair */
+		nlist = 0;
+		for (size_t b = b0; b < b1; b++)
+			if (!finite_contact(L, b))
+				list[nlist++] = (int32_t)b;
+	}
+	size_t cap = 2 * nlist, n = 0;
+	int32_t *ends = xmalloc((cap + 1) * sizeof *ends);
+	for (size_t k = 0; k < nlist; k++) {
+		const pair_rec *r = &L->rec[list[k]];
+		ends[n++] = (int32_t)particle_global(&e->p, (size_t)r->i);
+		ends[n++] = (int32_t)particle_global(&e->p, (size_t)r->j);
+	}
+	free(list);
 	*bad = ends;
 	return ranks_gather_list(bad, &cap, n) / 2;
-}
-
-static int by_index(const void *a, const void *b)
-{
-	int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
-	return (x > y) - (x < y);
 }
 
 /* Of the n pairs (ends) with a non-finite force, the particle in most of

@@ -140,6 +140,7 @@ int output_bonds(engine *e, run_writer *w)
 int output_snapshot(engine *e, run_writer *w)
 {
 	const particles *P = &e->p;
+	bonds_output_forces(e);
 	dem_snapshot s = {.step = e->clock.step,
 	                  .t = e->clock.t,
 	                  .strain_axial = engine_strain(e),

@@ -360,7 +360,8 @@ void engine_free(engine *e)
 	share_balance_free(&e->pairs.balance);
 	ranks_free(&e->ranks);
 	for (int t = 0; t < e->nthreads; t++)
-		free(e->out.thread_cracks[t].c), free(e->out.thread_cracks[t].bond);
+		free(e->out.thread_cracks[t].c), free(e->out.thread_cracks[t].bond),
+		    free(e->out.thread_cracks[t].bad);
 	free(e->out.thread_cracks);
 	free(e->out.cracks.c), free(e->out.cracks.bond);
 	free(e->out.cracks.run_at), free(e->out.cracks.run_n), free(e->out.cracks.held);

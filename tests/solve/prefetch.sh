@@ -7,7 +7,8 @@
 # With OBJDUMP, also that they are in the machine code: a compiler may
 # drop a function of prefetches alone as one without effects, which only
 # the machine code tells; every version of bonds_share (one for each kind
-# of CPU, solve/clones.h) must hold some (x86-64).
+# of CPU, solve/clones.h) must hold some (x86-64). A version's cold part
+# (GCC's .cold, its rarely taken branches) is not a version.
 # Usage: prefetch.sh BIN_DIR TMP_DIR [OBJDUMP]
 set -eu
 bin=$1 tmp=$2 objdump=${3:-}
@@ -16,7 +17,7 @@ rm -rf "$tmp"
 mkdir -p "$tmp"
 if [ -n "$objdump" ]; then
 	"$objdump" -d --no-show-raw-insn "$bin/solve" | awk '
-		/^[0-9a-f]+ <bonds_share[.>]/ && !/resolver/ {
+		/^[0-9a-f]+ <bonds_share[.>]/ && !/resolver/ && !/\.cold>/ {
 			f = substr($2, 2, length($2) - 3)
 			n[f] = 0
 			next

@@ -118,8 +118,84 @@ static void vibrate(const double dir[3], double ri, double rj, double gap)
 	assembly_free(&a);
 }
 
+/* The pair of vibrate's second geometry pulled apart until its bond
+ * breaks in tension: the crack record holds the force the criterion
+ * judged in that step, k_n u_n with u_n from the step's positions, above
+ * the strength sigma_t A where the step before was below it; the bond
+ * forces for the output (bonds_output_forces), at the state between
+ * steps, are k_n u_n of the positions then (none beyond the strength:
+ * the next step breaks the bond), and leave the bond as it was. */
+static void pull(void)
+{
+	double n[3] = {0.6, -0.3, 0.74}, ri = 1e-3, rj = 0.6e-3;
+	v3_scale(n, n, 1 / v3_norm(n));
+	double d = (ri + rj) * 1.05, kn = 2e6, sigma_t = 1e6;
+	double mi = 2500 * 4.0 / 3.0 * DEM_PI * ri * ri * ri,
+	       mj = 2500 * 4.0 / 3.0 * DEM_PI * rj * rj * rj;
+	double dt = 2 * DEM_PI * sqrt(mi * mj / (mi + mj) / kn) / 400;
+	char json[1024];
+	snprintf(json, sizeof json, case_json, dt);
+	char *at = strstr(json, "\"tensile_strength\": 1e12");
+	memcpy(at, "\"tensile_strength\": 1e06", strlen("\"tensile_strength\": 1e06"));
+	dem_assembly a;
+	pair_assembly(&a, n, ri, rj, d);
+	dem_case c;
+	harness_case(&c, json);
+	engine e;
+	harness_engine(&e, &c, &a);
+	CHECK(e.pairs.bonds.n == 1);
+	law_pair pair = {.ri = ri, .rj = rj, .mi = mi, .mj = mj, .d0 = d};
+	law_const k;
+	e.law->constants(e.lp, &pair, &k);
+	double strength = sigma_t * k.area;
+	int I = e.p.orig[0] == 0 ? 0 : 1, J = 1 - I;
+	/* Apart at a speed that reaches the strength in a tenth of a period. */
+	double v0 = 4 * strength / kn / (40 * dt);
+	for (int c3 = 0; c3 < 3; c3++) {
+		e.p.v[3 * I + c3] = -v0 * n[c3] * mj / (mi + mj);
+		e.p.v[3 * J + c3] = v0 * n[c3] * mi / (mi + mj);
+	}
+	double before = 0;
+	int st = 0;
+	for (; st < 400 && e.out.cracks.n == 0; st++) {
+		const double *xi = e.p.x + 3 * I, *xj = e.p.x + 3 * J;
+		double dx[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
+		double un = v3_norm(dx) - d, t[3];
+		memcpy(t, e.pairs.bonds.rec[0].t, sizeof t);
+		bonds_output_forces(&e);
+		const float *f = e.pairs.bonds.fb;
+		int sgn = e.pairs.bonds.rec[0].i == I ? 1 : -1; /* the force on i */
+		double fn = sgn * (f[0] * dx[0] + f[1] * dx[1] + f[2] * dx[2]) / v3_norm(dx);
+		if (kn * un > strength) /* the force the next step gives: none */
+			CHECK(fn == 0);
+		else if (un > 1e-3 * strength / kn)
+			CHECK_REL(fn, kn * un, 1e-6);
+		CHECK(memcmp(t, e.pairs.bonds.rec[0].t, sizeof t) == 0 &&
+		      e.pairs.bonds.state[0] == BOND_INTACT);
+		engine_step(&e, 0);
+		if (e.out.cracks.n == 0)
+			before = kn * un;
+		else {
+			const dem_crack *cr = &e.out.cracks.c[0];
+			fprintf(stderr,
+			        "pulled: broke at step %d, crack fn %.9g N, k_n u_n %.9g N, "
+			        "strength %.9g N, the step before %.9g N\n",
+			        st, cr->fn, kn * un, strength, before);
+			CHECK(cr->mode == CRACK_TENSION);
+			CHECK_REL(cr->fn, kn * un, 1e-12);
+			CHECK(cr->fn > strength && before <= strength);
+			CHECK(cr->fs <= 1e-9 * cr->fn);
+		}
+	}
+	CHECK(e.out.cracks.n == 1 && st > 10);
+	engine_free(&e);
+	case_free(&c);
+	assembly_free(&a);
+}
+
 int main(void)
 {
+	pull();
 	vibrate((double[3]){0, 0, 1}, 1e-3, 1e-3, 0);
 	vibrate((double[3]){0.6, -0.3, 0.74}, 1e-3, 0.6e-3, 0.05);
 	return check_done();
