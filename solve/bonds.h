@@ -180,8 +180,8 @@ void bonds_share(engine *e, int k, int measure, block_done done, void *ctx);
 /* The force on i of each of this rank's bonds at the state as it is now
  * (between steps: the force the next step gives it), computed by the law
  * without changing any bond, into e->pairs.bonds.fb, for the output
- * (snapshots, checkpoints, the diagnosis): a step does not keep its bonds'
- * forces. Outside a parallel region. */
+ * (snapshots, checkpoints): a step does not keep its bonds' forces.
+ * Outside a parallel region. */
 void bonds_output_forces(engine *e);
 /* Move this step's failures to e->out.cracks, in bond order. */
 void bonds_collect_cracks(engine *e);

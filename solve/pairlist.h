@@ -26,9 +26,9 @@ typedef struct {
 	                   radius (N): the torque on i is r_i times it, on j r_j
 	                   times it. NULL for the bonds. */
 	float *fb;      /* bonds: [n][3] force on i (N) at the state between
-	                   steps, for the output only (snapshots, checkpoints, the
-	                   diagnosis), so single precision: filled when one needs
-	                   it (bonds_output_forces); a step adds each bond's force
+	                   steps, for the output only (snapshots, checkpoints), so
+	                   single precision: filled when one needs it
+	                   (bonds_output_forces); a step adds each bond's force
 	                   and torque to its particles and keeps none (bonds.h). */
 	int32_t *off;   /* [off0, own1 + 1]: this rank's particles' (contacts
 	                   only: bonds add their forces as they are computed,
