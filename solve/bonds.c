@@ -267,18 +267,28 @@ static void record_crack(engine *e, crack_buf *cb, size_t b, const law_batch *B,
 	}
 }
 
+/* The kinematics of the nq bonds idx[0..nq) into B and g, and the law's
+ * forces on B, a copy: no bond changes. Always inlined into its callers'
+ * vector versions, as batch_kinematics is. */
+static inline __attribute__((always_inline)) void batch_law(engine *e, const int32_t *idx, int nq,
+                                                            law_batch *B, batch_geom *g)
+{
+	const particles *P = &e->p;
+	const pairlist *L = &e->pairs.bonds;
+	batch_kinematics(P->x, P->v, P->w, P->r, P->m, L->rec, L->state, L->k, idx, nq, e->clock.dt,
+	                 B, g);
+	e->law->force_batch(e->lp, B);
+}
+
 /* The nq bonds idx[0..nq) computed (kinematics, law, failures): what each
  * adds, into part[0..nq). */
 DEM_VECTOR_CLONES static void bonds_staged(engine *e, const int32_t *idx, int nq, int measure,
                                            crack_buf *cb, bond_part *part)
 {
-	const particles *P = &e->p;
 	pairlist *L = &e->pairs.bonds;
 	law_batch B;
 	batch_geom g;
-	batch_kinematics(P->x, P->v, P->w, P->r, P->m, L->rec, L->state, L->k, idx, nq, e->clock.dt,
-	                 &B, &g);
-	e->law->force_batch(e->lp, &B);
+	batch_law(e, idx, nq, &B, &g);
 	batch_history_store(L->rec, L->state, idx, &B);
 	for (int q = 0; q < nq; q++) {
 		bond_part *o = &part[q];
@@ -301,7 +311,6 @@ DEM_VECTOR_CLONES static void bonds_staged(engine *e, const int32_t *idx, int nq
 
 void bonds_output_forces(engine *e)
 {
-	const particles *P = &e->p;
 	pairlist *L = &e->pairs.bonds;
 	ptrdiff_t batches = (ptrdiff_t)((L->n + BATCH - 1) / BATCH);
 #pragma omp parallel for num_threads(e->team) schedule(static)
@@ -313,9 +322,7 @@ void bonds_output_forces(engine *e)
 			idx[q] = (int32_t)(b0 + (size_t)q);
 		law_batch B;
 		batch_geom g;
-		batch_kinematics(P->x, P->v, P->w, P->r, P->m, L->rec, L->state, L->k, idx, nq,
-		                 e->clock.dt, &B, &g);
-		e->law->force_batch(e->lp, &B); /* on the copy B: no bond changes */
+		batch_law(e, idx, nq, &B, &g);
 		for (int q = 0; q < nq; q++) {
 			double f[6];
 			batch_force(&B, &g, q, f);

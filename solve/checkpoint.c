@@ -92,8 +92,8 @@ static int scalars(engine *e, size_t count[3], scalar *s)
 /* The bonds' histories and forces as a checkpoint held them, read for its
  * checksum: one of an older layout (bond_h with a fourth column, the last
  * u_n, and bond_force with the torque per unit radius), or only the forces
- * of this layout, in the double precision of the file, where the bonds
- * keep them in single precision (pairlist.fb). */
+ * of this layout, in the double precision of the file (written from the
+ * single precision of pairlist.fb). */
 enum { OLD_NHIST = 4, OLD_FCOLS = 6 };
 typedef struct {
 	double *h; /* [B][OLD_NHIST], or NULL: this layout */
@@ -654,9 +654,11 @@ static size_t columns(hid_t g, const char *name)
 	return nd == 2 ? (size_t)dims[1] : 0;
 }
 
-/* The bonds' histories (bond_h) and forces on i (bond_force), and in *old
- * as the file held them, for the checksum: this rank's rows of the forces,
- * or an older checkpoint's arrays whole (*is_old set). That holds a fourth
+/* The bonds' histories (bond_h), and in *old the forces on i (bond_force)
+ * as the file held them, for the checksum only (the engine computes the
+ * bonds' forces again when an output needs them: bonds_output_forces):
+ * this rank's rows of the forces, or an older checkpoint's arrays whole
+ * (*is_old set). That holds a fourth
  * history column, the last u_n, in the slot the law names
  * (law.h_dropped), and the torque per unit radius after each force. */
 static int read_bond_h_f(hid_t g, const engine *e, size_t first, size_t rows, size_t nb,
@@ -679,11 +681,6 @@ static int read_bond_h_f(hid_t g, const engine *e, size_t first, size_t rows, si
 		    get_rows(g, "bond_force", H5T_NATIVE_DOUBLE, old->f, first, rows, nb, 3))
 			return -1;
 	}
-	size_t fcols = *is_old ? OLD_FCOLS : 3;
-	const double *f = *is_old ? old->f + OLD_FCOLS * first : old->f;
-	for (size_t r = 0; r < rows; r++)
-		for (size_t c = 0; c < 3; c++)
-			L->fb[3 * r + c] = (float)f[fcols * r + c];
 	return 0;
 }
 
