@@ -96,6 +96,12 @@ static void hydrostatic(const dem_run *r, summary *s)
 	s->ke_ratio_max = ke_ratio(r, p, r->nrows, 0.5 * pmax, pmax);
 }
 
+int summary_finished(const dem_run *r)
+{
+	return r->status &&
+	       (!strcmp(r->status, "complete") || !strncmp(r->status, "stopped: ", 9));
+}
+
 int summary_no_peak(const dem_run *r)
 {
 	const double *sa = run_column_data(r, "stress_axial");

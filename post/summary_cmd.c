@@ -133,6 +133,16 @@ int post_summary(int argc, char **argv)
 		    "specimen had not failed: raise stop.strain_axial)",
 		    len ? "; " : "");
 	}
+	if (!summary_finished(&r)) {
+		size_t len = strlen(warning);
+		snprintf(warning + len, sizeof warning - len,
+		         "%sthe run did not reach its stop rule (status '%s'): the peak and the "
+		         "other figures are those of its history so far%s",
+		         len ? "; " : "", r.status ? r.status : "none",
+		         r.status && !strcmp(r.status, "interrupted")
+		             ? " (solve --restart continues it)"
+		             : "");
+	}
 	if (warning[0])
 		fprintf(stderr, "%s: warning: %s: %s\n", err_program_name(), file, warning);
 	char *dir = out_dir(out, file);

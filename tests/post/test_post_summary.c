@@ -35,8 +35,9 @@ static const run_column cols[] = {
 enum { NCOLS = sizeof cols / sizeof cols[0] };
 
 /* BTS_RISING: a Brazilian test whose load still rises when its strain stop
- * ends it (no peak). */
-typedef enum { TRIAXIAL, BTS, HYDROSTATIC, CYCLE, BTS_RISING } kind;
+ * ends it (no peak); INTERRUPTED: the triaxial history of a run stopped
+ * by Ctrl-C before its stop rule. */
+typedef enum { TRIAXIAL, BTS, HYDROSTATIC, CYCLE, BTS_RISING, INTERRUPTED } kind;
 
 /* Deviator of the triaxial history: E0 e up to the peak row, then falling
  * linearly to half the peak at the last row. */
@@ -80,7 +81,8 @@ static void write_run(const char *path, kind kd, double ke_fraction)
 	    "{\"test\":\"bts\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}",
 	    "{\"test\":\"hydrostatic\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}",
 	    "{\"test\":\"triaxial\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}",
-	    "{\"test\":\"bts\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}"};
+	    "{\"test\":\"bts\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}",
+	    "{\"test\":\"triaxial\",\"material\":{\"name\":\"test cement\",\"law\":\"onate\"}}"};
 	dem_provenance prov;
 	prov_init(&prov, "solve", config[kd], 0);
 	run_writer *w = run_create(path, &prov, &a, cols, NCOLS);
@@ -105,13 +107,14 @@ static void write_run(const char *path, kind kd, double ke_fraction)
 		    1 + e,    k / 2,     k - k / 2, 1000.0 + k};
 		CHECK(run_history(w, row) == 0);
 	}
-	CHECK(w && run_finish(w, kd == BTS_RISING ? "stopped: axial strain reached 0.03"
-	                                          : "complete") == 0);
+	CHECK(w && run_finish(w, kd == BTS_RISING    ? "stopped: axial strain reached 0.03"
+	                         : kd == INTERRUPTED ? "interrupted"
+	                                             : "complete") == 0);
 	prov_free(&prov);
 	prov_free(&a.prov);
 }
 
-/* warn: 0 none, 1 not quasi-static, 2 no peak. */
+/* warn: 0 none, 1 not quasi-static, 2 no peak, 3 not finished. */
 static cfg *summary_of(const char *dir, const char *run, int warn)
 {
 	post_result res = harness_post("summary --out %s/out %s", dir, run);
@@ -121,6 +124,10 @@ static cfg *summary_of(const char *dir, const char *run, int warn)
 	else if (warn == 2)
 		CHECK_CONTAINS(res.err, "no peak: the axial-strain stop ended the run with the "
 		                        "stress within 1 % of its highest");
+	else if (warn == 3)
+		CHECK_CONTAINS(res.err, "the run did not reach its stop rule (status "
+		                        "'interrupted'): the peak and the other figures are those "
+		                        "of its history so far (solve --restart continues it)");
 	else
 		CHECK_STR(res.err, "");
 	harness_free(&res);
@@ -204,6 +211,17 @@ int main(void)
 	c = summary_of(dir, run, 0);
 	CHECK_REL(num(c, "young_modulus"), E0, 1e-9);
 	CHECK_REL(num(c, "peak_deviator"), E0 * DE * (14 + 3 * (ROWS - 1 - 30)), 1e-9);
+	cfg_free(c);
+
+	/* an interrupted run: the figures of its history so far, and a
+	 * warning saying so, in summary.json too */
+	write_run(run, INTERRUPTED, 0.01);
+	c = summary_of(dir, run, 3);
+	CHECK_REL(num(c, "peak_stress"), PC + E0 * DE * PEAK_ROW, 1e-12);
+	text = cfg_text(c);
+	CHECK_CONTAINS(text, "\"status\":\"interrupted\"");
+	CHECK_CONTAINS(text, "\"warning\":\"the run did not reach its stop rule");
+	free(text);
 	cfg_free(c);
 
 	write_run(run, HYDROSTATIC, 0.01);
