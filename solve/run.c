@@ -324,14 +324,20 @@ static int after_step(loop_state *L, int measure, int64_t rebuilds)
 	if (agreed[0] || budget) {
 		if (!o->quiet) {
 			progress_end(&L->pg);
+			/* DEM_CONTINUE: the command that continues the run
+			 * where solve is run for another (the make workflows,
+			 * which then run post too) */
+			const char *how = getenv("DEM_CONTINUE");
 			char *word = path_shell_word(o->output), launch[64] = "";
 			if (par_size() > 1) /* any rank count continues it */
 				snprintf(launch, sizeof launch, "mpirun -np %d ", par_size());
-			fprintf(stderr,
-			        "%s: interrupted at step %" PRId64
-			        " (%s); continue with: %ssolve --restart %s\n",
+			fprintf(stderr, "%s: interrupted at step %" PRId64 " (%s); continue with: ",
 			        err_program_name(), e->clock.step,
-			        agreed[0] ? strsignal((int)agreed[0]) : "budget", launch, word);
+			        agreed[0] ? strsignal((int)agreed[0]) : "budget");
+			if (how && *how)
+				fprintf(stderr, "%s\n", how);
+			else
+				fprintf(stderr, "%ssolve --restart %s\n", launch, word);
 			free(word);
 		}
 		return end(L, END_INTERRUPTED, RUN_INTERRUPTED, "interrupted");

@@ -87,9 +87,7 @@ $(STUDIES)/%/run.h5: $(STUDIES)/%/assembly.h5 $(STUDIES)/%/case.json | $(BIN)/so
 	@rm -f $(@D)/report.json
 	$(strip $(MPIRUN) $(BIN)/solve) --assembly $< --output $@ --depfile $(@D)/run.d \
 		--report $(@D)/report.json --threads $(THREADS) $(@D)/case.json \
-		|| { $(solve_status); if [ $$rc -eq 3 ]; then [ ! -f $@ ] || mv $@ $@.ckpt; \
-		     elif [ $$rc -ne 0 ]; then [ ! -f $@ ] || mv $@ $(@D)/run.failed.h5; \
-		     echo solve > $(@D)/stage.failed; fi; exit $$rc; }
+		|| $(TOP)/workflows/after-solve $$? $@ $(@D)/stage.failed
 	rm -f $(@D)/run.failed.h5 $(@D)/stage.failed
 
 -include $(wildcard $(STUDIES)/*/*/assembly.d $(STUDIES)/*/*/run.d)

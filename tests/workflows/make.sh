@@ -99,6 +99,8 @@ if DEM_TEST_INTERRUPT=700 setsid --wait make -C "$src/workflows" \
 	fail "make a, interrupted: succeeded"
 fi
 grep -q "interrupted at step 701" "$tmp/log" || { cat "$tmp/log" >&2; fail "solve not interrupted"; }
+grep -q "; continue with: make -C $src/workflows a .*THREADS=1 " "$tmp/log" ||
+	{ cat "$tmp/log" >&2; fail "solve did not say that the make command continues the run"; }
 [ ! -e "$tmp/runs/a/run.h5" ] || fail "an interrupted run left runs/a/run.h5"
 [ ! -e "$tmp/runs/a/run.failed.h5" ] || fail "an interrupted run taken as failed"
 [ -s "$tmp/runs/a/run.h5.ckpt" ] || fail "an interrupted run left no recovery copy"
