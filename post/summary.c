@@ -98,8 +98,7 @@ static void hydrostatic(const dem_run *r, summary *s)
 
 int summary_finished(const dem_run *r)
 {
-	return r->status &&
-	       (!strcmp(r->status, "complete") || !strncmp(r->status, "stopped: ", 9));
+	return r->status && (!strcmp(r->status, "complete") || !strncmp(r->status, "stopped: ", 9));
 }
 
 int summary_no_peak(const dem_run *r)
