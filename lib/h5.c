@@ -1,4 +1,5 @@
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -218,8 +219,16 @@ static hid_t create(const char *final, char *tmp, size_t tmpsize, int shared)
 		               tmp);
 	}
 	if (f < 0) {
+		/* HDF5 does not say why: the system's reason, from a plain
+		 * create of the same name */
+		int fd = open(tmp, O_WRONLY | O_CREAT, 0666);
+		const char *why = fd < 0 ? strerror(errno) : "HDF5 could not create it";
+		if (fd >= 0)
+			close(fd);
 		afile_discard(tmp);
-		return err_set("%s: cannot create file (is the directory writable?)", tmp);
+		return err_set(
+		    "%s: cannot create it (written first as %s, renamed when complete): %s", final,
+		    tmp, why);
 	}
 	if (shared)
 		snprintf(shared_, sizeof shared_, "%s", h5_name(f));

@@ -120,6 +120,10 @@ int path_check_writable(const path_role *out, int nout)
 		if (!out[k].path)
 			continue;
 		dir_of(out[k].path, dir, sizeof dir);
+		struct stat st;
+		if (stat(dir, &st) == 0 && !S_ISDIR(st.st_mode))
+			return err_set("%s: cannot write in %s (%s): it is a file, not a directory",
+			               out[k].path, dir, out[k].role);
 		if (access(dir, W_OK | X_OK))
 			return err_set("%s: cannot write in directory %s (%s): %s", out[k].path,
 			               dir, out[k].role, strerror(errno));

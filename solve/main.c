@@ -120,8 +120,8 @@ static int solve_main(int argc, char **argv)
 	                   {"the assembly", cs.assembly}};
 	cli_check_outputs(&spec, outs, 3, ins, 3);
 	if (!assembly && access(cs.assembly, F_OK) != 0)
-		fatal("%s: key 'assembly': %s (relative to the case file): %s; make it with pack, "
-		      "or give --assembly FILE",
+		fatal("%s: key 'assembly': %s: %s (a relative path in a case file is relative to "
+		      "the case file's directory); make it with pack, or give --assembly FILE",
 		      pos[0], cs.assembly, strerror(errno));
 	if (depfile && par_rank() == 0 && depfile_write(depfile, output, inputs, 3))
 		fatal(NULL);

@@ -101,6 +101,8 @@ int main(void)
 	/* An unwritable place gives a clear error. */
 	dem_assembly a = {0};
 	CHECK(assembly_write("/nonexistent-dir/a.h5", &a) == -1);
-	CHECK_CONTAINS(err_msg(), "/nonexistent-dir/a.h5.tmp: cannot create file");
+	CHECK_CONTAINS(err_msg(), "/nonexistent-dir/a.h5: cannot create it (written first as "
+	                          "/nonexistent-dir/a.h5.tmp, renamed when complete): No such "
+	                          "file or directory");
 	return check_done();
 }
