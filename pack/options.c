@@ -64,7 +64,9 @@ static int table(pack_options *o, cli_opt *t)
 	    {"threads", CLI_INT, &o->threads, "N", "",
 	     "OpenMP threads (0: all cores); the result does not depend on it", 0, 4096},
 	    {"beta", CLI_NUM, &o->beta, "B", "",
-	     "interaction range for the reported coordination and alpha (Eq. 16, 22)", 0, 1},
+	     "interaction range for the reported coordination and alpha: spheres i, j count as "
+	     "bonded when d_ij <= (1 + B)(r_i + r_j) (Eq. 16, 22; a fraction)",
+	     0, 1},
 	    {"cell", CLI_INT, &o->cell, "N", "", "largest number of spheres in the periodic cell",
 	     100, 1e7},
 	    {"keep", CLI_NUM, &o->keep, "K", "radii",

@@ -160,7 +160,9 @@ int post_lammps(int argc, char **argv)
 	     "run: snapshot K (0 first, -1 last; default: the last)", 0, 0},
 	    {"time", CLI_STR, &at_time, "T", "s", "run: the snapshot nearest to time T", 0, 0},
 	    {"strain", CLI_STR, &at_strain, "E", "",
-	     "run: where the axial strain first reaches E (compression positive)", 0, 0},
+	     "run: where the axial strain first reaches E, a fraction (0.005 is 0.5 %; compression "
+	     "positive)",
+	     0, 0},
 	    {"stress", CLI_STR, &at_stress, "S", "Pa",
 	     "run: where the axial stress first reaches S", 0, 0},
 	};

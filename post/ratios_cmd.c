@@ -258,10 +258,15 @@ int post_ratios(int argc, char **argv)
 	const cli_opt opts[] = {
 	    {"out", CLI_STR, &out, "DIR", "", "output directory (default: that of the first run)",
 	     0, 0},
-	    {"snapshot", CLI_STR, &at_snap, "K", "", "at snapshot K (0 first, -1 last)", 0, 0},
+	    {"snapshot", CLI_STR, &at_snap, "K", "",
+	     "at snapshot K (0 first, -1 last); with none of --snapshot, --time, --strain, "
+	     "--stress: at the peak axial stress",
+	     0, 0},
 	    {"time", CLI_STR, &at_time, "T", "s", "at the snapshot nearest to time T", 0, 0},
 	    {"strain", CLI_STR, &at_strain, "E", "",
-	     "where the axial strain first reaches E (compression positive)", 0, 0},
+	     "where the axial strain first reaches E, a fraction (0.005 is 0.5 %; compression "
+	     "positive)",
+	     0, 0},
 	    {"stress", CLI_STR, &at_stress, "S", "Pa",
 	     "where the axial stress first reaches S, e.g. the limit stress", 0, 0},
 	    {"bin-width", CLI_NUM, &width, "DEG", "deg", "width of the angle bins", 0.1, 90},
