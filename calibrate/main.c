@@ -118,9 +118,10 @@ static void set_truth(evaluator *e, cal_spec *sp, double *v, int quiet, const ch
 			      "it can meet: give a value",
 			      sp->source, k, quantities[t->quantity].name);
 		if (!quiet)
-			fprintf(stderr, "calibrate: the truth gives %s %s = %.6g %s\n",
+			fprintf(stderr, "calibrate: the truth gives %s %s = %.6g%s%s\n",
 			        sp->test[t->test].name, quantities[t->quantity].name,
 			        t->value * quantities[t->quantity].factor,
+			        quantities[t->quantity].shown[0] ? " " : "",
 			        quantities[t->quantity].shown);
 	}
 }

@@ -175,7 +175,7 @@ static char *report_text(const report *rp, const char *dir)
 		fprintf(f, ", %ld for the truth", e->runs[PHASE_TRUTH]);
 	fprintf(f,
 	        "; %ld of them run now (%.0f s of solver time), %ld taken from the log. Wall time "
-	        "%.0f s, %.0f s of it to the end of the search.\n\n",
+	        "of this invocation %.0f s, %.0f s of it to the end of the search.\n\n",
 	        e->new_runs, e->run_wall, e->logged_runs, rp->wall, rp->search_wall);
 	targets_md(f, rp);
 	params_md(f, rp);

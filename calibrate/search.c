@@ -23,7 +23,8 @@ typedef struct {
 	search_result *r;
 	int quiet;
 	double t0;
-	double S, K; /* the scales of the next point: those of the best prediction */
+	long new_runs, logged_runs; /* the evaluator's at the last point shown */
+	double S, K;                /* the scales of the next point: those of the best prediction */
 	int round;
 	const char *stage;
 	nlopt_opt opt;
@@ -48,7 +49,10 @@ static void record(search_result *r, const path_point *p)
 	r->path[r->npath++] = *p;
 }
 
-static void show(const ctx *c, const path_point *p)
+/* Point p on the terminal; "from the log" where its runs came from the
+ * log and none ran now (a calibration resumed), rather than the seconds
+ * so far. */
+static void show(ctx *c, const path_point *p)
 {
 	if (c->quiet)
 		return;
@@ -64,8 +68,13 @@ static void show(const ctx *c, const path_point *p)
 		if (p->predicted)
 			fprintf(stderr, "; scaled: %.2f x tol", p->pred.worst);
 	}
-	fprintf(stderr, " | runs %ld of %ld, %.0f s\n", c->e->runs[PHASE_SEARCH], sp->runs,
-	        timer_now() - c->t0);
+	fprintf(stderr, " | runs %ld of %ld, ", c->e->runs[PHASE_SEARCH], sp->runs);
+	if (c->e->new_runs == c->new_runs && c->e->logged_runs > c->logged_runs)
+		fprintf(stderr, "from the log\n");
+	else
+		fprintf(stderr, "%.0f s\n", timer_now() - c->t0);
+	c->new_runs = c->e->new_runs;
+	c->logged_runs = c->e->logged_runs;
 }
 
 static double penalty(const ctx *c) { return fmax(100, 4 * c->worst_f); }
@@ -240,7 +249,8 @@ int search_run(evaluator *e, const space *s, int quiet, search_result *r)
 	r->best = -1;
 	ctx c;
 	memset(&c, 0, sizeof c);
-	c.e = e, c.s = s, c.r = r, c.quiet = quiet, c.t0 = timer_now();
+	c.e = e, c.s = s, c.r = r, c.quiet = quiet, c.t0 = timer_now(), c.new_runs = e->new_runs,
+	c.logged_runs = e->logged_runs;
 	/* The global methods that draw random numbers draw the same ones. */
 	nlopt_srand((unsigned long)sp->seed);
 	double v[CAL_MAX_KEYS], z[CAL_MAX_FREE];

@@ -60,9 +60,13 @@ cut -d, -f2- "$whole/log.csv" | sed 's/,[^,]*$//' > "$tmp/a"
 cut -d, -f2- "$tmp/cut/log.csv" | sed 's/,[^,]*$//' > "$tmp/b"
 cmp -s "$tmp/a" "$tmp/b" || { diff "$tmp/a" "$tmp/b" >&2; fail "the logs differ"; }
 
-# Nothing left to run: a third call takes every run from the log.
-run "$tmp/cut" > /dev/null || fail "the third call failed"
+# Nothing left to run: a third call takes every run from the log, and its
+# progress lines say so.
+"$bin/calibrate" $(echo $opts | sed 's/--quiet//') --out "$tmp/cut" "$data/recovery.json" \
+	> /dev/null 2> "$tmp/third.err" || fail "the third call failed"
 [ "$(field "$tmp/cut/report.json" new)" -eq 0 ] || fail "the third call ran again"
+grep -q "^calibrate: point 1, .* | runs [0-9]* of [0-9]*, from the log$" "$tmp/third.err" ||
+	{ cat "$tmp/third.err" >&2; fail "the third call's points not shown as from the log"; }
 
 # Killed outright (SIGKILL) with two runs going on: they die with it, so
 # that none goes on writing the files of the runs the next call starts
