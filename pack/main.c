@@ -56,9 +56,18 @@ static void size_spheres(const pack_options *o, psd *d, const dem_geometry *g)
 		      o->mean_radius);
 	if (o->count > 0 && options_hcp(o))
 		psd_scale(d, lattice_hcp_radius(g->volume, o->count) / d->rmax);
-	else if (o->count > 0)
-		psd_scale(d, packer_count_scale(d, g->volume, o->count));
-	else if (o->mean_radius > 0)
+	else if (o->count > 0) {
+		double r0 = d->rmin, r1 = d->rmax, s = packer_count_scale(d, g->volume, o->count);
+		psd_scale(d, s);
+		/* a sieve curve is in real sizes: say that it was scaled */
+		if (d->kind == PSD_GRADING && !o->quiet)
+			fprintf(
+			    stderr,
+			    "%s: --count %ld: the grading curve's sizes scaled by %.3g (radii %.3g "
+			    "to %.3g mm instead of %.3g to %.3g)\n",
+			    err_program_name(), o->count, s, 1e3 * d->rmin, 1e3 * d->rmax, 1e3 * r0,
+			    1e3 * r1);
+	} else if (o->mean_radius > 0)
 		psd_scale(d, o->mean_radius / psd_moment(d, 1));
 	double n = packer_count_estimate(d, g->volume);
 	if (n > MAX_SPHERES)

@@ -26,7 +26,10 @@ static int solve_main(int argc, char **argv)
 	const cli_opt opts[] = {
 	    {"assembly", CLI_STR, &assembly, "FILE", "",
 	     "assembly file, instead of the case's \"assembly\"", 0, 0},
-	    {"output", CLI_STR, &output, "FILE", "", "run file to write", 0, 0},
+	    {"output", CLI_STR, &output, "FILE", "",
+	     "run file to write (one already there is replaced when this run ends, and kept until "
+	     "then)",
+	     0, 0},
 	    {"threads", CLI_INT, &threads, "N", "",
 	     "OpenMP threads (0: the case's \"threads\", else all cores); results do not depend "
 	     "on it",

@@ -438,6 +438,22 @@ static void test_config(void)
 	CHECK(same_spheres(one, two));
 	harness_free(&r1);
 	harness_free(&r2);
+	/* --count scales the curve's sizes (real ones), and says by how much
+	 * and to which radii (the curve's 0.6 to 1.2 mm: 200 spheres fill the
+	 * 12 mm cube with larger ones). */
+	r1 = run_pack(SMALL " --dist grading --grading %s --count 200 --seed 4 %s", mix, one);
+	CHECK(r1.status == 0);
+	double scale = 0, lo = 0, hi = 0;
+	const char *said =
+	    strstr(r1.err, "pack: --count 200: the grading curve's sizes scaled by ");
+	CHECK(said && sscanf(said,
+	                     "pack: --count 200: the grading curve's sizes scaled by %lf (radii "
+	                     "%lf to %lf mm instead of 0.6 to 1.2)",
+	                     &scale, &lo, &hi) == 3);
+	CHECK(scale > 1 && scale < 2);
+	CHECK_REL(lo, 0.6 * scale, 1e-2);
+	CHECK_REL(hi, 1.2 * scale, 1e-2);
+	harness_free(&r1);
 	write_file(held, "{\"dist\": \"grading\", "
 	                 "\"grading\": {\"sieve\": [0.0012, 0.0024], \"pasing\": [0, 1]}}");
 	r2 = run_pack("--quiet --config %s %s", held, two);
