@@ -160,10 +160,8 @@ int instant_pick(const char *path, const dem_run *r, const instant *in, size_t *
 			    "%zu, or -1 for the last)",
 			    path, idx, r->nsnap, r->nsnap - 1);
 		k = (size_t)(idx < 0 ? idx + ns : idx);
-		if (idx == -1)
-			snprintf(what, sizeof what, "the last snapshot");
-		else
-			snprintf(what, sizeof what, "snapshot %ld", idx);
+		/* (snapshot k itself: said once, below) */
+		snprintf(what, sizeof what, "%s", idx == -1 ? "the last snapshot" : "");
 		t = r->snap_t[k];
 	} else {
 		k = nearest_snapshot(r, t);
@@ -171,10 +169,10 @@ int instant_pick(const char *path, const dem_run *r, const instant *in, size_t *
 	char gap[160];
 	describe_gap(r, t, gap, sizeof gap);
 	int len = snprintf(desc, n,
-	                   "%s: %s; %ssnapshot %zu (step %lld, t = %.6g s, axial strain %.4g %%, "
+	                   "%s: %s%s%ssnapshot %zu (step %lld, t = %.6g s, axial strain %.4g %%, "
 	                   "axial stress %.4g MPa)",
-	                   path, what, gap, k, (long long)r->snap_step[k], r->snap_t[k],
-	                   100 * r->snap_strain[k], 1e-6 * r->snap_stress[k]);
+	                   path, what, what[0] ? "; " : "", gap, k, (long long)r->snap_step[k],
+	                   r->snap_t[k], 100 * r->snap_strain[k], 1e-6 * r->snap_stress[k]);
 	/* Say so when the snapshot's state is far from the instant's. */
 	series sr = get_series(r);
 	double want = at_time(&sr, sr.stress, t), peak = fabs(sr.stress[argmax(&sr, sr.stress)]);

@@ -152,6 +152,12 @@ int post_study(int argc, char **argv)
 		printf("post study: %s/study.csv: %d points, %d runs, %d without results%s\n", dir,
 		       s.p[0].n * (s.np > 1 ? s.p[1].n : 1), s.npoints, failed,
 		       failed ? " (marked failed or missing in runs.csv)" : "");
+		if (failed == s.npoints)
+			fprintf(
+			    stderr,
+			    "post study: warning: no run of %s has results in %s: run the study "
+			    "first (make -C workflows study STUDY=%s, share/doc/studies.md)\n",
+			    file, dir, name);
 	} else {
 		int changed = 0;
 		for (int k = 0; k < s.npoints; k++)

@@ -74,7 +74,7 @@ int main(void)
 	snprintf(msg, sizeof msg, "axial stress 25 MPa)\n");
 	expect_pick(run, "--time 0.003", msg); /* at a snapshot: no note */
 	expect_pick(run, "--snapshot -1", "the last snapshot; snapshot 4 (step 400000");
-	expect_pick(run, "--snapshot 1", "snapshot 1; snapshot 1 (step 100000");
+	expect_pick(run, "--snapshot 1", ": snapshot 1 (step 100000");
 	/* without a stress column the snapshots' own values are used */
 	expect_pick(bare, "",
 	            "peak axial stress 30 MPa at t = 0.002 s (axial strain 0.2 %); "

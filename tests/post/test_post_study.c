@@ -205,6 +205,13 @@ static void test_table(void)
 	write_study(SEEDED);
 	harness_result r = plan("");
 	harness_free(&r);
+	/* before any point has run: the table, and a warning saying so */
+	r = plan("--table --no-png");
+	CHECK(r.status == 0);
+	CHECK_CONTAINS(r.out, "4 runs, 4 without results");
+	CHECK_CONTAINS(r.err, "post study: warning: no run of ");
+	CHECK_CONTAINS(r.err, " has results in ");
+	harness_free(&r);
 	write_summary("interaction_range-1.2_seed-1", 10e6, 0.002, 100);
 	write_summary("interaction_range-1.2_seed-2", 12e6, 0.003, 110);
 	write_summary("interaction_range-1.4_seed-1", 14e6, 0.0025, 120);
@@ -212,6 +219,7 @@ static void test_table(void)
 	r = plan("--table --no-png");
 	CHECK(r.status == 0);
 	CHECK_CONTAINS(r.out, "4 runs, 1 without results");
+	CHECK(!strstr(r.err, "warning"));
 	harness_free(&r);
 	char *study = harness_slurp(study_file("study.csv"));
 	char *runs = harness_slurp(study_file("runs.csv"));
