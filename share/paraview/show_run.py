@@ -218,7 +218,8 @@ def font(points):
 
 
 def legend(bar, title, fmt):
-    """A horizontal colour legend inside the bottom of its view."""
+    """A horizontal colour legend near the bottom of its view, its ends and a few
+    values between them labelled."""
     bar.Title = title
     bar.ComponentTitle = ""
     bar.TitleColor = [0, 0, 0]
@@ -227,15 +228,16 @@ def legend(bar, title, fmt):
     bar.LabelFontSize = font(10)
     bar.TitleBold = 0
     bar.Orientation = "Horizontal"
-    bar.WindowLocation = "Lower Center"
+    bar.WindowLocation = "Any Location"
+    bar.Position = [0.25, 0.06]
     bar.ScalarBarLength = 0.5
     bar.ScalarBarThickness = 10
     bar.AddRangeLabels = 1
     bar.RangeLabelFormat = fmt
     bar.LabelFormat = fmt
     bar.UseCustomLabels = 0
-    bar.DrawTickMarks = 0
-    bar.DrawTickLabels = 0
+    bar.DrawTickMarks = 1
+    bar.DrawTickLabels = 1
 
 
 def show_platens(platens, view):
