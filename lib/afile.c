@@ -1,3 +1,4 @@
+#define _GNU_SOURCE /* syscall (getdents64), for a signal handler */
 #include <errno.h>
 #include <fcntl.h>
 #include <libgen.h>
@@ -8,6 +9,7 @@
 #include <string.h>
 #include <sys/file.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <unistd.h>
 
 #include "lib/afile.h"
@@ -27,6 +29,34 @@ static pthread_mutex_t pending_lock = PTHREAD_MUTEX_INITIALIZER;
 
 const int afile_signals[AFILE_NSIGNALS] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGUSR2, SIGXCPU};
 
+/* A staging directory (afile_stage_dir), removed with the files in it:
+ * with system calls only, which a signal handler may make. */
+static char stage_dir[NAME_MAX_LEN];
+static volatile sig_atomic_t stage_used;
+
+static void remove_stage(void)
+{
+	if (!stage_used)
+		return;
+	stage_used = 0;
+	int fd = open(stage_dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+	if (fd < 0)
+		return;
+	static char buf[8192]; /* struct linux_dirent64 records */
+	for (long n; (n = syscall(SYS_getdents64, fd, buf, sizeof buf)) > 0;)
+		for (long at = 0; at < n;) {
+			const char *rec = buf + at;
+			unsigned short len;
+			memcpy(&len, rec + 16, sizeof len); /* after d_ino, d_off */
+			const char *name = rec + 19;        /* after d_reclen, d_type */
+			if (strcmp(name, ".") && strcmp(name, ".."))
+				unlinkat(fd, name, 0);
+			at += len;
+		}
+	close(fd);
+	rmdir(stage_dir);
+}
+
 static void remove_pending(void)
 {
 	for (int k = 0; k < MAX_PENDING; k++)
@@ -34,6 +64,19 @@ static void remove_pending(void)
 			unlink(pending[k]);
 			pending_used[k] = 0;
 		}
+	remove_stage();
+}
+
+int afile_stage_dir(const char *dir)
+{
+	stage_used = 0;
+	if (!dir)
+		return 0;
+	if (strlen(dir) >= sizeof stage_dir)
+		return err_set("%s: path too long", dir);
+	snprintf(stage_dir, sizeof stage_dir, "%s", dir);
+	stage_used = 1;
+	return 0;
 }
 
 static void on_signal(int sig)

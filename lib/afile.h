@@ -36,6 +36,11 @@ void afile_discard(const char *tmp);
  * kill (SIGTERM; SIGUSR1, SIGUSR2 or SIGXCPU where configured). */
 enum { AFILE_NSIGNALS = 6 };
 extern const int afile_signals[AFILE_NSIGNALS];
+/* Register dir, a directory of files staged to be moved in together (post
+ * vtk's series), for removal with its files at exit or on a signal, as the
+ * temporaries; NULL unregisters it (once it is moved in). One at a time.
+ * Returns 0, or -1 if the name is too long. */
+int afile_stage_dir(const char *dir);
 /* Install handlers for afile_signals that remove pending temporaries and
  * then die of the same signal. Programs call this once at start. */
 void afile_install_signal_cleanup(void);

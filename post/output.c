@@ -83,6 +83,9 @@ char *out_series_begin(const char *dir, const char *name)
 			fatal("%s: cannot remove: %s", stage, strerror(errno));
 	}
 	out_mkdir(stage);
+	/* an interrupted post leaves no staged files */
+	if (afile_stage_dir(stage))
+		fatal(NULL);
 	return stage;
 }
 
@@ -90,6 +93,9 @@ void out_series_commit(const char *dir, const char *stage, const char *marker,
                        int (*ours)(const char *name))
 {
 	char *mark = out_path(dir, marker), *staged_mark = out_path(stage, marker);
+	/* from here on the staged files are the series' own (a run killed
+	 * meanwhile leaves no marker: an incomplete series) */
+	afile_stage_dir(NULL);
 	if (unlink(mark) != 0 && errno != ENOENT)
 		fatal("%s: cannot remove: %s", mark, strerror(errno));
 	afile_sync_dir(dir);

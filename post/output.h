@@ -23,7 +23,9 @@ void out_mkdir(const char *dir);
  * file of the older series (those ours() accepts) removed, the new files
  * renamed in, the marker last. A kill before the commit leaves the older
  * series whole, one during it a series without its marker: never a marker
- * over files of two series. */
+ * over files of two series. Until the commit an interrupting signal or a
+ * fatal error removes the staging directory (afile_stage_dir); a kill -9
+ * leaves it, and the next out_series_begin removes it. */
 char *out_series_begin(const char *dir, const char *name);
 void out_series_commit(const char *dir, const char *stage, const char *marker,
                        int (*ours)(const char *name));
