@@ -2,6 +2,7 @@
  * (post/summary.h), with the run's test, material and sizes, and a warning
  * when the loading was too fast to be quasi-static. */
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -97,6 +98,20 @@ static void write_json(const char *path, const char *label, const dem_run *r, co
 		fatal(NULL);
 }
 
+/* The warning fmt added to the list w (of size n), after a "; " when it
+ * holds one already. */
+__attribute__((format(printf, 3, 4))) static void add_warning(char *w, size_t n, const char *fmt,
+                                                              ...)
+{
+	size_t len = strlen(w);
+	if (len && len + 2 < n)
+		strcpy(w + len, "; "), len += 2;
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(w + len, n - len, fmt, ap);
+	va_end(ap);
+}
+
 int post_summary(int argc, char **argv)
 {
 	const char *out = NULL;
@@ -120,29 +135,25 @@ int post_summary(int argc, char **argv)
 		fatal("%s: %s", file, err_msg());
 	char warning[600] = "", *label = post_run_label(file);
 	if (s.ke_ratio_max > SUMMARY_KE_RATIO_MAX)
-		snprintf(warning, sizeof warning,
-		         "kinetic/elastic energy ratio %.3g on the loading branch (above %g): the "
-		         "loading is too fast to be quasi-static",
-		         s.ke_ratio_max, SUMMARY_KE_RATIO_MAX);
-	if (kind_of(nm.test) != TEST_HYDROSTATIC && summary_no_peak(&r)) {
-		size_t len = strlen(warning);
-		snprintf(
-		    warning + len, sizeof warning - len,
-		    "%sno peak: the axial-strain stop ended the run with the stress within 1 %% "
-		    "of its highest, so the peak and strength figures are the stop's (the "
-		    "specimen had not failed: raise stop.strain_axial)",
-		    len ? "; " : "");
-	}
-	if (!summary_finished(&r)) {
-		size_t len = strlen(warning);
-		snprintf(warning + len, sizeof warning - len,
-		         "%sthe run did not reach its stop rule (status '%s'): the peak and the "
-		         "other figures are those of its history so far%s",
-		         len ? "; " : "", r.status ? r.status : "none",
-		         r.status && !strcmp(r.status, "interrupted")
-		             ? " (solve --restart continues it)"
-		             : "");
-	}
+		add_warning(
+		    warning, sizeof warning,
+		    "kinetic/elastic energy ratio %.3g on the loading branch (above %g): the "
+		    "loading is too fast to be quasi-static",
+		    s.ke_ratio_max, SUMMARY_KE_RATIO_MAX);
+	if (kind_of(nm.test) != TEST_HYDROSTATIC && summary_no_peak(&r))
+		add_warning(
+		    warning, sizeof warning,
+		    "no peak: the axial-strain stop ended the run with the stress within 1 %% of "
+		    "its highest, so the peak and strength figures are the stop's (the specimen "
+		    "had not failed: raise stop.strain_axial)");
+	if (!summary_finished(&r))
+		add_warning(
+		    warning, sizeof warning,
+		    "the run did not reach its stop rule (status '%s'): the peak and the other "
+		    "figures are those of its history so far%s",
+		    r.status ? r.status : "none",
+		    r.status && !strcmp(r.status, "interrupted") ? " (solve --restart continues it)"
+		                                                 : "");
 	if (warning[0])
 		fprintf(stderr, "%s: warning: %s: %s\n", err_program_name(), file, warning);
 	char *dir = out_dir(out, file);
