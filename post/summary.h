@@ -62,8 +62,9 @@ typedef struct {
 	double wall_time;   /* s */
 } summary;
 
-/* Whether the run reached its stop rule (status "complete" or "stopped:
- * ..."), not interrupted or failed before it. */
+/* Whether the run reached its end (status "complete" or "stopped: ...":
+ * a stop rule, or a diagnosed failure, whose status reads the same), not
+ * interrupted before it. */
 int summary_finished(const dem_run *r);
 /* Whether the run has no peak: its axial-strain stop ended it with the
  * axial stress still within 1 % of its highest (still rising, or on a
